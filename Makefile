@@ -1,0 +1,111 @@
+# stiction — static friction of hard-coated rough surfaces.
+# Targets: all (default), deps, demo, check, validate, bench, reproduce, install, clean.
+# O=DIR puts every build product under DIR (default: the source tree).
+# SANITIZE=1 builds with AddressSanitizer + UndefinedBehaviorSanitizer (default O=build-san).
+
+VERSION   := 0.1.0
+PREFIX    ?= /usr/local
+ifeq ($(SANITIZE),1)
+O         ?= build-san
+else
+O         ?= .
+endif
+
+CC        ?= cc
+PKGS      := fftw3 hdf5 inih
+OPTFLAGS  ?= -O2
+CSTD      := -std=c11 -D_DEFAULT_SOURCE
+WARN      := -Wall -Wextra -Werror
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+CPPFLAGS  += -Iinclude -Iasperity -Isurface -I/usr/include/suitesparse
+CFLAGS    += $(CSTD) $(OPTFLAGS) $(WARN) -fopenmp -fPIC $(PKG_CFLAGS)
+# GSL's CBLAS calls are served by OpenBLAS (no -lgslcblas: one CBLAS only)
+LDLIBS    += -lgsl -lfftw3_omp $(PKG_LIBS) -lcholmod -lopenblas -lm
+LDFLAGS   += -fopenmp
+ifeq ($(SANITIZE),1)
+CFLAGS    += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+LDFLAGS   += -fsanitize=address,undefined
+endif
+
+LIB_SRC   := $(sort $(wildcard asperity/*.c surface/*.c))
+CLI_SRC   := $(sort $(wildcard tools/cli/*.c))
+TEST_SRC  := $(sort $(wildcard tests/test_*.c))
+LIB_OBJ   := $(LIB_SRC:%.c=$(O)/obj/%.o)
+CLI_OBJ   := $(CLI_SRC:%.c=$(O)/obj/%.o)
+TEST_BIN  := $(TEST_SRC:tests/%.c=$(O)/tests-bin/%)
+HEADERS   := $(wildcard include/stiction/*.h)
+
+STATIC    := $(O)/lib/libstiction.a
+SHARED    := $(O)/lib/libstiction.so
+CLI       := $(O)/bin/stiction
+DEPSTAMP  := $(O)/obj/.deps-ok
+
+.PHONY: all deps demo check validate bench reproduce install clean
+.DELETE_ON_ERROR:
+
+all: $(STATIC) $(SHARED) $(CLI)
+
+# A build that finds a Debian package missing installs it (make deps) first.
+$(DEPSTAMP):
+	@mkdir -p $(@D)
+	@tools/deps.sh check || $(MAKE) --no-print-directory deps
+	@tools/deps.sh check
+	@touch $@
+
+deps:
+	@tools/deps.sh install
+
+$(O)/obj/%.o: %.c | $(DEPSTAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(STATIC): $(LIB_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@
+	ar rcs $@ $^
+
+$(SHARED): $(LIB_OBJ)
+	@mkdir -p $(@D)
+	$(CC) -shared $(LDFLAGS) -Wl,-soname,libstiction.so.0 -o $@ $^ $(LDLIBS)
+
+$(CLI): $(CLI_OBJ) $(STATIC)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(STATIC) $(LDLIBS)
+
+$(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) | $(DEPSTAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -o $@ $< $(STATIC) -lcmocka $(LDFLAGS) $(LDLIBS)
+
+check: all $(TEST_BIN)
+	@tools/run-tests.sh $(TEST_BIN)
+
+demo: all
+	@tools/demo.sh $(CLI)
+
+validate: all
+	@tools/validate.sh $(CLI)
+
+bench: all
+	@tools/bench.sh $(CLI)
+
+reproduce: all
+	@tools/reproduce.sh $(CLI)
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/stiction \
+	    $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -m 644 $(STATIC) $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(SHARED) $(DESTDIR)$(PREFIX)/lib/libstiction.so.$(VERSION)
+	ln -sf libstiction.so.$(VERSION) $(DESTDIR)$(PREFIX)/lib/libstiction.so.0
+	ln -sf libstiction.so.0 $(DESTDIR)$(PREFIX)/lib/libstiction.so
+	install -m 644 include/stiction/*.h $(DESTDIR)$(PREFIX)/include/stiction/
+	install -m 755 $(CLI) $(DESTDIR)$(PREFIX)/bin/
+	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
+	    -e 's|@LIBS@|$(LDLIBS)|g' tools/stiction.pc.in \
+	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/stiction.pc
+
+clean:
+	rm -rf $(O)/obj $(O)/lib $(O)/bin $(O)/tests-bin build-san
+
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

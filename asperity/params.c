@@ -1,0 +1,186 @@
+/* Common asperity parameters: defaults, text parsing with range checks,
+ * and INI loading through libinih. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <ini.h>
+
+#include "stiction/params.h"
+#include "stc_check.h"
+
+void stc_params_default(stc_params *p)
+{
+    p->R = 10.0;
+    p->t_over_R = 0.0;
+    p->E_su = 200000.0;
+    p->E_ratio = 1.0;
+    p->E_over_Y = 1000.0;
+    p->Y_su = 0.0;
+    p->Y_co = 0.0;
+    p->nu = 0.32;
+    p->nu_co = 0.32;
+    p->nu_co_set = 0;
+}
+
+const char *stc_key_normalise(const char *key, char *buf, int bufsize)
+{
+    int n = 0;
+    while (*key == '-') key++;
+    for (; *key && n < bufsize - 1; key++)
+        buf[n++] = (*key == '_') ? '-' : *key;
+    buf[n] = '\0';
+    return buf;
+}
+
+stc_status stc_parse_double(const char *key, const char *value, double *out)
+{
+    char *end;
+    STC_CHECK(value && *value, STC_EINVAL, "%s: missing value (expected a number)", key);
+    errno = 0;
+    double v = strtod(value, &end);
+    while (*end && isspace((unsigned char)*end)) end++;
+    STC_CHECK(end != value && *end == '\0', STC_EINVAL,
+              "%s = '%s': not a number", key, value);
+    STC_CHECK(isfinite(v) && errno != ERANGE, STC_EINVAL,
+              "%s = '%s': must be a finite number", key, value);
+    *out = v;
+    return STC_OK;
+}
+
+stc_status stc_parse_long(const char *key, const char *value, long *out)
+{
+    char *end;
+    STC_CHECK(value && *value, STC_EINVAL, "%s: missing value (expected an integer)", key);
+    errno = 0;
+    long v = strtol(value, &end, 10);
+    while (*end && isspace((unsigned char)*end)) end++;
+    STC_CHECK(end != value && *end == '\0' && errno != ERANGE, STC_EINVAL,
+              "%s = '%s': not an integer", key, value);
+    *out = v;
+    return STC_OK;
+}
+
+stc_status stc_check_range(const char *key, double v, double lo, int lo_incl,
+                           double hi, int hi_incl)
+{
+    int ok = !isnan(v) && (lo_incl ? v >= lo : v > lo) && (hi_incl ? v <= hi : v < hi);
+    if (ok) return STC_OK;
+    if (isinf(hi))
+        return STC_FAIL(STC_EINVAL, "%s = %g: must be %s %g", key, v,
+                        lo_incl ? ">=" : ">", lo);
+    return STC_FAIL(STC_EINVAL, "%s = %g: must be in %c%g, %g%c", key, v,
+                    lo_incl ? '[' : '(', lo, hi, hi_incl ? ']' : ')');
+}
+
+/* Table of the common keys: name, field, valid range. */
+typedef struct {
+    const char *key;
+    size_t offset;
+    double lo, hi;
+    int lo_incl, hi_incl;
+} param_key;
+
+#define PK(k, f, lo, li, hi, hiincl) {k, offsetof(stc_params, f), lo, hi, li, hiincl}
+static const param_key param_keys[] = {
+    PK("R", R, 0.0, 0, INFINITY, 0),
+    /* t/R < 1: the coating must be thinner than the sphere is large */
+    PK("t-over-R", t_over_R, 0.0, 1, 1.0, 0),
+    PK("E-su", E_su, 0.0, 0, INFINITY, 0),
+    PK("E-ratio", E_ratio, 0.0, 0, INFINITY, 0),
+    /* E/Y > 1: yield strain below 100 % (small-strain model) */
+    PK("E-over-Y", E_over_Y, 1.0, 0, INFINITY, 0),
+    PK("Y-su", Y_su, 0.0, 0, INFINITY, 0),
+    PK("Y-co", Y_co, 0.0, 0, INFINITY, 0),
+    /* thermodynamic bounds of an isotropic solid */
+    PK("nu", nu, -1.0, 0, 0.5, 0),
+    PK("nu-co", nu_co, -1.0, 0, 0.5, 0),
+};
+#undef PK
+
+stc_status stc_params_set(stc_params *p, const char *key, const char *value)
+{
+    char k[64];
+    stc_key_normalise(key, k, sizeof k);
+    for (size_t i = 0; i < sizeof param_keys / sizeof *param_keys; i++) {
+        const param_key *pk = &param_keys[i];
+        if (strcmp(k, pk->key) != 0) continue;
+        double v;
+        STC_CALL(stc_parse_double(k, value, &v));
+        STC_CALL(stc_check_range(k, v, pk->lo, pk->lo_incl, pk->hi, pk->hi_incl));
+        *(double *)((char *)p + pk->offset) = v;
+        if (strcmp(k, "nu-co") == 0) p->nu_co_set = 1;
+        return STC_OK;
+    }
+    return STC_EUNSUPPORTED;
+}
+
+void stc_params_materials(const stc_params *p, stc_material *su, stc_material *co)
+{
+    double E_co = p->E_su * p->E_ratio;
+    if (su) {
+        su->E = p->E_su;
+        su->nu = p->nu;
+        su->Y = p->Y_su > 0 ? p->Y_su : p->E_su / p->E_over_Y;
+    }
+    if (co) {
+        co->E = E_co;
+        co->nu = p->nu_co_set ? p->nu_co : p->nu;
+        co->Y = p->Y_co > 0 ? p->Y_co : E_co / p->E_over_Y;
+    }
+}
+
+double stc_params_t(const stc_params *p) { return p->t_over_R * p->R; }
+
+stc_status stc_params_validate(const stc_params *p)
+{
+    for (size_t i = 0; i < sizeof param_keys / sizeof *param_keys; i++) {
+        const param_key *pk = &param_keys[i];
+        double v = *(const double *)((const char *)p + pk->offset);
+        /* Y-su / Y-co: 0 means "derive from E-over-Y" */
+        if ((strcmp(pk->key, "Y-su") == 0 || strcmp(pk->key, "Y-co") == 0) && v == 0.0)
+            continue;
+        STC_CALL(stc_check_range(pk->key, v, pk->lo, pk->lo_incl, pk->hi, pk->hi_incl));
+    }
+    stc_material su, co;
+    stc_params_materials(p, &su, &co);
+    STC_CHECK(su.Y < su.E, STC_EINVAL,
+              "Y-su = %g MPa: must be below E-su = %g MPa", su.Y, su.E);
+    STC_CHECK(co.Y < co.E, STC_EINVAL,
+              "Y-co = %g MPa: must be below the coating modulus %g MPa", co.Y, co.E);
+    return STC_OK;
+}
+
+/* ---- INI -------------------------------------------------------------- */
+
+typedef struct {
+    stc_ini_handler handler;
+    void *user;
+    stc_status status;
+} ini_ctx;
+
+static int ini_entry(void *u, const char *section, const char *name, const char *value)
+{
+    ini_ctx *c = u;
+    char k[64];
+    if (c->status != STC_OK) return 0; /* keep the first failure */
+    stc_key_normalise(name, k, sizeof k);
+    c->status = c->handler(c->user, section ? section : "", k, value);
+    return c->status == STC_OK; /* inih: nonzero = keep going */
+}
+
+stc_status stc_ini_load(const char *path, stc_ini_handler handler, void *user)
+{
+    ini_ctx c = {handler, user, STC_OK};
+    FILE *f = fopen(path, "r");
+    STC_CHECK(f, STC_EIO, "config = '%s': cannot open file (%s)", path, strerror(errno));
+    int line = ini_parse_file(f, ini_entry, &c);
+    fclose(f);
+    if (c.status != STC_OK) return c.status; /* handler already set the message */
+    STC_CHECK(line == 0, STC_EFORMAT,
+              "config = '%s': syntax error on line %d (expected 'key = value')", path, line);
+    return STC_OK;
+}

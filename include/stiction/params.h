@@ -1,0 +1,81 @@
+/* stiction — materials and geometry of one coated asperity, and the common
+ * options every subcommand accepts.  Units: mm, N, MPa throughout.
+ */
+#ifndef STICTION_PARAMS_H
+#define STICTION_PARAMS_H
+
+#include <stdio.h>
+#include "stiction/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One isotropic elastic–perfectly plastic von Mises material. */
+typedef struct stc_material {
+    double E;  /* Young's modulus, MPa */
+    double nu; /* Poisson's ratio, dimensionless, in (-1, 0.5) */
+    double Y;  /* yield strength, MPa */
+} stc_material;
+
+/* The common options (SPEC §2): a substrate sphere of radius R carrying a
+ * bonded coating of thickness t = (t/R) R.  Coating properties are given
+ * relative to the substrate unless set explicitly. */
+typedef struct stc_params {
+    double R;        /* substrate radius, mm; default 10 */
+    double t_over_R; /* coating thickness / R; 0 = uncoated; default 0 */
+    double E_su;     /* substrate Young's modulus, MPa; default 200000 */
+    double E_ratio;  /* Eco/Esu; default 1 */
+    double E_over_Y; /* E/Y of both layers (used unless Y_su/Y_co set); default 1000 */
+    double Y_su;     /* substrate yield strength, MPa; 0 = E_su / E_over_Y */
+    double Y_co;     /* coating yield strength, MPa; 0 = E_co / E_over_Y */
+    double nu;       /* substrate Poisson ratio (and coating unless nu_co set); default 0.32 */
+    double nu_co;    /* coating Poisson ratio (used when nu_co_set); default = nu */
+    int nu_co_set;   /* nonzero when nu_co was given explicitly */
+} stc_params;
+
+/* Fill `p` with the defaults listed above. */
+void stc_params_default(stc_params *p);
+
+/* Set one common option from text, e.g. key "t-over-R", value "0.025".
+ * Keys: R, t-over-R, E-su, E-ratio, E-over-Y, Y-su, Y-co, nu, nu-co
+ * (a leading "--" is accepted; '_' and '-' are interchangeable).
+ * Returns STC_OK, STC_EINVAL with a message naming key, value and the valid
+ * range, or STC_EUNSUPPORTED (no message) when the key is not a common one. */
+stc_status stc_params_set(stc_params *p, const char *key, const char *value);
+
+/* Check the whole set for consistency (ranges that involve several keys). */
+stc_status stc_params_validate(const stc_params *p);
+
+/* Resolved layer materials (substrate, coating).  Either pointer may be NULL. */
+void stc_params_materials(const stc_params *p, stc_material *su, stc_material *co);
+
+/* Coating thickness t in mm. */
+double stc_params_t(const stc_params *p);
+
+/* Parse a number from text strictly: whole string, finite.  Messages name
+ * `key`.  Helpers for every option parser in the project. */
+stc_status stc_parse_double(const char *key, const char *value, double *out);
+stc_status stc_parse_long(const char *key, const char *value, long *out);
+
+/* Range checks producing the project's standard message
+ * "<key> = <value>: must be <what>". lo/hi inclusive flags. */
+stc_status stc_check_range(const char *key, double v, double lo, int lo_incl,
+                           double hi, int hi_incl);
+
+/* Normalise an option key in place: strip leading "--", map '_' to '-'. */
+const char *stc_key_normalise(const char *key, char *buf, int bufsize);
+
+/* INI files (parsed by libinih): calls handler(user, section, key, value) for
+ * every entry; stops at the first handler failure.  Section names are passed
+ * through (may be ""); keys are normalised.  Returns STC_EIO when the file
+ * cannot be opened, STC_EFORMAT with the line number for a syntax error, or
+ * the handler's status. */
+typedef stc_status (*stc_ini_handler)(void *user, const char *section,
+                                      const char *key, const char *value);
+stc_status stc_ini_load(const char *path, stc_ini_handler handler, void *user);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,222 @@
+/* Option parsing shared by every subcommand: INI config, then argv. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+typedef struct {
+    const cli_opt *opts;
+    stc_params *params;
+    cli_set_fn set;
+    void *ctx;
+} dispatch_ctx;
+
+static const cli_opt *find_opt(const cli_opt *opts, const char *key)
+{
+    for (; opts && opts->name; opts++)
+        if (strcmp(opts->name, key) == 0) return opts;
+    return NULL;
+}
+
+/* Route one key to the common parameters or to the subcommand. */
+static stc_status dispatch(void *u, const char *section, const char *key,
+                           const char *value)
+{
+    dispatch_ctx *d = u;
+    (void)section;
+    if (d->params) {
+        stc_status s = stc_params_set(d->params, key, value);
+        if (s != STC_EUNSUPPORTED) return s;
+    }
+    if (d->set && find_opt(d->opts, key)) {
+        stc_status s = d->set(d->ctx, key, value);
+        if (s != STC_EUNSUPPORTED) return s;
+    }
+    return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                     "unknown option '%s' (see --help for the valid keys)", key);
+}
+
+static int is_common_key(const char *key)
+{
+    stc_params scratch;
+    stc_params_default(&scratch);
+    /* a value-free probe: parse with a valid dummy and see if recognised */
+    return stc_params_set(&scratch, key, "0.25") != STC_EUNSUPPORTED;
+}
+
+void cli_common_help(FILE *f)
+{
+    fputs("Common options (units mm, N, MPa):\n"
+          "  --R MM            substrate radius (default 10)\n"
+          "  --t-over-R X      coating thickness / R, 0 = uncoated (default 0)\n"
+          "  --E-su MPA        substrate Young's modulus (default 200000)\n"
+          "  --E-ratio X       Eco/Esu (default 1)\n"
+          "  --E-over-Y X      E/Y of both layers (default 1000)\n"
+          "  --Y-su MPA        substrate yield strength (overrides E-over-Y)\n"
+          "  --Y-co MPA        coating yield strength (overrides E-over-Y)\n"
+          "  --nu X            Poisson's ratio (default 0.32)\n"
+          "  --nu-co X         coating Poisson's ratio (default: --nu)\n"
+          "  --config FILE     INI file with the same keys (command line overrides)\n"
+          "  --help            this text\n",
+          f);
+}
+
+static void print_help(const char *cmdname, const char *usage, const cli_opt *opts,
+                       int has_params)
+{
+    printf("usage: stiction %s %s\n\n", cmdname, usage);
+    if (opts && opts->name) {
+        printf("Options:\n");
+        for (const cli_opt *o = opts; o->name; o++) {
+            char left[64];
+            snprintf(left, sizeof left, "--%s%s%s", o->name, o->arg ? " " : "",
+                     o->arg ? o->arg : "");
+            printf("  %-22s %s\n", left, o->help);
+        }
+        printf("\n");
+    }
+    if (has_params) cli_common_help(stdout);
+}
+
+int cli_fail(const char *cmdname, stc_status s)
+{
+    const char *m = stc_errmsg();
+    fprintf(stderr, "stiction %s: %s\n", cmdname, (m && *m) ? m : stc_strerror(s));
+    return (s == STC_EINVAL || s == STC_EFORMAT) ? CLI_EXIT_USAGE : CLI_EXIT_FAIL;
+}
+
+int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
+              const cli_opt *opts, stc_params *params, cli_set_fn set, void *ctx,
+              int *done)
+{
+    dispatch_ctx d = {opts, params, set, ctx};
+    char key[64];
+    stc_status s;
+    *done = 0;
+
+    /* Pass 1: --help and --config */
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_help(cmdname, usage, opts, params != NULL);
+            *done = 1;
+            return CLI_EXIT_OK;
+        }
+        const char *path = NULL;
+        if (strcmp(a, "--config") == 0) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "stiction %s: --config: missing file name\n", cmdname);
+                return CLI_EXIT_USAGE;
+            }
+            path = argv[i + 1];
+        } else if (strncmp(a, "--config=", 9) == 0) {
+            path = a + 9;
+        }
+        if (path && (s = stc_ini_load(path, dispatch, &d)) != STC_OK)
+            return cli_fail(cmdname, s);
+    }
+
+    /* Pass 2: command line, overriding the file */
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strncmp(a, "--", 2) != 0 || a[2] == '\0') {
+            fprintf(stderr, "stiction %s: unexpected argument '%s' (options start with --)\n",
+                    cmdname, a);
+            return CLI_EXIT_USAGE;
+        }
+        const char *eq = strchr(a, '=');
+        const char *value;
+        if (eq) {
+            size_t n = (size_t)(eq - a);
+            if (n >= sizeof key) n = sizeof key - 1;
+            memcpy(key, a, n);
+            key[n] = '\0';
+            stc_key_normalise(key, key, sizeof key);
+            value = eq + 1;
+        } else {
+            stc_key_normalise(a, key, sizeof key);
+            value = NULL;
+        }
+        if (strcmp(key, "config") == 0) {
+            if (!eq) i++;
+            continue;
+        }
+        const cli_opt *o = find_opt(opts, key);
+        int is_flag = o && !o->arg;
+        if (!value) {
+            if (is_flag) value = "1";
+            else if (o || (params && is_common_key(key))) {
+                if (i + 1 >= argc) {
+                    fprintf(stderr, "stiction %s: --%s: missing value\n", cmdname, key);
+                    return CLI_EXIT_USAGE;
+                }
+                value = argv[++i];
+            } else {
+                fprintf(stderr, "stiction %s: unknown option '--%s' (see --help)\n",
+                        cmdname, key);
+                return CLI_EXIT_USAGE;
+            }
+        }
+        if ((s = dispatch(&d, "", key, value)) != STC_OK) return cli_fail(cmdname, s);
+    }
+    if (params && (s = stc_params_validate(params)) != STC_OK) return cli_fail(cmdname, s);
+    return CLI_EXIT_OK;
+}
+
+stc_status cli_parse_list(const char *key, const char *value, double **out, int *n)
+{
+    *out = NULL;
+    *n = 0;
+    if (strchr(value, ':')) {
+        double a, b;
+        long cnt;
+        char buf[3][64];
+        const char *p = value;
+        for (int k = 0; k < 3; k++) {
+            const char *c = strchr(p, ':');
+            size_t len = c ? (size_t)(c - p) : strlen(p);
+            if (len >= sizeof buf[k] || (k < 2 && !c) || (k == 2 && c))
+                return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                                 "%s = '%s': a range is start:stop:count", key, value);
+            memcpy(buf[k], p, len);
+            buf[k][len] = '\0';
+            p = c ? c + 1 : p + len;
+        }
+        stc_status s;
+        if ((s = stc_parse_double(key, buf[0], &a)) || (s = stc_parse_double(key, buf[1], &b)) ||
+            (s = stc_parse_long(key, buf[2], &cnt)))
+            return s;
+        if (cnt < 1 || cnt > 100000)
+            return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                             "%s = '%s': count %ld must be in [1, 100000]", key, value, cnt);
+        double *v = malloc((size_t)cnt * sizeof *v);
+        if (!v) return stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+        for (long k = 0; k < cnt; k++) v[k] = cnt == 1 ? a : a + (b - a) * (double)k / (double)(cnt - 1);
+        *out = v;
+        *n = (int)cnt;
+        return STC_OK;
+    }
+    int cap = 1;
+    for (const char *c = value; *c; c++) cap += (*c == ',');
+    double *v = malloc((size_t)cap * sizeof *v);
+    if (!v) return stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+    const char *p = value;
+    for (int k = 0; k < cap; k++) {
+        const char *c = strchr(p, ',');
+        size_t len = c ? (size_t)(c - p) : strlen(p);
+        char buf[64];
+        if (len >= sizeof buf) len = sizeof buf - 1;
+        memcpy(buf, p, len);
+        buf[len] = '\0';
+        stc_status s = stc_parse_double(key, buf, &v[k]);
+        if (s) {
+            free(v);
+            return s;
+        }
+        p = c ? c + 1 : p + len;
+    }
+    *out = v;
+    *n = cap;
+    return STC_OK;
+}

@@ -1,0 +1,43 @@
+/* stiction — command-line entry point: dispatch to subcommands. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+#define STICTION_VERSION "0.1.0"
+
+static const cli_cmd commands[] = {
+    {"formulas", "closed-form contact models (Hertz, yield inception, coated fits, WSP)",
+     cli_formulas},
+    {NULL, NULL, NULL},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: stiction COMMAND [options]   (stiction COMMAND --help for details)\n\n"
+               "Commands:\n");
+    for (const cli_cmd *c = commands; c->name; c++) fprintf(f, "  %-12s %s\n", c->name, c->summary);
+    fprintf(f, "\nUnits: mm, N, MPa throughout.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+        strcmp(argv[1], "help") == 0) {
+        usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("stiction %s\n", STICTION_VERSION);
+        return CLI_EXIT_OK;
+    }
+    for (const cli_cmd *c = commands; c->name; c++)
+        if (strcmp(argv[1], c->name) == 0) return c->run(c, argc - 2, argv + 2);
+    fprintf(stderr, "stiction: unknown command '%s'\n\n", argv[1]);
+    usage(stderr);
+    return CLI_EXIT_USAGE;
+}
