@@ -1,0 +1,105 @@
+/* Internal finite-element building blocks of the asperity solver (not
+ * installed).  Shared contract between mesh generators, element kernels,
+ * the material kernel and the solver.
+ *
+ * Coordinates: the sphere's axis is z, the centre of the substrate sphere is
+ * the origin, the top of the outer (coated) surface is at z = R' = R + t and
+ * the base plane z = 0 is fixed.  The rigid flat sits at z = R' - δ.
+ *   axisymmetric (dim 2): (r, z), r >= 0; u_r = 0 on the axis.
+ *   3D half model (dim 3): (x, y, z) with y >= 0; the tangential load is
+ *   along x, and the symmetry plane y = 0 has u_y = 0.
+ * Voigt order for stress/strain: [xx, yy, zz, xy, yz, zx] with engineering
+ * shear strains.  In the axisymmetric case the six slots hold
+ * [rr, zz, θθ, rz, 0, 0].
+ * Small-strain kinematics: adequate for δ/R below about 1e-2 (SPEC §2).
+ */
+#ifndef STICTION_FE_H
+#define STICTION_FE_H
+
+#include "stiction/params.h"
+#include "stiction/status.h"
+
+/* ---- mesh ------------------------------------------------------------- */
+
+enum {
+    ASP_NODE_BASE = 1, /* on the fixed base plane z = 0 */
+    ASP_NODE_AXIS = 2, /* on the axis (axisymmetric: u_r = 0) */
+    ASP_NODE_SYM = 4,  /* on the symmetry plane y = 0 (3D: u_y = 0) */
+    ASP_NODE_TOP = 8   /* on the outer spherical surface near the top: contact candidate */
+};
+
+enum { ASP_REGION_SUBSTRATE = 0, ASP_REGION_COATING = 1 };
+
+typedef struct asp_mesh {
+    int dim;              /* 2 = axisymmetric, 3 = half model */
+    int nnode, nelem, nen;/* nen = 4 (quad4) or 8 (hex8) */
+    double *x;            /* [nnode][dim] coordinates, mm */
+    int *conn;            /* [nelem][nen], counter-clockwise / positive Jacobian */
+    int *region;          /* [nelem] ASP_REGION_* */
+    unsigned char *flags; /* [nnode] ASP_NODE_* bits */
+} asp_mesh;
+
+/* What to mesh and how finely. */
+typedef struct asp_mesh_spec {
+    double R;       /* substrate radius, mm */
+    double t;       /* coating thickness, mm (0 = uncoated) */
+    double a_max;   /* largest expected contact radius, mm: sets the fine zone */
+    int level;      /* resolution: 0 coarse, 1 default, 2 fine, 3+ finer */
+} asp_mesh_spec;
+
+stc_status asp_mesh_axisym(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */
+stc_status asp_mesh_half3d(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */
+void asp_mesh_destroy(asp_mesh **m); /* sets *m = NULL */
+/* Worst element quality in [0, 1] (1 = perfect square/cube; min over
+ * elements of the scaled Jacobian).  Returns STC_EFORMAT if an element is
+ * inverted. */
+stc_status asp_mesh_quality(const asp_mesh *m, double *worst);
+
+/* ---- material: isotropic elasticity + von Mises perfect plasticity ----- */
+
+typedef struct asp_qp_state {
+    double eps_p[6]; /* plastic strain, Voigt, engineering shear */
+    double epbar;    /* equivalent plastic strain */
+} asp_qp_state;
+
+typedef struct asp_j2 {
+    double E, nu, Y;     /* MPa, -, MPa */
+    double lambda, mu, kappa; /* Lamé constants and bulk modulus, MPa */
+} asp_j2;
+
+void asp_j2_init(asp_j2 *m, const stc_material *mat);
+
+/* Radial return for total strain eps given the converged state `old`.
+ * Writes stress sig[6], the updated state `upd` and (if D != NULL) the
+ * consistent tangent D[6][6] (row major, engineering-shear Voigt).
+ * Returns 1 if the point is plastic in this step, 0 if elastic.  Pure. */
+int asp_j2_update(const asp_j2 *m, const double eps[6], const asp_qp_state *old,
+                  asp_qp_state *upd, double sig[6], double *D);
+
+/* Von Mises equivalent stress of a Voigt stress. */
+double asp_von_mises(const double sig[6]);
+
+/* ---- elements (B-bar, mean dilatation; 2x2 / 2x2x2 Gauss) -------------- */
+
+enum { ASP_QUAD4_NQP = 4, ASP_HEX8_NQP = 8 };
+
+/* Axisymmetric 4-node quadrilateral.  X: [4][2] (r, z); u: [8] (ur, uz per
+ * node).  Computes fe[8] = ∫ Bbarᵀ σ 2πr dA (internal force, N) and, if Ke
+ * is not NULL, Ke[8][8] row major.  sig (nullable): [4][6] stress per qp.
+ * Returns the number of plastic qps, or -1 for a non-positive Jacobian. */
+int asp_quad4_axi(const double *X, const double *u, const asp_j2 *m,
+                  const asp_qp_state *old, asp_qp_state *upd,
+                  double *fe, double *Ke, double *sig);
+
+/* 3D 8-node hexahedron, same conventions: X [8][3], u [24], fe [24],
+ * Ke [24][24], sig [8][6]. */
+int asp_hex8(const double *X, const double *u, const asp_j2 *m,
+             const asp_qp_state *old, asp_qp_state *upd,
+             double *fe, double *Ke, double *sig);
+
+/* Gauss-point coordinates of an element (for yield location reporting):
+ * xq [nqp][dim]. */
+void asp_quad4_qp_coords(const double *X, double *xq);
+void asp_hex8_qp_coords(const double *X, double *xq);
+
+#endif

@@ -1,0 +1,92 @@
+/* stiction — closed-form contact relations (SPEC §3–§5).
+ *
+ * Every function is pure and thread-safe.  Units: mm, N, MPa.  Each fit
+ * reports whether its inputs lie inside the range the fit was made for
+ * through an stc_fit_range flag word (0 = inside every range).
+ */
+#ifndef STICTION_FORMULAS_H
+#define STICTION_FORMULAS_H
+
+#include "stiction/params.h"
+#include "stiction/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Out-of-range flags (bitwise OR). */
+enum {
+    STC_FIT_OK = 0,
+    STC_FIT_E_RATIO = 1 << 0,   /* Eco/Esu outside the fit's range */
+    STC_FIT_T_OVER_R = 1 << 1,  /* t/R outside the fit's range (e.g. below (t/R)_p_st) */
+    STC_FIT_NU = 1 << 2,        /* Poisson ratio outside the fit's range */
+    STC_FIT_E_OVER_Y = 1 << 3,  /* E/Y outside the fit's range */
+    STC_FIT_DELTA = 1 << 4,     /* interference outside the fit's range */
+    STC_FIT_ORDER = 1 << 5      /* delta_c1 > delta_c2: substrate yields first ("weakening") */
+};
+
+/* Describe the flags in words ("Eco/Esu = 12 outside [1, 4.5] of the fit; ...").
+ * Writes at most n bytes into buf (NUL-terminated); returns buf. */
+const char *stc_fit_describe(unsigned flags, char *buf, int n);
+
+/* --- Hertz: elastic sphere on a rigid flat (SPEC §3) --- */
+typedef struct stc_hertz {
+    double E_star; /* E/(1-ν²), MPa */
+    double P;      /* load, N */
+    double a;      /* contact radius, mm */
+    double p0;     /* peak pressure, MPa */
+    double A;      /* contact area π a², mm² */
+} stc_hertz;
+stc_status stc_hertz_eval(const stc_material *m, double R, double delta, stc_hertz *out);
+
+/* --- Yield inception of a homogeneous sphere (SPEC §3) --- */
+typedef struct stc_critical {
+    double Cv;              /* 1.234 + 1.256 ν (Green 2005 via Kogut & Etsion) */
+    double omega_c;         /* critical interference, mm (slip) */
+    double P_c;             /* critical load, N (slip) */
+    double A_c;             /* π ωc R, mm² */
+    double delta_c_stick_over_omega_c; /* Brizmer et al. 2006 */
+    double L_c_stick_over_P_c;         /* Brizmer et al. 2006 */
+    double delta_c_stick;   /* mm */
+    double L_c_stick;       /* N */
+    double A_c_stick;       /* π δc R, mm² */
+    unsigned flags;
+} stc_critical;
+stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out);
+
+/* --- Coated sphere fits (SPEC §4) --- */
+typedef struct stc_coated {
+    /* slip: Goltsberg, Etsion & Davidi 2011; Chen, Goltsberg & Etsion 2016 */
+    double Pc_co_over_Pc_su;        /* corrected form, SPEC §4 remark */
+    double tR_p;                    /* (t/R)_p */
+    double omega_c1_over_omega_c_co;
+    double omega_c2_over_omega_c_co;
+    double omega_c1_mm, omega_c2_mm;
+    unsigned flags_slip;
+    /* stick: Ronen, Goltsberg & Etsion 2017 */
+    double tR_p_st;                 /* (t/R)_p_st */
+    double delta_c1_over_omega_c_co, delta_c2_over_omega_c_co;
+    double delta_c1_over_omega_c_su, delta_c2_over_omega_c_su;
+    double delta_c1_mm, delta_c2_mm;
+    double L_c2_over_P_c_co, L_c2_N;
+    double A_c2_st_over_A_c_co, A_c2_st_mm2;
+    unsigned flags_stick;
+    stc_critical su, co;            /* the layers' homogeneous values */
+} stc_coated;
+/* Requires t/R > 0 and Eco/Esu > 1 (the stick fits contain (Eco/Esu - 1)
+ * raised to negative powers). */
+stc_status stc_coated_eval(const stc_params *p, stc_coated *out);
+
+/* Elastic–plastic stick relations for δc1 < δ < δc2 (Ronen et al. 2017):
+ * L/Lc2 = (δ/δc2)^1.25, A/Ac2 = δ/δc2.  flags gets STC_FIT_DELTA when δ is
+ * outside (δc1, δc2). */
+stc_status stc_coated_ep(const stc_coated *c, double delta_mm, double *L_N, double *A_mm2,
+                         unsigned *flags);
+
+/* --- Wu, Shi & Polycarpou 2012: μs = 0.3 coth(0.57 (ω/ωc)^0.41) --- */
+double stc_wsp_mu(double omega_over_omega_c, unsigned *flags);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
