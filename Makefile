@@ -21,7 +21,7 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 CPPFLAGS  += -Iinclude -Iasperity -Isurface -I/usr/include/suitesparse
 CFLAGS    += $(CSTD) $(OPTFLAGS) $(WARN) -fopenmp -fPIC $(PKG_CFLAGS)
 # GSL's CBLAS calls are served by OpenBLAS (no -lgslcblas: one CBLAS only)
-LDLIBS    += -lgsl -lfftw3_omp $(PKG_LIBS) -lcholmod -lopenblas -lm
+LDLIBS    += -lgsl -lfftw3_omp $(PKG_LIBS) -lcholmod -lopenblas -lpng -lm
 LDFLAGS   += -fopenmp
 ifeq ($(SANITIZE),1)
 CFLAGS    += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined

@@ -25,9 +25,28 @@ enum {
     STC_FIT_ORDER = 1 << 5      /* delta_c1 > delta_c2: substrate yields first ("weakening") */
 };
 
-/* Describe the flags in words ("Eco/Esu = 12 outside [1, 4.5] of the fit; ...").
+/* Describe the flags in words ("Eco/Esu outside the fit's range; ...").
  * Writes at most n bytes into buf (NUL-terminated); returns buf. */
 const char *stc_fit_describe(unsigned flags, char *buf, int n);
+
+/* Which family of fits a flag word belongs to: the same bit means a
+ * different range for each family (e.g. Eco/Esu <= 4.5 for the slip fits). */
+typedef enum stc_fit_family {
+    STC_FITS_GENERIC = 0,  /* no range known: generic wording */
+    STC_FITS_STICK_HOMOG,  /* stc_critical.flags: Brizmer et al. 2006 stick fits */
+    STC_FITS_SLIP,         /* stc_coated.flags_slip: Goltsberg 2011, Chen 2016 */
+    STC_FITS_STICK,        /* stc_coated.flags_stick: Ronen et al. 2017 */
+    STC_FITS_EP,           /* stc_coated_ep flags: L/Lc2, A/Ac2 */
+    STC_FITS_WSP           /* stc_wsp_mu flags */
+} stc_fit_family;
+
+/* One sentence naming the range (and its source) that flag `bit` of
+ * family `fam` violates.  Returns a static string; thread-safe. */
+const char *stc_fit_flag_text(stc_fit_family fam, unsigned bit);
+
+/* stc_fit_describe with the family's wording: the set bits' sentences
+ * joined by "; " into buf (at most n bytes, NUL-terminated); returns buf. */
+const char *stc_fit_describe_family(stc_fit_family fam, unsigned flags, char *buf, int n);
 
 /* --- Hertz: elastic sphere on a rigid flat (SPEC §3) --- */
 typedef struct stc_hertz {
@@ -41,18 +60,23 @@ stc_status stc_hertz_eval(const stc_material *m, double R, double delta, stc_her
 
 /* --- Yield inception of a homogeneous sphere (SPEC §3) --- */
 typedef struct stc_critical {
-    double Cv;              /* 1.234 + 1.256 ν (Green 2005 via Kogut & Etsion) */
+    double Cv;              /* 1.234 + 1.256 ν (Kogut & Etsion 2002; thesis §3.1.1.1) */
     double omega_c;         /* critical interference, mm (slip) */
     double P_c;             /* critical load, N (slip) */
     double A_c;             /* π ωc R, mm² */
-    double delta_c_stick_over_omega_c; /* Brizmer et al. 2006 */
-    double L_c_stick_over_P_c;         /* Brizmer et al. 2006 */
+    double delta_c_stick_over_omega_c; /* Brizmer et al. 2006; NAN where the fit is <= 0 */
+    double L_c_stick_over_P_c;         /* Brizmer et al. 2006; NAN where the fit is <= 0 */
     double delta_c_stick;   /* mm */
     double L_c_stick;       /* N */
     double A_c_stick;       /* π δc R, mm² */
-    unsigned flags;
+    unsigned flags;         /* STC_FITS_STICK_HOMOG: STC_FIT_NU */
 } stc_critical;
 stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out);
+
+/* Brizmer et al. 2006 stick ratios δc/ωc and Lc/Pc alone; NAN where the fit
+ * is not positive (ν below about 0.07 and 0.12 respectively). */
+double stc_brizmer_delta_ratio(double nu);
+double stc_brizmer_load_ratio(double nu);
 
 /* --- Coated sphere fits (SPEC §4) --- */
 typedef struct stc_coated {
@@ -72,10 +96,20 @@ typedef struct stc_coated {
     double A_c2_st_over_A_c_co, A_c2_st_mm2;
     unsigned flags_stick;
     stc_critical su, co;            /* the layers' homogeneous values */
+    double t_over_R, E_ratio;       /* the inputs the fits were evaluated at */
 } stc_coated;
 /* Requires t/R > 0 and Eco/Esu > 1 (the stick fits contain (Eco/Esu - 1)
- * raised to negative powers). */
+ * raised to negative powers): otherwise returns STC_EUNSUPPORTED with a
+ * message saying why the coated fits do not apply (callers report "not
+ * applicable", not an error).  STC_EINVAL for invalid parameters. */
 stc_status stc_coated_eval(const stc_params *p, stc_coated *out);
+
+/* The pieces of stc_coated_eval usable without a coating thickness (e.g. to
+ * choose one).  Materials are not checked here; pass validated ones. */
+double stc_pc_ratio(const stc_material *su, const stc_material *co); /* Pc_co/Pc_su, corrected */
+double stc_tR_p(const stc_material *su, const stc_material *co);     /* Goltsberg 2011, eq. 3.5 */
+double stc_tR_p_same_nu(const stc_material *su, const stc_material *co); /* Chen 2016, eq. 3.7 */
+double stc_tR_p_st(const stc_material *su, const stc_material *co, double nu); /* Ronen 2017 */
 
 /* Elastic–plastic stick relations for δc1 < δ < δc2 (Ronen et al. 2017):
  * L/Lc2 = (δ/δc2)^1.25, A/Ac2 = δ/δc2.  flags gets STC_FIT_DELTA when δ is
@@ -83,7 +117,9 @@ stc_status stc_coated_eval(const stc_params *p, stc_coated *out);
 stc_status stc_coated_ep(const stc_coated *c, double delta_mm, double *L_N, double *A_mm2,
                          unsigned *flags);
 
-/* --- Wu, Shi & Polycarpou 2012: μs = 0.3 coth(0.57 (ω/ωc)^0.41) --- */
+/* --- Wu, Shi & Polycarpou 2012: μs = 0.3 coth(0.57 (ω/ωc)^0.41) ---
+ * Returns NAN (and STC_FIT_DELTA) for ω/ωc <= 0 or not finite; flags
+ * (nullable) gets STC_FIT_DELTA outside the preloads 0.5–72 of the paper. */
 double stc_wsp_mu(double omega_over_omega_c, unsigned *flags);
 
 #ifdef __cplusplus

@@ -1,0 +1,336 @@
+/* The stiction CLI as a user meets it: every invalid-input path must exit
+ * non-zero with a message naming the key, the value and the valid range,
+ * and leave no output file; valid runs print parseable JSON / CSV.
+ *
+ * The binary is $STICTION_CLI if set, else ../bin/stiction relative to this
+ * test program (the Makefile's layout for any O=). */
+#include <limits.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+static char cli[PATH_MAX];
+static char ini[64]; /* scratch INI file */
+
+static int find_cli(void **state)
+{
+    (void)state;
+    const char *env = getenv("STICTION_CLI");
+    if (env && *env) {
+        snprintf(cli, sizeof cli, "%s", env);
+    } else {
+        char self[PATH_MAX];
+        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+        if (n <= 0) return -1;
+        self[n] = '\0';
+        char *slash = strrchr(self, '/');
+        if (!slash) return -1;
+        *slash = '\0';
+        snprintf(cli, sizeof cli, "%.*s/../bin/stiction", PATH_MAX - 32, self);
+    }
+    if (access(cli, X_OK) != 0) {
+        fprintf(stderr, "test_cli: no executable CLI at '%s' (build it, or set STICTION_CLI)\n", cli);
+        return -1;
+    }
+    snprintf(ini, sizeof ini, "/tmp/stiction-test-cli-%ld.ini", (long)getpid());
+    return 0;
+}
+
+static int cleanup(void **state)
+{
+    (void)state;
+    remove(ini);
+    return 0;
+}
+
+/* Run "cli ARGS"; `which` = 1 captures stdout, 2 stderr.  Returns the exit
+ * status; the captured text goes to buf (NUL-terminated). */
+static int run(const char *args, int which, char *buf, size_t n)
+{
+    char cmd[PATH_MAX + 1024];
+    snprintf(cmd, sizeof cmd, "'%s' %s %s", cli, args,
+             which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t got = fread(buf, 1, n - 1, p);
+    buf[got] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}
+
+static void write_ini(const char *text)
+{
+    FILE *f = fopen(ini, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* Expect failure with every needle in the message on stderr. */
+static void expect_fail(const char *args, const char *n1, const char *n2)
+{
+    static char err[8192];
+    int rc = run(args, 2, err, sizeof err);
+    printf("  %-58s -> %d: %s", args, rc, err);
+    if (rc == 0) fail_msg("'%s' exited 0", args);
+    if (!strstr(err, n1) || (n2 && !strstr(err, n2)))
+        fail_msg("'%s': message '%s' lacks '%s' / '%s'", args, err, n1, n2 ? n2 : "");
+}
+
+static void test_bad_common_values(void **state)
+{
+    (void)state;
+    expect_fail("formulas --R -1", "R = -1", "must be > 0");               /* negative */
+    expect_fail("formulas --E-su 0", "E-su = 0", "must be > 0");           /* zero */
+    expect_fail("formulas --E-ratio=0", "E-ratio = 0", "must be > 0");
+    expect_fail("formulas --nu nan", "nu = 'nan'", "finite number");       /* NaN */
+    expect_fail("formulas --R inf", "R = 'inf'", "finite number");         /* inf */
+    expect_fail("formulas --R -inf", "R = '-inf'", "finite number");
+    expect_fail("formulas --t-over-R abc", "t-over-R = 'abc'", "not a number");
+    expect_fail("formulas --R 10mm", "R = '10mm'", "not a number");
+    expect_fail("formulas --nu 0.7", "nu = 0.7", "(-1, 0.5)");
+    expect_fail("formulas --nu-co -1", "nu-co = -1", "(-1, 0.5)");
+    expect_fail("formulas --t-over-R 1", "t-over-R = 1", "[0, 1)");
+    expect_fail("formulas --t-over-R -0.01", "t-over-R = -0.01", "[0, 1)");
+    expect_fail("formulas --E-over-Y 1", "E-over-Y = 1", "must be > 1");
+    expect_fail("formulas --Y-co 0", "Y-co = 0", "must be > 0");
+    expect_fail("formulas --Y-su 300000", "Y-su = 300000", "below E-su");  /* cross-key */
+}
+
+static void test_bad_syntax(void **state)
+{
+    (void)state;
+    expect_fail("formulas --radius 3", "unknown option '--radius'", NULL);
+    expect_fail("formulas --R", "--R: missing value", NULL);
+    expect_fail("formulas --delta", "--delta: missing value", NULL);
+    expect_fail("formulas --R ''", "R: missing value", "number");
+    expect_fail("formulas 10", "unexpected argument '10'", NULL);
+    expect_fail("formulas --json=maybe", "json = 'maybe'", "1/true/yes or 0/false/no");
+    expect_fail("formulas --json --csv", "choose one", NULL);
+    expect_fail("formulas --sweep-E-ratio 2", "only valid with --csv", NULL);
+    expect_fail("nosuchcommand", "unknown command 'nosuchcommand'", NULL);
+}
+
+static void test_bad_delta(void **state)
+{
+    (void)state;
+    expect_fail("formulas --delta 0", "delta = 0", "must be > 0");
+    expect_fail("formulas --delta -2", "delta = -2", "must be > 0");
+    expect_fail("formulas --delta 1,abc", "delta = 'abc'", "expected numbers > 0");
+    expect_fail("formulas --delta 1,,2", "delta: missing value", "expected numbers > 0");
+    expect_fail("formulas --delta 1,nan", "delta = 'nan'", "expected numbers > 0");
+    expect_fail("formulas --delta 1:5", "delta = '1:5'", "start:stop:count");
+    expect_fail("formulas --delta 1:5:0", "delta = '1:5:0'", "[1, 100000]");
+    expect_fail("formulas --delta 1:5:x", "delta = 'x'", "not an integer");
+    expect_fail("formulas --delta -1:5:3", "delta = -1", "must be > 0");
+    expect_fail("formulas --csv --sweep-E-ratio 0.5,2", "sweep-E-ratio = 0.5", "must be > 1");
+    expect_fail("formulas --csv --sweep-t-over-R 0.01,1.5", "sweep-t-over-R = 1.5", "(0, 1)");
+    expect_fail("formulas --csv --delta 3", "delta", "not used by --csv");
+}
+
+static void test_bad_config(void **state)
+{
+    (void)state;
+    char args[256];
+    snprintf(args, sizeof args, "formulas --config %s", ini);
+    write_ini("[material]\ncolour = blue\n");
+    expect_fail(args, "unknown option 'colour'", NULL);                  /* unknown key */
+    write_ini("R = 3\nthis line is not ini\n");
+    expect_fail(args, "syntax error on line 2", "key = value");         /* malformed */
+    write_ini("t-over-R = -0.5\n");
+    expect_fail(args, "t-over-R = -0.5", "[0, 1)");                     /* bad value */
+    write_ini("nu = nan\n");
+    expect_fail(args, "nu = 'nan'", "finite number");
+    write_ini("delta = 1,abc\n");
+    expect_fail(args, "delta = 'abc'", "not a number");                 /* own key */
+    expect_fail("formulas --config /nonexistent/x.ini", "config = '/nonexistent/x.ini'",
+                "cannot open");                                          /* missing file */
+    expect_fail("formulas --config", "--config: missing file name", NULL);
+}
+
+/* A failing run writes no output file; a good one leaves no temp file. */
+static void test_output_file(void **state)
+{
+    (void)state;
+    char out[128], args[512], buf[256];
+    struct stat st;
+    snprintf(out, sizeof out, "/tmp/stiction-test-cli-%ld.json", (long)getpid());
+    remove(out);
+    snprintf(args, sizeof args, "formulas --json --output %s --delta 1,abc", out);
+    assert_int_not_equal(run(args, 2, buf, sizeof buf), 0);
+    assert_int_not_equal(stat(out, &st), 0);
+    snprintf(args, sizeof args, "formulas --csv --output %s --t-over-R 0", out);
+    assert_int_not_equal(run(args, 2, buf, sizeof buf), 0);
+    assert_non_null(strstr(buf, "t-over-R = 0"));
+    assert_int_not_equal(stat(out, &st), 0);
+    expect_fail("formulas --json --output /nonexistent/dir/x.json", "output = '/nonexistent/dir/x.json'",
+                "cannot create");
+    snprintf(args, sizeof args, "formulas --json --output %s --delta 2", out);
+    assert_int_equal(run(args, 2, buf, sizeof buf), 0);
+    assert_int_equal(stat(out, &st), 0);
+    assert_true(st.st_size > 100);
+    snprintf(args, sizeof args, "ls %s.tmp.* 2>/dev/null | wc -l", out);
+    FILE *p = popen(args, "r");
+    assert_non_null(p);
+    assert_non_null(fgets(buf, sizeof buf, p));
+    pclose(p);
+    assert_int_equal(atoi(buf), 0);
+    remove(out);
+}
+
+/* ---- a small strict JSON checker (RFC 8259 grammar, no semantics) ------ */
+
+static const char *ws(const char *s)
+{
+    while (*s == ' ' || *s == '\n' || *s == '\t' || *s == '\r') s++;
+    return s;
+}
+
+static const char *jvalue(const char *s);
+
+static const char *jstring(const char *s)
+{
+    if (*s++ != '"') return NULL;
+    for (; *s && *s != '"'; s++) {
+        if ((unsigned char)*s < 0x20) return NULL;
+        if (*s == '\\' && !*++s) return NULL;
+    }
+    return *s == '"' ? s + 1 : NULL;
+}
+
+static const char *jnumber(const char *s)
+{
+    char *end;
+    if (!(*s == '-' || (*s >= '0' && *s <= '9'))) return NULL;
+    double v = strtod(s, &end);
+    return (end == s || !isfinite(v)) ? NULL : end;
+}
+
+static const char *jseq(const char *s, char close, int keyed)
+{
+    s = ws(s + 1);
+    if (*s == close) return s + 1;
+    for (;;) {
+        if (keyed) {
+            if (!(s = jstring(ws(s)))) return NULL;
+            s = ws(s);
+            if (*s++ != ':') return NULL;
+        }
+        if (!(s = jvalue(s))) return NULL;
+        s = ws(s);
+        if (*s == close) return s + 1;
+        if (*s++ != ',') return NULL;
+    }
+}
+
+static const char *jvalue(const char *s)
+{
+    s = ws(s);
+    if (*s == '{') return jseq(s, '}', 1);
+    if (*s == '[') return jseq(s, ']', 0);
+    if (*s == '"') return jstring(s);
+    if (!strncmp(s, "true", 4) || !strncmp(s, "null", 4)) return s + 4;
+    if (!strncmp(s, "false", 5)) return s + 5;
+    return jnumber(s);
+}
+
+static void assert_json(const char *text)
+{
+    const char *end = jvalue(text);
+    if (!end || *ws(end) != '\0') fail_msg("not one JSON value: %.300s", end ? end : text);
+}
+
+/* Value of a top-level-style "key": number (first occurrence). */
+static double jnum(const char *text, const char *key)
+{
+    char pat[96];
+    snprintf(pat, sizeof pat, "\"%s\": ", key);
+    const char *p = strstr(text, pat);
+    if (!p) fail_msg("key '%s' missing", key);
+    p += strlen(pat);
+    if (!strncmp(p, "null", 4)) return NAN;
+    return strtod(p, NULL);
+}
+
+static char out[1 << 16];
+
+static void test_json_coated(void **state)
+{
+    (void)state;
+    assert_int_equal(run("formulas --t-over-R 0.025 --E-ratio 2 --delta 10 --json", 1, out, sizeof out), 0);
+    assert_json(out);
+    printf("  JSON: %zu bytes, valid\n", strlen(out));
+    const char *keys[] = {"omega_c_mm", "P_c_N", "A_c_mm2", "delta_c_stick_over_omega_c",
+                          "L_c_stick_over_P_c", "tR_p", "tR_p_st", "delta_c1_over_omega_c_su",
+                          "delta_c2_over_omega_c_su", "L_c2_over_P_c_co", "A_c2_st_over_A_c_co",
+                          "mu_s_wsp", "hertz_P_N", "R_mm", "E_ratio"};
+    for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
+        assert_true(isfinite(jnum(out, keys[i])));
+    assert_true(fabs(jnum(out, "omega_c_mm") - 5.320e-5) < 0.5e-8);
+    assert_true(fabs(jnum(out, "delta_c2_over_omega_c_su") - 17.60) < 0.005); /* Table 4.2 */
+    assert_true(fabs(jnum(out, "mu_s_wsp") - 0.3 / tanh(0.57 * pow(10, 0.41))) < 1e-9);
+    assert_null(strstr(out, "nan"));
+    assert_non_null(strstr(out, "\"coated_applicable\": true"));
+}
+
+static void test_json_uncoated(void **state)
+{
+    (void)state;
+    assert_int_equal(run("formulas --json --delta 1,3", 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_true(isnan(jnum(out, "delta_c1_over_omega_c_su"))); /* null, not NaN */
+    assert_non_null(strstr(out, "\"coated_note\": \"coated-sphere fits not applicable: t-over-R = 0"));
+    assert_non_null(strstr(out, "\"mu_s_wsp\": [")); /* an array for a list */
+    assert_null(strstr(out, "nan"));
+    /* the readable report says n/a, never nan (ν = 0.05: Brizmer's fits < 0) */
+    assert_int_equal(run("formulas --nu 0.05 --delta 1", 1, out, sizeof out), 0);
+    assert_null(strstr(out, "nan"));
+    assert_non_null(strstr(out, "n/a"));
+    assert_non_null(strstr(out, "not applicable"));
+}
+
+/* Command line overrides the INI file, which overrides the defaults. */
+static void test_config_override(void **state)
+{
+    (void)state;
+    char args[256];
+    write_ini("; coated case\n[asperity]\nt_over_R = 0.05\nE-ratio = 4\ndelta = 2\n");
+    snprintf(args, sizeof args, "formulas --config %s --E-ratio 2 --json", ini);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_true(jnum(out, "t_over_R") == 0.05 && jnum(out, "E_ratio") == 2.0);
+    assert_true(jnum(out, "delta_over_omega_c_su") == 2.0);
+    assert_true(fabs(jnum(out, "delta_c2_over_omega_c_su") - 39.61) < 0.005);
+}
+
+static void test_csv(void **state)
+{
+    (void)state;
+    assert_int_equal(run("formulas --csv --sweep-t-over-R 0.005,0.025,0.05 --sweep-E-ratio 2,4", 1, out,
+                         sizeof out), 0);
+    int lines = 0;
+    for (const char *c = out; *c; c++) lines += (*c == '\n');
+    assert_int_equal(lines, 1 + 6);
+    assert_non_null(strstr(out, "\n0.005,4,"));
+    assert_null(strstr(out, "nan"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_common_values), cmocka_unit_test(test_bad_syntax),
+        cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
+        cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
+        cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
+        cmocka_unit_test(test_csv),
+    };
+    return cmocka_run_group_tests_name("cli", tests, find_cli, cleanup);
+}

@@ -1,0 +1,28 @@
+#!/bin/sh
+# Install into a temporary prefix and build a small program against the
+# installed library through pkg-config (static and shared).
+set -eu
+CLI=$1; OUT=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+make --no-print-directory install PREFIX="$tmp/prefix" >/dev/null
+cat > "$tmp/probe.c" <<'C'
+#include <stdio.h>
+#include <stiction/params.h>
+int main(void)
+{
+    stc_params p;
+    stc_params_default(&p);
+    if (stc_params_set(&p, "R", "-1") != STC_EINVAL) return 1;
+    printf("installed library answers: %s\n", stc_errmsg());
+    return stc_params_validate(&p) == STC_OK ? 0 : 1;
+}
+C
+export PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig"
+cc -o "$tmp/probe" "$tmp/probe.c" $(pkg-config --cflags --libs stiction) -Wl,-rpath,"$tmp/prefix/lib"
+"$tmp/probe"
+cc -o "$tmp/probe-static" "$tmp/probe.c" $(pkg-config --cflags stiction) \
+    "$tmp/prefix/lib/libstiction.a" $(pkg-config --libs --static stiction | sed 's/-lstiction//')
+"$tmp/probe-static"
+"$tmp/prefix/bin/stiction" --version
+echo "install: ok" | tee "$OUT/install.txt"
