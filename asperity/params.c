@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <ini.h>
@@ -101,6 +102,15 @@ static const param_key param_keys[] = {
 };
 #undef PK
 
+static void describe_range(const param_key *pk, char *buf, size_t n)
+{
+    if (isinf(pk->hi))
+        snprintf(buf, n, "%s %g", pk->lo_incl ? ">=" : ">", pk->lo);
+    else
+        snprintf(buf, n, "in %c%g, %g%c", pk->lo_incl ? '[' : '(', pk->lo, pk->hi,
+                 pk->hi_incl ? ']' : ')');
+}
+
 stc_status stc_params_set(stc_params *p, const char *key, const char *value)
 {
     char k[64];
@@ -109,7 +119,12 @@ stc_status stc_params_set(stc_params *p, const char *key, const char *value)
         const param_key *pk = &param_keys[i];
         if (strcmp(k, pk->key) != 0) continue;
         double v;
-        STC_CALL(stc_parse_double(k, value, &v));
+        if (stc_parse_double(k, value, &v) != STC_OK) {
+            char range[96], msg[160];
+            describe_range(pk, range, sizeof range);
+            snprintf(msg, sizeof msg, "%s", stc_errmsg());
+            return STC_FAIL(STC_EINVAL, "%s (valid: a number %s)", msg, range);
+        }
         STC_CALL(stc_check_range(k, v, pk->lo, pk->lo_incl, pk->hi, pk->hi_incl));
         *(double *)((char *)p + pk->offset) = v;
         if (strcmp(k, "nu-co") == 0) p->nu_co_set = 1;
