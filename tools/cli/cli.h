@@ -69,4 +69,29 @@ void cj_done(cli_json *j); /* final newline */
 /* Subcommand entry points, registered in main.c */
 int cli_formulas(const cli_cmd *cmd, int argc, char **argv);
 
+/* --- surface subcommands (cli_surface*.c) --- */
+struct srf_map;
+int cli_surface(const cli_cmd *cmd, int argc, char **argv); /* synth|stats|predict */
+int cli_surface_synth(const cli_cmd *cmd, int argc, char **argv);
+int cli_surface_stats(const cli_cmd *cmd, int argc, char **argv);
+int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv);
+/* "a" or "a,b" → (a, a) or (a, b). */
+stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b);
+/* Take a leading positional argument (not starting with "--") as *path. */
+void cli_peel_positional(int *argc, char ***argv, const char **path);
+/* Import options for measured maps: --pixel-size DX[,DY] (mm; > 0 means
+ * "import": a text grid, or the HDF5 --dataset NAME), --z-scale S. */
+typedef struct cli_surface_import {
+    double dx, dy;       /* mm; 0 = read a stiction surface file */
+    const char *dataset; /* HDF5 dataset of a measured map, or NULL for text */
+    double zscale;       /* raw heights × zscale = mm; default 1 */
+} cli_surface_import;
+/* Handle the import keys; STC_EUNSUPPORTED for others. */
+stc_status cli_surface_import_opt(cli_surface_import *imp, const char *key, const char *value);
+stc_status cli_surface_load(const char *path, const cli_surface_import *imp, struct srf_map **out);
+#define CLI_SURFACE_IMPORT_OPTS                                                              \
+    {"pixel-size", "DX[,DY]", "import a measured map with this pixel size (mm)"},             \
+        {"dataset", "NAME", "with --pixel-size: HDF5 dataset holding the heights ([ny][nx])"}, \
+        {"z-scale", "S", "with --pixel-size: multiply raw heights by S to get mm (default 1)"}
+
 #endif

@@ -9,6 +9,7 @@
 static const cli_cmd commands[] = {
     {"formulas", "closed-form contact models (Hertz, yield inception, coated fits, WSP)",
      cli_formulas},
+    {"surface", "rough surfaces: synth, stats, predict (stiction surface --help)", cli_surface},
     {NULL, NULL, NULL},
 };
 

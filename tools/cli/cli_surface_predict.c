@@ -1,0 +1,472 @@
+/* stiction surface predict: Greenwood–Williamson friction summation of an
+ * asperity model over a summit population (SPEC §7), versus nominal pressure
+ * or separation.  Writes CSV + JSON + a gnuplot PNG of μs and A/An. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "stiction/gw.h"
+#include "stiction/model.h"
+#include "stiction/surface.h"
+
+typedef struct {
+    const char *surface, *out, *csv, *png;
+    int rule, json, deterministic, kde, wsp, sampled, timing;
+    asp_layer layer;
+    double eta, R, sigma_s, t_mm;
+    double *pressures, *separations;
+    int np, ns;
+    cli_surface_import imp;
+} predict_opts;
+
+static const cli_opt opts[] = {
+    {"surface", "FILE", "surface HDF5 (from `surface synth`): summits found, stats measured"},
+    {"rule", "8|4", "summit rule for --surface (default 8)"},
+    CLI_SURFACE_IMPORT_OPTS,
+    {"summit-density", "ETA", "statistical run without a map: summits per mm²"},
+    {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},
+    {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"},
+    {"t-mm", "MM", "coating thickness, mm (default: t-over-R × R of the common options)"},
+    {"model", "hertz|wsp", "asperity model (default wsp; hertz has no friction law)"},
+    {"layer", "substrate|coating", "layer whose properties the closed-form model uses "
+                                   "(default substrate)"},
+    {"sampled", NULL, "evaluate the model through the table path (sampled + interpolated)"},
+    {"mode", "statistical|deterministic", "quadrature over a height density, or the sums "
+                                          "over the map's summits (default statistical)"},
+    {"density", "gaussian|kde", "statistical height density for --surface (default gaussian)"},
+    {"pressures", "LIST", "nominal pressures P/An, MPa: a,b,c or start:stop:count"},
+    {"separations", "LIST", "separations d/sigma_s from the MEAN SUMMIT HEIGHT (GW)"},
+    {"out", "DIR", "write DIR/gw.csv, DIR/gw.json, DIR/gw.png"},
+    {"csv", "FILE", "write the CSV here"},
+    {"png", "FILE", "write the PNG (mu_s and A/An vs nominal pressure) here"},
+    {"json", NULL, "print a JSON array, one object per load point"},
+    {"timing", NULL, "print set-up and per-load-point wall times to stderr"},
+    {NULL, NULL, NULL},
+};
+
+static stc_status set_choice(const char *key, const char *v, const char *a, const char *b,
+                             int *out)
+{
+    if (strcmp(v, a) == 0) *out = 0;
+    else if (strcmp(v, b) == 0) *out = 1;
+    else return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s or %s", key, v,
+                          a, b);
+    return STC_OK;
+}
+
+static stc_status set_positive(const char *key, const char *v, double *out, int allow_zero)
+{
+    stc_status s = stc_parse_double(key, v, out);
+    if (s != STC_OK) return s;
+    return stc_check_range(key, *out, 0.0, allow_zero, INFINITY, 0);
+}
+
+static stc_status set_list(const char *key, const char *v, double **out, int *n, int positive)
+{
+    free(*out);
+    stc_status s = cli_parse_list(key, v, out, n);
+    for (int i = 0; s == STC_OK && i < *n; i++)
+        if (positive) s = stc_check_range(key, (*out)[i], 0.0, 0, INFINITY, 0);
+    return s;
+}
+
+static stc_status set_opt(void *ctx, const char *key, const char *v)
+{
+    predict_opts *o = ctx;
+    int c = 0;
+    stc_status s = STC_OK;
+    if (strcmp(key, "surface") == 0) o->surface = v;
+    else if (strcmp(key, "out") == 0) o->out = v;
+    else if (strcmp(key, "csv") == 0) o->csv = v;
+    else if (strcmp(key, "png") == 0) o->png = v;
+    else if (strcmp(key, "json") == 0) o->json = 1;
+    else if (strcmp(key, "sampled") == 0) o->sampled = 1;
+    else if (strcmp(key, "timing") == 0) o->timing = 1;
+    else if (strcmp(key, "rule") == 0) {
+        s = set_choice(key, v, "8", "4", &c);
+        o->rule = c ? SRF_RULE_4 : SRF_RULE_8;
+    } else if (strcmp(key, "model") == 0) s = set_choice(key, v, "hertz", "wsp", &o->wsp);
+    else if (strcmp(key, "layer") == 0) {
+        s = set_choice(key, v, "substrate", "coating", &c);
+        o->layer = c ? ASP_LAYER_COATING : ASP_LAYER_SUBSTRATE;
+    } else if (strcmp(key, "mode") == 0)
+        s = set_choice(key, v, "statistical", "deterministic", &o->deterministic);
+    else if (strcmp(key, "density") == 0) s = set_choice(key, v, "gaussian", "kde", &o->kde);
+    else if (strcmp(key, "summit-density") == 0) s = set_positive(key, v, &o->eta, 0);
+    else if (strcmp(key, "summit-radius") == 0) s = set_positive(key, v, &o->R, 0);
+    else if (strcmp(key, "sigma-s") == 0) s = set_positive(key, v, &o->sigma_s, 0);
+    else if (strcmp(key, "t-mm") == 0) s = set_positive(key, v, &o->t_mm, 1);
+    else if (strcmp(key, "pressures") == 0) s = set_list(key, v, &o->pressures, &o->np, 1);
+    else if (strcmp(key, "separations") == 0) s = set_list(key, v, &o->separations, &o->ns, 0);
+    else return cli_surface_import_opt(&o->imp, key, v);
+    return s;
+}
+
+/* Cross-option checks: exactly one population and one load range. */
+static stc_status check_opts(const predict_opts *o)
+{
+    int stats = (o->eta > 0) + (o->R > 0) + (o->sigma_s > 0);
+    if (!o->surface && stats != 3)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "need --surface FILE, or all of --summit-density, --summit-radius, "
+                         "--sigma-s (got %d of 3)", stats);
+    if (o->surface && stats)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "surface = '%s': give either --surface or the summit statistics, "
+                         "not both", o->surface);
+    if (!o->surface && (o->deterministic || o->kde))
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "mode = %s: needs --surface (the summits of a map)",
+                         o->deterministic ? "deterministic" : "kde");
+    if ((o->np > 0) == (o->ns > 0))
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "give exactly one of --pressures (MPa) or --separations (units of "
+                         "sigma_s)");
+    return STC_OK;
+}
+
+/* ------------------------------------------------------------ set-up */
+
+static stc_status make_model(const predict_opts *o, const stc_params *p, asp_model **out)
+{
+    asp_model *base = NULL;
+    stc_status s = o->wsp ? asp_model_create_wsp(p, o->t_mm, o->layer, &base)
+                          : asp_model_create_hertz(p, o->t_mm, o->layer, &base);
+    if (s != STC_OK || !o->sampled) {
+        *out = base;
+        return s;
+    }
+    s = asp_model_create_sampled(base, NULL, out);
+    asp_model_destroy(&base);
+    return s;
+}
+
+static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **out)
+{
+    if (!o->surface) return srf_gw_create_gaussian(m, o->eta, o->R, o->sigma_s, NULL, out);
+    srf_map *map = NULL;
+    srf_summits *sm = NULL;
+    srf_stats st;
+    stc_status s = cli_surface_load(o->surface, &o->imp, &map);
+    if (s == STC_OK) s = srf_summits_find(map, o->rule, &sm);
+    if (s == STC_OK) s = srf_stats_compute(map, sm, &st);
+    if (s == STC_OK) {
+        if (o->deterministic) s = srf_gw_create_from_summits(m, SRF_GW_DETERMINISTIC, sm, NULL, out);
+        else if (o->kde) s = srf_gw_create_from_summits(m, SRF_GW_KDE, sm, NULL, out);
+        else s = srf_gw_create_gaussian(m, st.summit_density_per_mm2, st.mean_summit_radius_mm,
+                                        st.sigma_s_mm, NULL, out);
+    }
+    srf_summits_destroy(&sm);
+    srf_map_destroy(&map);
+    return s;
+}
+
+static stc_status run_points(const predict_opts *o, srf_gw *g, srf_gw_point *pts)
+{
+    int n = o->np ? o->np : o->ns;
+    for (int i = 0; i < n; i++) {
+        stc_status s = o->np ? srf_gw_at_pressure(g, o->pressures[i], &pts[i])
+                             : srf_gw_at_separation(g, o->separations[i], &pts[i]);
+        if (s != STC_OK) return s;
+    }
+    return STC_OK;
+}
+
+/* ------------------------------------------------------------ output */
+
+typedef struct {
+    const predict_opts *o;
+    const asp_model *m;
+    srf_gw_info info;
+    asp_model_range range;
+    const stc_params *p;
+} context;
+
+static const char *DATUM =
+    "separation d from the mean summit height (Greenwood & Williamson 1966), in units of sigma_s";
+
+static void json_point(cli_json *j, const context *c, const srf_gw_point *q)
+{
+    double Es = c->info.E_star_MPa;
+    cj_obj(j, NULL);
+    cj_num(j, "separation_over_sigma_s", q->h);
+    cj_num(j, "nominal_pressure_MPa", q->pressure_MPa);
+    cj_num(j, "P_over_An_Estar", q->pressure_MPa / Es);
+    cj_num(j, "A_over_An", q->area_fraction);
+    cj_num(j, "contacts_per_mm2", q->contacts_per_mm2);
+    cj_num(j, "Q_over_An_Estar", q->Q_MPa / Es);
+    cj_num(j, "mu_s", q->mu_s);
+    cj_num(j, "delta_max_over_omega_c", q->delta_max_over_omega_c);
+    cj_num(j, "t_over_R_min", q->tR_min);
+    cj_num(j, "t_over_R_max", q->tR_max);
+    cj_num(j, "load_fraction_outside_model_range", q->load_fraction_outside);
+    cj_num(j, "err_P_over_An_MPa", q->err_P_MPa);
+    cj_num(j, "err_A_over_An", q->err_A);
+    cj_num(j, "err_Q_over_An_MPa", q->err_Q_MPa);
+    cj_int(j, "contacts", q->n_contacts);
+    cj_int(j, "iterations", q->iterations);
+    cj_end_obj(j);
+}
+
+static void json_points(FILE *f, const context *c, const srf_gw_point *pts, int n, int meta)
+{
+    cli_json j;
+    cj_init(&j, f);
+    if (meta) {
+        const srf_gw_info *i = &c->info;
+        cj_obj(&j, NULL);
+        cj_obj(&j, "parameters");
+        cj_str(&j, "model", asp_model_name(c->m));
+        cj_str(&j, "layer", asp_model_layer_name(c->m));
+        cj_str(&j, "mode", srf_gw_mode_name(i->mode));
+        cj_str(&j, "surface", c->o->surface);
+        cj_str(&j, "separation_datum", DATUM);
+        cj_num(&j, "coating_t_mm", asp_model_t(c->m));
+        cj_str(&j, "note", "R_mm, t_over_R, t_mm below are the common options; summit radii come "
+                            "from the population and t from coating_t_mm");
+        cj_num(&j, "summit_density_per_mm2", i->eta_per_mm2);
+        cj_num(&j, "sigma_s_mm", i->sigma_s_mm);
+        cj_num(&j, "summit_radius_mm", i->R_mm);
+        cj_int(&j, "summits", i->n_summits);
+        cj_int(&j, "summits_excluded", i->n_excluded);
+        cj_num(&j, "kde_bandwidth_mm", i->bandwidth_mm);
+        cj_num(&j, "E_star_MPa", i->E_star_MPa);
+        cj_num(&j, "H_MPa", i->H_MPa);
+        cj_str(&j, "H_convention", "H = 2.8 Y of the model's layer (Tabor 1951)");
+        cj_num(&j, "plasticity_index", i->plasticity_index);
+        cj_num(&j, "model_delta_over_omega_c_min", c->range.w_lo);
+        cj_num(&j, "model_delta_over_omega_c_max", c->range.w_hi);
+        cj_num(&j, "model_t_over_R_min", c->range.tR_lo);
+        cj_num(&j, "model_t_over_R_max", c->range.tR_hi);
+        cj_params(&j, c->p);
+        cj_end_obj(&j);
+        cj_arr(&j, "points");
+    } else cj_arr(&j, NULL);
+    for (int k = 0; k < n; k++) json_point(&j, c, &pts[k]);
+    cj_end_arr(&j);
+    if (meta) cj_end_obj(&j);
+    cj_done(&j);
+}
+
+static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n)
+{
+    const srf_gw_info *i = &c->info;
+    fprintf(f, "# stiction surface predict: model %s (%s layer), mode %s, t = %g mm\n",
+            asp_model_name(c->m), asp_model_layer_name(c->m), srf_gw_mode_name(i->mode),
+            asp_model_t(c->m));
+    fprintf(f, "# eta = %g /mm^2, sigma_s = %g mm, R = %g mm, E* = %g MPa, H = 2.8 Y = %g MPa, "
+               "psi = %g\n# %s\n", i->eta_per_mm2, i->sigma_s_mm, i->R_mm, i->E_star_MPa,
+            i->H_MPa, i->plasticity_index, DATUM);
+    fprintf(f, "separation_over_sigma_s,nominal_pressure_MPa,P_over_An_Estar,A_over_An,"
+               "contacts_per_mm2,Q_over_An_Estar,mu_s,delta_max_over_omega_c,t_over_R_min,"
+               "t_over_R_max,load_fraction_outside_model_range,err_P_over_An_MPa\n");
+    for (int k = 0; k < n; k++) {
+        const srf_gw_point *q = &pts[k];
+        fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g,%.6g,%.6g,%.6g,%.3g\n", q->h,
+                q->pressure_MPa, q->pressure_MPa / i->E_star_MPa, q->area_fraction,
+                q->contacts_per_mm2, q->Q_MPa / i->E_star_MPa, q->mu_s,
+                q->delta_max_over_omega_c, q->tR_min, q->tR_max, q->load_fraction_outside,
+                q->err_P_MPa);
+    }
+}
+
+static void table_points(const context *c, const srf_gw_point *pts, int n)
+{
+    const srf_gw_info *i = &c->info;
+    printf("GW summation: model %s (%s layer), %s heights, t = %g mm\n", asp_model_name(c->m),
+           asp_model_layer_name(c->m), srf_gw_mode_name(i->mode), asp_model_t(c->m));
+    printf("  eta = %g /mm^2, sigma_s = %g mm, R = %g mm, plasticity index psi = %.3g "
+           "(E*/H sqrt(sigma_s/R), H = 2.8 Y)\n", i->eta_per_mm2, i->sigma_s_mm, i->R_mm,
+           i->plasticity_index);
+    printf("  %s\n", DATUM);
+    printf("  %8s %12s %11s %11s %8s %10s %8s\n", "d/sig_s", "P/An [MPa]", "A/An",
+           "N [/mm2]", "mu_s", "dmax/wc", "outside");
+    for (int k = 0; k < n; k++) {
+        const srf_gw_point *q = &pts[k];
+        printf("  %8.4f %12.5g %11.4e %11.4g %8.4f %10.3g %8.3f\n", q->h, q->pressure_MPa,
+               q->area_fraction, q->contacts_per_mm2, q->mu_s, q->delta_max_over_omega_c,
+               q->load_fraction_outside);
+    }
+    printf("  (outside = share of the load from summits outside the model's range "
+           "delta/omega_c in [%g, %g])\n", c->range.w_lo, c->range.w_hi);
+}
+
+/* Write via a temporary beside `path`, renamed on success: no partial file. */
+typedef void (*writer_fn)(FILE *f, const context *c, const srf_gw_point *pts, int n);
+
+static void json_file(FILE *f, const context *c, const srf_gw_point *pts, int n)
+{
+    json_points(f, c, pts, n, 1);
+}
+
+static int write_atomic(const char *path, writer_fn w, const context *c,
+                        const srf_gw_point *pts, int n)
+{
+    char tmp[4096];
+    int k = snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
+    FILE *f = k > 0 && k < (int)sizeof tmp ? fopen(tmp, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "stiction surface predict: %s: cannot write (%s)\n", path, strerror(errno));
+        return CLI_EXIT_FAIL;
+    }
+    w(f, c, pts, n);
+    int bad = ferror(f);
+    bad |= fclose(f) != 0;
+    if (bad || rename(tmp, path) != 0) {
+        fprintf(stderr, "stiction surface predict: %s: write failed\n", path);
+        remove(tmp);
+        return CLI_EXIT_FAIL;
+    }
+    return CLI_EXIT_OK;
+}
+
+/* gnuplot: μs (left axis) and A/An (right axis, log) versus P/An (log). */
+static int write_png(const char *path, const char *csv, const context *c)
+{
+    char tmp[4096];
+    int k = snprintf(tmp, sizeof tmp, "%s.tmp%ld.png", path, (long)getpid());
+    FILE *g = k > 0 && k < (int)sizeof tmp ? popen("gnuplot 1>&2", "w") /* messages to stderr */ : NULL;
+    if (!g) {
+        fprintf(stderr, "stiction surface predict: cannot run gnuplot for %s\n", path);
+        return CLI_EXIT_FAIL;
+    }
+    fprintf(g, "set terminal png size 900,600\nset output '%s'\nset datafile separator ','\n"
+               "set key top center\nset logscale x\nset logscale y2\nset ytics nomirror\n"
+               "set y2tics\nset format y2 '%%g'\nset grid\nset xlabel 'nominal pressure P/A_n [MPa]'\n"
+               "set ylabel 'static friction coefficient mu_s = sum Q_{max} / sum P'\n"
+               "set y2label 'real contact area fraction A/A_n'\n"
+               "set title 'GW summation: %s model (%s layer), %s, t = %g mm'\n"
+               "plot '%s' every ::1 using 2:7 with linespoints lw 2 title 'mu_s', "
+               "'' every ::1 using 2:4 axes x1y2 with linespoints lw 2 title 'A/A_n'\n",
+            tmp, asp_model_name(c->m), asp_model_layer_name(c->m),
+            srf_gw_mode_name(c->info.mode), asp_model_t(c->m), csv);
+    int rc = pclose(g);
+    struct stat sb;
+    if (rc != 0 || stat(tmp, &sb) != 0 || sb.st_size == 0 || rename(tmp, path) != 0) {
+        fprintf(stderr, "stiction surface predict: %s: gnuplot failed (status %d)\n", path, rc);
+        remove(tmp);
+        return CLI_EXIT_FAIL;
+    }
+    return CLI_EXIT_OK;
+}
+
+static void csv_writer(FILE *f, const context *c, const srf_gw_point *pts, int n)
+{
+    csv_points(f, c, pts, n);
+}
+
+/* All requested files; the PNG plots from the CSV (a temporary one if no
+ * CSV was requested). */
+static int write_outputs(const predict_opts *o, const context *c, const srf_gw_point *pts, int n)
+{
+    char csv[4096], json[4096], png[4096], tmpcsv[4096];
+    const char *csvp = o->csv, *pngp = o->png;
+    int rc = CLI_EXIT_OK;
+    if (o->out) {
+        if (mkdir(o->out, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "stiction surface predict: out = '%s': cannot create (%s)\n", o->out,
+                    strerror(errno));
+            return CLI_EXIT_FAIL;
+        }
+        snprintf(csv, sizeof csv, "%s/gw.csv", o->out);
+        snprintf(json, sizeof json, "%s/gw.json", o->out);
+        snprintf(png, sizeof png, "%s/gw.png", o->out);
+        if (!csvp) csvp = csv;
+        if (!pngp) pngp = png;
+        rc |= write_atomic(json, json_file, c, pts, n);
+    }
+    if (csvp) rc |= write_atomic(csvp, csv_writer, c, pts, n);
+    if (pngp && rc == CLI_EXIT_OK) {
+        const char *src = csvp;
+        if (!src) {
+            snprintf(tmpcsv, sizeof tmpcsv, "%s.tmp%ld.csv", pngp, (long)getpid());
+            rc |= write_atomic(tmpcsv, csv_writer, c, pts, n);
+            src = tmpcsv;
+        }
+        if (rc == CLI_EXIT_OK) rc |= write_png(pngp, src, c);
+        if (!csvp) remove(tmpcsv);
+    }
+    return rc;
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void report_timing(const srf_gw *g, int n, double setup, double points)
+{
+    srf_gw_info i;
+    srf_gw_get_info(g, &i);
+    fprintf(stderr, "timing: set-up %.4f s (map, summits, model); %d load points in %.4f s = "
+                    "%.3g s per point; %s, %d summits\n", setup, n, points, points / n,
+            srf_gw_mode_name(i.mode), i.n_summits);
+}
+
+static const char *USAGE =
+    "(--surface FILE | --summit-density ETA --summit-radius MM --sigma-s MM)\n"
+    "       (--pressures LIST | --separations LIST) [--model hertz|wsp] [--t-mm MM]\n"
+    "       [--mode statistical|deterministic] [--out DIR] [--csv F] [--png F] [--json]\n\n"
+    "Greenwood-Williamson summation: N, P, A, Qmax summed over the summits; mu_s = sum Qmax /\n"
+    "sum P (never a mean of asperity mu_s).  Separations are measured from the MEAN SUMMIT\n"
+    "HEIGHT in units of sigma_s.  The closed-form models use ONE layer's properties (the\n"
+    "coating enters only through t/R until FE tables exist).";
+
+int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
+{
+    predict_opts o = {0};
+    stc_params p;
+    asp_model *m = NULL;
+    srf_gw *g = NULL;
+    srf_gw_point *pts = NULL;
+    int done, rc;
+    o.rule = SRF_RULE_8;
+    o.wsp = 1;
+    o.t_mm = -1;
+    o.imp.zscale = 1.0;
+    stc_params_default(&p);
+    rc = cli_parse(cmd->name, USAGE, argc, argv, opts, &p, set_opt, &o, &done);
+    if (rc != CLI_EXIT_OK || done) goto out;
+    double t0 = now();
+    stc_status s = check_opts(&o);
+    if (o.t_mm < 0) o.t_mm = stc_params_t(&p);
+    if (s == STC_OK) s = make_model(&o, &p, &m);
+    if (s == STC_OK) s = make_gw(&o, m, &g);
+    int n = o.np ? o.np : o.ns;
+    if (s == STC_OK && !(pts = calloc((size_t)n, sizeof *pts)))
+        s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+    double t1 = now();
+    if (s == STC_OK) s = run_points(&o, g, pts);
+    double t2 = now();
+    if (s != STC_OK) {
+        rc = cli_fail(cmd->name, s);
+        goto out;
+    }
+    if (o.timing) report_timing(g, n, t1 - t0, t2 - t1);
+    context c;
+    c.o = &o;
+    c.m = m;
+    c.p = &p;
+    srf_gw_get_info(g, &c.info);
+    asp_model_get_range(m, &c.range);
+    rc = write_outputs(&o, &c, pts, n);
+    if (rc == CLI_EXIT_OK) {
+        if (o.json) json_points(stdout, &c, pts, n, 0);
+        else table_points(&c, pts, n);
+    }
+out:
+    free(pts);
+    free(o.pressures);
+    free(o.separations);
+    srf_gw_destroy(&g);
+    asp_model_destroy(&m);
+    return rc;
+}
