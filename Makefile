@@ -84,13 +84,13 @@ demo: all
 	@tools/demo.sh $(CLI)
 
 validate: all
-	@tools/validate.sh $(CLI)
+	@tools/fragments.sh validate $(CLI)
 
 bench: all
-	@tools/bench.sh $(CLI)
+	@tools/fragments.sh bench $(CLI)
 
 reproduce: all
-	@tools/reproduce.sh $(CLI)
+	@tools/fragments.sh reproduce $(CLI)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/stiction \

@@ -1,15 +1,17 @@
 #!/bin/sh
-# make bench: run every fragment in tools/bench.d/ in name order.
+# make bench|validate|reproduce: run every fragment in tools/KIND.d/ in name
+# order.  Usage: fragments.sh KIND CLI
 # Each fragment is called as: fragment.sh CLI RESULTS_DIR and must exit 0 on success.
 set -u
-CLI=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+KIND=$1
+CLI=$(cd "$(dirname "$2")" && pwd)/$(basename "$2")
 cd "$(dirname "$0")/.."
 OUT=${RESULTS:-results}
 mkdir -p "$OUT"
 status=0
-for f in tools/bench.d/*.sh; do
+for f in tools/$KIND.d/*.sh; do
     [ -e "$f" ] || continue
-    echo "=== bench: $f"
+    echo "=== $KIND: $f"
     start=$(date +%s.%N)
     if sh "$f" "$CLI" "$OUT"; then r=ok; else r=FAILED; status=1; fi
     end=$(date +%s.%N)
