@@ -49,6 +49,11 @@ typedef struct asp_mesh_spec {
 
 stc_status asp_mesh_axisym(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */
 stc_status asp_mesh_half3d(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */
+/* --- added by the solver engineer (mesh.c) ---
+ * Axisymmetric mesh that also resolves a smaller contact radius a_min (the
+ * first yield of a load curve): size a_min/n near the axis growing to
+ * a_max/n (see mesh.c).  a_min <= 0 or >= a_max: same as asp_mesh_axisym. */
+stc_status asp_mesh_axisym_graded(const asp_mesh_spec *spec, double a_min, asp_mesh **out);
 void asp_mesh_destroy(asp_mesh **m); /* sets *m = NULL */
 /* Worst element quality in [0, 1] (1 = perfect square/cube; min over
  * elements of the scaled Jacobian).  Returns STC_EFORMAT if an element is

@@ -610,10 +610,15 @@ static stc_status bracket(srf_gw *g, root_ctx *c, double *lo, double *hi)
         fa = fb;
         step *= 2;
     }
+    if (f0 <= 0)
+        return STC_FAIL(STC_ERANGE,
+                        "pressure = %g MPa: more than the summits carry (valid: 0 < pressure <= "
+                        "%g MPa, the load at separation %g sigma_s, the deepest searched: "
+                        "GW's independent asperities have long stopped meaning anything there)",
+                        c->target, c->target * exp(fa), a);
     return STC_FAIL(STC_ERANGE,
-                    "pressure = %g MPa: outside what the summits carry for separations in "
-                    "[%g, %g] sigma_s (P/An = %g MPa at %g)", c->target, floor_h, H_CEIL,
-                    c->target * exp(fa), a);
+                    "pressure = %g MPa: less than the summits carry at separation %g sigma_s "
+                    "(valid: pressure < %g MPa)", c->target, a, c->target * exp(fa));
 }
 
 static stc_status solve(srf_gw *g, double p, double *h, int *iters)

@@ -1,5 +1,6 @@
 /* Height maps: allocation, plane detrend, import of measured data (text grid
  * or HDF5 dataset), and the HDF5 file format of the project. */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -102,16 +103,28 @@ static stc_status check_readable(const char *path)
     return STC_OK;
 }
 
-/* Finish an import: scale, detrend, record the source. */
-static void import_finish(srf_map *m, const char *source, double zscale)
+/* Finish an import: scale, detrend, record the source.  Refuses heights whose
+ * statistics overflow once scaled.  (A plane imports fine -- to round-off
+ * zero after detrending; `stiction surface` refuses to analyse it.) */
+static stc_status import_finish(srf_map *m, const char *source, double zscale)
 {
     size_t n = (size_t)m->nx * m->ny;
-    for (size_t k = 0; k < n; k++) m->z[k] *= zscale;
+    double zmax = 0, ss = 0;
+    for (size_t k = 0; k < n; k++) {
+        m->z[k] *= zscale;
+        zmax = fmax(zmax, fabs(m->z[k]));
+    }
     m->origin = SRF_ORIGIN_IMPORT;
     m->periodic = 0; /* measured data do not wrap around */
     m->zscale = zscale;
     snprintf(m->source, sizeof m->source, "%s", source);
     srf_map_detrend(m);
+    for (size_t k = 0; k < n; k++) ss += m->z[k] * m->z[k];
+    double rms = sqrt(ss / (double)n);
+    STC_CHECK(isfinite(zmax) && isfinite(rms), STC_EFORMAT,
+              "heights × z-scale %g reach %g mm: their statistics overflow (valid: finite "
+              "heights in mm, use --z-scale for other units)", zscale, zmax);
+    return STC_OK;
 }
 
 /* ------------------------------------------------------------ text import */
@@ -152,10 +165,12 @@ static long parse_line(char *line, const char *path, long lineno, dvec *d, stc_s
         char *tok_end = end;
         while (*tok_end && !is_sep(*tok_end)) tok_end++;
         if (end == p || end != tok_end || !isfinite(v) || errno == ERANGE) {
-            int len = (int)(tok_end - p);
-            *st = STC_FAIL(STC_EFORMAT, "%s: line %ld, column %ld (character %ld): '%.*s' is not "
-                           "a finite number", path, lineno, count + 1, (long)(p - line) + 1,
-                           len > 40 ? 40 : len, p);
+            char tok[41]; /* echoed with non-printable bytes as '?' (binary files) */
+            size_t len = (size_t)(tok_end - p) < sizeof tok - 1 ? (size_t)(tok_end - p) : sizeof tok - 1;
+            for (size_t k = 0; k < len; k++) tok[k] = isprint((unsigned char)p[k]) ? p[k] : '?';
+            tok[len] = '\0';
+            *st = STC_FAIL(STC_EFORMAT, "%s: line %ld, column %ld (character %ld): '%s' is not "
+                           "a finite number", path, lineno, count + 1, (long)(p - line) + 1, tok);
             return -1;
         }
         if (dvec_push(d, v)) {
@@ -201,8 +216,9 @@ stc_status srf_map_import_text(const char *path, double dx, double dy, double zs
                    "%s: %ld x %ld grid: at most 65536 per side", path, nx, ny);
     STC_CALL_GOTO(srf_map_create((int)nx, (int)ny, nx * dx, ny * dy, out), st, done);
     memcpy((*out)->z, d.v, (size_t)nx * ny * sizeof *d.v);
-    import_finish(*out, path, zscale);
+    STC_CALL_GOTO(import_finish(*out, path, zscale), st, done);
 done:
+    if (st != STC_OK) srf_map_destroy(out);
     free(line);
     free(d.v);
     fclose(f);
@@ -242,10 +258,26 @@ static int put_s(hid_t o, const char *n, const char *v)
     return r;
 }
 
-static int get_d(hid_t o, const char *n, double *v)
+/* Open attribute n of o if it holds exactly one element (an array attribute
+ * in a foreign file would overrun the single value read into); -1 if not. */
+static hid_t attr_open_one(hid_t o, const char *n)
 {
     if (!attr_exists(o, n)) return -1;
     hid_t a = H5Aopen(o, n, H5P_DEFAULT);
+    if (a < 0) return -1;
+    hid_t sp = H5Aget_space(a);
+    hssize_t cnt = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+    if (sp >= 0) H5Sclose(sp);
+    if (cnt != 1) {
+        H5Aclose(a);
+        return -1;
+    }
+    return a;
+}
+
+static int get_d(hid_t o, const char *n, double *v)
+{
+    hid_t a = attr_open_one(o, n);
     int ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, v) >= 0;
     if (a >= 0) H5Aclose(a);
     return ok ? 0 : -1;
@@ -253,8 +285,7 @@ static int get_d(hid_t o, const char *n, double *v)
 
 static int get_i(hid_t o, const char *n, int *v)
 {
-    if (!attr_exists(o, n)) return -1;
-    hid_t a = H5Aopen(o, n, H5P_DEFAULT);
+    hid_t a = attr_open_one(o, n);
     int ok = a >= 0 && H5Aread(a, H5T_NATIVE_INT, v) >= 0;
     if (a >= 0) H5Aclose(a);
     return ok ? 0 : -1;
@@ -262,8 +293,7 @@ static int get_i(hid_t o, const char *n, int *v)
 
 static int get_u(hid_t o, const char *n, unsigned long *v)
 {
-    if (!attr_exists(o, n)) return -1;
-    hid_t a = H5Aopen(o, n, H5P_DEFAULT);
+    hid_t a = attr_open_one(o, n);
     int ok = a >= 0 && H5Aread(a, H5T_NATIVE_ULONG, v) >= 0;
     if (a >= 0) H5Aclose(a);
     return ok ? 0 : -1;
@@ -271,8 +301,7 @@ static int get_u(hid_t o, const char *n, unsigned long *v)
 
 static int get_s(hid_t o, const char *n, char *buf, size_t cap)
 {
-    if (!attr_exists(o, n)) return -1;
-    hid_t a = H5Aopen(o, n, H5P_DEFAULT);
+    hid_t a = attr_open_one(o, n);
     if (a < 0) return -1;
     hid_t ft = H5Aget_type(a);
     int ok = H5Tget_class(ft) == H5T_STRING && !H5Tis_variable_str(ft) && H5Tget_size(ft) < cap;
@@ -320,15 +349,17 @@ stc_status srf_map_import_h5(const char *path, const char *dataset, double dx, d
                    path, dataset, (unsigned long long)dims[1], (unsigned long long)dims[0]);
     int nx = (int)dims[1], ny = (int)dims[0];
     STC_CALL_GOTO(srf_map_create(nx, ny, nx * dx, ny * dy, out), st, done);
-    STC_CHECK_GOTO(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, (*out)->z) >= 0,
-                   st, done, STC_EIO, "%s: cannot read dataset '%s'", path, dataset);
+    herr_t r;
+    H5E_BEGIN_TRY { r = H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, (*out)->z); } H5E_END_TRY;
+    STC_CHECK_GOTO(r >= 0, st, done, STC_EFORMAT, "%s: cannot read dataset '%s' as numbers", path,
+                   dataset);
     for (size_t k = 0; k < (size_t)nx * ny; k++)
         STC_CHECK_GOTO(isfinite((*out)->z[k]), st, done, STC_EFORMAT,
                        "%s: dataset '%s' row %zu, column %zu: height is not finite", path,
                        dataset, k / nx + 1, k % nx + 1);
     char src[256];
     snprintf(src, sizeof src, "%s:%s", path, dataset);
-    import_finish(*out, src, zscale);
+    STC_CALL_GOTO(import_finish(*out, src, zscale), st, done);
 done:
     if (st != STC_OK) srf_map_destroy(out);
     if (sp >= 0) H5Sclose(sp);
@@ -515,7 +546,12 @@ stc_status srf_map_read(const char *path, srf_map **out)
     STC_CALL_GOTO(srf_map_create((int)dims[1], (int)dims[0], lx, ly, out), st, done);
     herr_t r;
     H5E_BEGIN_TRY { r = H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, (*out)->z); } H5E_END_TRY;
-    STC_CHECK_GOTO(r >= 0, st, done, STC_EIO, "%s: cannot read heights", path);
+    STC_CHECK_GOTO(r >= 0, st, done, STC_EFORMAT, "%s: cannot read '%s' as numbers", path,
+                   SRF_DATASET);
+    for (size_t k = 0; k < (size_t)dims[0] * dims[1]; k++)
+        STC_CHECK_GOTO(isfinite((*out)->z[k]), st, done, STC_EFORMAT,
+                       "%s: '%s' row %zu, column %zu: height is not finite", path, SRF_DATASET,
+                       k / (size_t)dims[1] + 1, k % (size_t)dims[1] + 1);
     H5E_BEGIN_TRY { read_meta(d, *out); } H5E_END_TRY;
 done:
     if (st != STC_OK) srf_map_destroy(out);

@@ -68,6 +68,7 @@ void cj_done(cli_json *j); /* final newline */
 
 /* Subcommand entry points, registered in main.c */
 int cli_formulas(const cli_cmd *cmd, int argc, char **argv);
+int cli_asperity(const cli_cmd *cmd, int argc, char **argv);
 
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;
@@ -77,18 +78,37 @@ int cli_surface_stats(const cli_cmd *cmd, int argc, char **argv);
 int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv);
 /* "a" or "a,b" → (a, a) or (a, b). */
 stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b);
+/* A flag's value: 1/true/yes or 0/false/no ("--json" alone passes "1"). */
+stc_status cli_parse_flag(const char *key, const char *value, int *flag);
+/* Replace *out (owned, freed first) by a copy of a non-empty `value`: option
+ * values from an INI file live only while the file is parsed, so any string
+ * a subcommand keeps must be copied. */
+stc_status cli_set_string(const char *key, const char *value, char **out);
+/* Bit of option `key` in the table `opts` (0 if absent): subcommands record
+ * which options were given, to refuse conflicting or unused combinations. */
+unsigned long long cli_opt_bit(const cli_opt *opts, const char *key);
+/* Fail (STC_EINVAL) naming both options: "--a conflicts with --b: why". */
+stc_status cli_conflict(const char *a, const char *b, const char *why);
 /* Take a leading positional argument (not starting with "--") as *path. */
 void cli_peel_positional(int *argc, char ***argv, const char **path);
 /* Import options for measured maps: --pixel-size DX[,DY] (mm; > 0 means
  * "import": a text grid, or the HDF5 --dataset NAME), --z-scale S. */
 typedef struct cli_surface_import {
-    double dx, dy;       /* mm; 0 = read a stiction surface file */
-    const char *dataset; /* HDF5 dataset of a measured map, or NULL for text */
-    double zscale;       /* raw heights × zscale = mm; default 1 */
+    double dx, dy;  /* mm; 0 = read a stiction surface file */
+    char *dataset;  /* HDF5 dataset of a measured map, or NULL for text (owned) */
+    double zscale;  /* raw heights × zscale = mm; default 1 */
+    int zscale_set; /* --z-scale given */
 } cli_surface_import;
 /* Handle the import keys; STC_EUNSUPPORTED for others. */
 stc_status cli_surface_import_opt(cli_surface_import *imp, const char *key, const char *value);
-stc_status cli_surface_load(const char *path, const cli_surface_import *imp, struct srf_map **out);
+/* --dataset / --z-scale without --pixel-size: an error naming both. */
+stc_status cli_surface_import_check(const cli_surface_import *imp);
+void cli_surface_import_free(cli_surface_import *imp);
+/* Load `path`, the value of option `key` ("in", "surface", "import"):
+ * a stiction HDF5 file, or with imp->dx > 0 a measured map.  A failure's
+ * message starts "key = 'path': " and says what the file must be. */
+stc_status cli_surface_load(const char *key, const char *path, const cli_surface_import *imp,
+                            struct srf_map **out);
 #define CLI_SURFACE_IMPORT_OPTS                                                              \
     {"pixel-size", "DX[,DY]", "import a measured map with this pixel size (mm)"},             \
         {"dataset", "NAME", "with --pixel-size: HDF5 dataset holding the heights ([ny][nx])"}, \

@@ -3,6 +3,7 @@
  * or separation.  Writes CSV + JSON + a gnuplot PNG of μs and A/An. */
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,8 +17,9 @@
 #include "stiction/surface.h"
 
 typedef struct {
-    const char *surface, *out, *csv, *png;
+    char *surface, *out, *csv, *png; /* owned */
     int rule, json, deterministic, kde, wsp, sampled, timing;
+    unsigned long long seen; /* cli_opt_bit() of every option given */
     asp_layer layer;
     double eta, R, sigma_s, t_mm;
     double *pressures, *separations;
@@ -76,18 +78,17 @@ static stc_status set_list(const char *key, const char *v, double **out, int *n,
     return s;
 }
 
-static stc_status set_opt(void *ctx, const char *key, const char *v)
+static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
 {
-    predict_opts *o = ctx;
     int c = 0;
     stc_status s = STC_OK;
-    if (strcmp(key, "surface") == 0) o->surface = v;
-    else if (strcmp(key, "out") == 0) o->out = v;
-    else if (strcmp(key, "csv") == 0) o->csv = v;
-    else if (strcmp(key, "png") == 0) o->png = v;
-    else if (strcmp(key, "json") == 0) o->json = 1;
-    else if (strcmp(key, "sampled") == 0) o->sampled = 1;
-    else if (strcmp(key, "timing") == 0) o->timing = 1;
+    if (strcmp(key, "surface") == 0) s = cli_set_string(key, v, &o->surface);
+    else if (strcmp(key, "out") == 0) s = cli_set_string(key, v, &o->out);
+    else if (strcmp(key, "csv") == 0) s = cli_set_string(key, v, &o->csv);
+    else if (strcmp(key, "png") == 0) s = cli_set_string(key, v, &o->png);
+    else if (strcmp(key, "json") == 0) s = cli_parse_flag(key, v, &o->json);
+    else if (strcmp(key, "sampled") == 0) s = cli_parse_flag(key, v, &o->sampled);
+    else if (strcmp(key, "timing") == 0) s = cli_parse_flag(key, v, &o->timing);
     else if (strcmp(key, "rule") == 0) {
         s = set_choice(key, v, "8", "4", &c);
         o->rule = c ? SRF_RULE_4 : SRF_RULE_8;
@@ -108,6 +109,19 @@ static stc_status set_opt(void *ctx, const char *key, const char *v)
     return s;
 }
 
+static stc_status set_opt(void *ctx, const char *key, const char *v)
+{
+    predict_opts *o = ctx;
+    stc_status s = set_opt1(o, key, v);
+    if (s == STC_OK) o->seen |= cli_opt_bit(opts, key);
+    return s;
+}
+
+static int given(const predict_opts *o, const char *key) { return (o->seen & cli_opt_bit(opts, key)) != 0; }
+
+/* Options that only apply to a map (--surface). */
+static const char *const MAP_KEYS[] = {"rule", "pixel-size", "dataset", "z-scale", "density", NULL};
+
 /* Cross-option checks: exactly one population and one load range. */
 static stc_status check_opts(const predict_opts *o)
 {
@@ -120,10 +134,20 @@ static stc_status check_opts(const predict_opts *o)
         return stc_error(STC_EINVAL, __FILE__, __LINE__,
                          "surface = '%s': give either --surface or the summit statistics, "
                          "not both", o->surface);
-    if (!o->surface && (o->deterministic || o->kde))
-        return stc_error(STC_EINVAL, __FILE__, __LINE__,
-                         "mode = %s: needs --surface (the summits of a map)",
-                         o->deterministic ? "deterministic" : "kde");
+    if (!o->surface && o->deterministic)
+        return cli_conflict("mode deterministic", "summit-density", "the deterministic sums "
+                            "need the summits of a map (--surface FILE)");
+    for (const char *const *k = MAP_KEYS; !o->surface && *k; k++)
+        if (given(o, *k))
+            return cli_conflict(*k, "summit-density", "only used with a map (--surface FILE); "
+                                "the summit statistics given directly define a Gaussian "
+                                "population");
+    if (o->deterministic && given(o, "density"))
+        return cli_conflict("density", "mode deterministic", "the deterministic sums run over "
+                            "the map's own summits; a height density (gaussian|kde) is only "
+                            "used by --mode statistical");
+    stc_status s = cli_surface_import_check(&o->imp);
+    if (s != STC_OK) return s;
     if ((o->np > 0) == (o->ns > 0))
         return stc_error(STC_EINVAL, __FILE__, __LINE__,
                          "give exactly one of --pressures (MPa) or --separations (units of "
@@ -153,7 +177,7 @@ static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **ou
     srf_map *map = NULL;
     srf_summits *sm = NULL;
     srf_stats st;
-    stc_status s = cli_surface_load(o->surface, &o->imp, &map);
+    stc_status s = cli_surface_load("surface", o->surface, &o->imp, &map);
     if (s == STC_OK) s = srf_summits_find(map, o->rule, &sm);
     if (s == STC_OK) s = srf_stats_compute(map, sm, &st);
     if (s == STC_OK) {
@@ -297,44 +321,77 @@ static void table_points(const context *c, const srf_gw_point *pts, int n)
            "delta/omega_c in [%g, %g])\n", c->range.w_lo, c->range.w_hi);
 }
 
-/* Write via a temporary beside `path`, renamed on success: no partial file. */
+/* Every output goes to a temporary beside its final path; only when all of
+ * them are complete are they renamed, so a failure leaves no file behind. */
 typedef void (*writer_fn)(FILE *f, const context *c, const srf_gw_point *pts, int n);
+
+typedef struct {
+    const char *key;  /* the option that named the file (for messages) */
+    const char *path; /* final path, or NULL: not requested */
+    char tmp[4096];   /* temporary, valid when made */
+    int made;
+} out_file;
+
+static int out_error(const out_file *f, const char *what)
+{
+    fprintf(stderr, "stiction surface predict: %s = '%s': %s\n", f->key, f->path, what);
+    return CLI_EXIT_FAIL;
+}
+
+static int tmp_name(out_file *f, const char *suffix)
+{
+    int k = snprintf(f->tmp, sizeof f->tmp, "%s.tmp%ld%s", f->path, (long)getpid(), suffix);
+    return k > 0 && k < (int)sizeof f->tmp ? CLI_EXIT_OK : out_error(f, "path too long");
+}
+
+static int write_tmp(out_file *f, const char *suffix, writer_fn w, const context *c,
+                     const srf_gw_point *pts, int n)
+{
+    if (tmp_name(f, suffix) != CLI_EXIT_OK) return CLI_EXIT_FAIL;
+    FILE *fp = fopen(f->tmp, "w");
+    if (!fp) {
+        char why[256];
+        snprintf(why, sizeof why, "cannot write there (%s)", strerror(errno));
+        return out_error(f, why);
+    }
+    f->made = 1;
+    w(fp, c, pts, n);
+    int bad = ferror(fp);
+    bad |= fclose(fp) != 0;
+    return bad ? out_error(f, "write failed (disk full?)") : CLI_EXIT_OK;
+}
 
 static void json_file(FILE *f, const context *c, const srf_gw_point *pts, int n)
 {
     json_points(f, c, pts, n, 1);
 }
 
-static int write_atomic(const char *path, writer_fn w, const context *c,
-                        const srf_gw_point *pts, int n)
+static void csv_writer(FILE *f, const context *c, const srf_gw_point *pts, int n)
 {
-    char tmp[4096];
-    int k = snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
-    FILE *f = k > 0 && k < (int)sizeof tmp ? fopen(tmp, "w") : NULL;
-    if (!f) {
-        fprintf(stderr, "stiction surface predict: %s: cannot write (%s)\n", path, strerror(errno));
-        return CLI_EXIT_FAIL;
-    }
-    w(f, c, pts, n);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        fprintf(stderr, "stiction surface predict: %s: write failed\n", path);
-        remove(tmp);
-        return CLI_EXIT_FAIL;
-    }
-    return CLI_EXIT_OK;
+    csv_points(f, c, pts, n);
 }
 
 /* gnuplot: μs (left axis) and A/An (right axis, log) versus P/An (log). */
-static int write_png(const char *path, const char *csv, const context *c)
+static int write_png(out_file *f, const char *csv, const context *c)
 {
-    char tmp[4096];
-    int k = snprintf(tmp, sizeof tmp, "%s.tmp%ld.png", path, (long)getpid());
-    FILE *g = k > 0 && k < (int)sizeof tmp ? popen("gnuplot 1>&2", "w") /* messages to stderr */ : NULL;
+    if (tmp_name(f, ".png") != CLI_EXIT_OK) return CLI_EXIT_FAIL;
+    /* create the file first: gnuplot, unable to open it, would write the
+     * image to its stdout instead */
+    FILE *t = fopen(f->tmp, "wb");
+    if (!t) {
+        char why[256];
+        snprintf(why, sizeof why, "cannot write there (%s)", strerror(errno));
+        return out_error(f, why);
+    }
+    fclose(t);
+    f->made = 1;
+    /* gnuplot's messages reach stderr; a gnuplot that dies early must not
+     * kill us with SIGPIPE before the temporaries are removed */
+    void (*old)(int) = signal(SIGPIPE, SIG_IGN);
+    FILE *g = popen("gnuplot >/dev/null", "w");
     if (!g) {
-        fprintf(stderr, "stiction surface predict: cannot run gnuplot for %s\n", path);
-        return CLI_EXIT_FAIL;
+        signal(SIGPIPE, old);
+        return out_error(f, "cannot run gnuplot");
     }
     fprintf(g, "set terminal png size 900,600\nset output '%s'\nset datafile separator ','\n"
                "set key top center\nset logscale x\nset logscale y2\nset ytics nomirror\n"
@@ -344,54 +401,78 @@ static int write_png(const char *path, const char *csv, const context *c)
                "set title 'GW summation: %s model (%s layer), %s, t = %g mm'\n"
                "plot '%s' every ::1 using 2:7 with linespoints lw 2 title 'mu_s', "
                "'' every ::1 using 2:4 axes x1y2 with linespoints lw 2 title 'A/A_n'\n",
-            tmp, asp_model_name(c->m), asp_model_layer_name(c->m),
+            f->tmp, asp_model_name(c->m), asp_model_layer_name(c->m),
             srf_gw_mode_name(c->info.mode), asp_model_t(c->m), csv);
     int rc = pclose(g);
+    signal(SIGPIPE, old);
     struct stat sb;
-    if (rc != 0 || stat(tmp, &sb) != 0 || sb.st_size == 0 || rename(tmp, path) != 0) {
-        fprintf(stderr, "stiction surface predict: %s: gnuplot failed (status %d)\n", path, rc);
-        remove(tmp);
+    if (rc != 0 || stat(f->tmp, &sb) != 0 || sb.st_size == 0) {
+        char why[128];
+        snprintf(why, sizeof why, "gnuplot failed (status %d)", rc);
+        return out_error(f, why);
+    }
+    return CLI_EXIT_OK;
+}
+
+/* --out DIR: create it if needed (*made = 1 then, so a failure removes it). */
+static int make_out_dir(const char *dir, int *made)
+{
+    struct stat sb;
+    *made = mkdir(dir, 0777) == 0;
+    if (!*made && errno != EEXIST) {
+        fprintf(stderr, "stiction surface predict: out = '%s': cannot create the directory (%s)\n",
+                dir, strerror(errno));
+        return CLI_EXIT_FAIL;
+    }
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "stiction surface predict: out = '%s': must be a directory\n", dir);
         return CLI_EXIT_FAIL;
     }
     return CLI_EXIT_OK;
 }
 
-static void csv_writer(FILE *f, const context *c, const srf_gw_point *pts, int n)
-{
-    csv_points(f, c, pts, n);
-}
-
-/* All requested files; the PNG plots from the CSV (a temporary one if no
- * CSV was requested). */
+/* All requested files; the PNG plots from the CSV (a scratch one if no CSV
+ * was requested). */
 static int write_outputs(const predict_opts *o, const context *c, const srf_gw_point *pts, int n)
 {
-    char csv[4096], json[4096], png[4096], tmpcsv[4096];
-    const char *csvp = o->csv, *pngp = o->png;
-    int rc = CLI_EXIT_OK;
+    char csv[4096], json[4096], png[4096];
+    out_file fj = {"out", NULL, "", 0}, fc = {"csv", o->csv, "", 0}, fp = {"png", o->png, "", 0};
+    out_file fs = {"png", NULL, "", 0}; /* scratch CSV for the PNG */
+    out_file *all[] = {&fj, &fc, &fp};
+    int rc = CLI_EXIT_OK, made_dir = 0;
     if (o->out) {
-        if (mkdir(o->out, 0777) != 0 && errno != EEXIST) {
-            fprintf(stderr, "stiction surface predict: out = '%s': cannot create (%s)\n", o->out,
-                    strerror(errno));
-            return CLI_EXIT_FAIL;
-        }
-        snprintf(csv, sizeof csv, "%s/gw.csv", o->out);
+        if (make_out_dir(o->out, &made_dir) != CLI_EXIT_OK) return CLI_EXIT_FAIL;
         snprintf(json, sizeof json, "%s/gw.json", o->out);
+        snprintf(csv, sizeof csv, "%s/gw.csv", o->out);
         snprintf(png, sizeof png, "%s/gw.png", o->out);
-        if (!csvp) csvp = csv;
-        if (!pngp) pngp = png;
-        rc |= write_atomic(json, json_file, c, pts, n);
+        fj.path = json;
+        if (!fc.path) fc.path = csv, fc.key = "out";
+        if (!fp.path) fp.path = png, fp.key = "out";
     }
-    if (csvp) rc |= write_atomic(csvp, csv_writer, c, pts, n);
-    if (pngp && rc == CLI_EXIT_OK) {
-        const char *src = csvp;
-        if (!src) {
-            snprintf(tmpcsv, sizeof tmpcsv, "%s.tmp%ld.csv", pngp, (long)getpid());
-            rc |= write_atomic(tmpcsv, csv_writer, c, pts, n);
-            src = tmpcsv;
+    if (fj.path) rc = write_tmp(&fj, "", json_file, c, pts, n);
+    if (rc == CLI_EXIT_OK && fc.path) rc = write_tmp(&fc, "", csv_writer, c, pts, n);
+    if (rc == CLI_EXIT_OK && fp.path) {
+        const char *src = fc.tmp;
+        if (!fc.path) {
+            fs.key = fp.key;
+            fs.path = fp.path;
+            rc = write_tmp(&fs, ".csv", csv_writer, c, pts, n);
+            src = fs.tmp;
         }
-        if (rc == CLI_EXIT_OK) rc |= write_png(pngp, src, c);
-        if (!csvp) remove(tmpcsv);
+        if (rc == CLI_EXIT_OK) rc = write_png(&fp, src, c);
     }
+    if (fs.made) remove(fs.tmp);
+    for (int k = 0; k < 3; k++) {
+        out_file *f = all[k];
+        if (!f->made) continue;
+        if (rc == CLI_EXIT_OK && rename(f->tmp, f->path) != 0) {
+            char why[4400];
+            snprintf(why, sizeof why, "cannot rename %s into place (%s)", f->tmp, strerror(errno));
+            rc = out_error(f, why);
+        }
+        if (rc != CLI_EXIT_OK) remove(f->tmp);
+    }
+    if (rc != CLI_EXIT_OK && made_dir) rmdir(o->out);
     return rc;
 }
 
@@ -466,6 +547,11 @@ out:
     free(pts);
     free(o.pressures);
     free(o.separations);
+    free(o.surface);
+    free(o.out);
+    free(o.csv);
+    free(o.png);
+    cli_surface_import_free(&o.imp);
     srf_gw_destroy(&g);
     asp_model_destroy(&m);
     return rc;

@@ -2,13 +2,14 @@
  * printed next to random-process theory (Nayak 1971, McCool 1986). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 #include "stiction/surface.h"
 
 typedef struct {
-    const char *in;
+    char *in; /* owned */
     int rule, json;
     cli_surface_import imp;
 } stats_opts;
@@ -24,8 +25,8 @@ static const cli_opt opts[] = {
 static stc_status set_opt(void *ctx, const char *key, const char *v)
 {
     stats_opts *o = ctx;
-    if (strcmp(key, "in") == 0) o->in = v;
-    else if (strcmp(key, "json") == 0) o->json = 1;
+    if (strcmp(key, "in") == 0) return cli_set_string(key, v, &o->in);
+    else if (strcmp(key, "json") == 0) return cli_parse_flag(key, v, &o->json);
     else if (strcmp(key, "rule") == 0) {
         if (strcmp(v, "8") == 0) o->rule = SRF_RULE_8;
         else if (strcmp(v, "4") == 0) o->rule = SRF_RULE_4;
@@ -105,27 +106,39 @@ static void print_table(const stats_opts *o, const srf_map *m, const srf_stats *
 
 int cli_surface_stats(const cli_cmd *cmd, int argc, char **argv)
 {
-    stats_opts o = {NULL, SRF_RULE_8, 0, {0, 0, NULL, 1}};
+    stats_opts o = {NULL, SRF_RULE_8, 0, {0, 0, NULL, 1, 0}};
+    const char *pos = NULL;
     int done;
-    cli_peel_positional(&argc, &argv, &o.in);
+    cli_peel_positional(&argc, &argv, &pos);
     int rc = cli_parse(cmd->name, "FILE [--rule 8|4] [--json]", argc, argv, opts, NULL, set_opt,
                        &o, &done);
-    if (rc != CLI_EXIT_OK || done) return rc;
-    if (!o.in) {
-        fprintf(stderr, "stiction %s: an input file is required (FILE or --in FILE)\n", cmd->name);
-        return CLI_EXIT_USAGE;
-    }
     srf_map *m = NULL;
     srf_summits *su = NULL;
     srf_stats st;
-    stc_status s = cli_surface_load(o.in, &o.imp, &m);
+    stc_status s = STC_OK;
+    if (rc != CLI_EXIT_OK || done) goto out;
+    if (pos && o.in)
+        s = stc_error(STC_EINVAL, __FILE__, __LINE__,
+                      "in = '%s' conflicts with the FILE argument '%s': give the input once",
+                      o.in, pos);
+    else if (pos)
+        s = cli_set_string("in", pos, &o.in);
+    else if (!o.in)
+        s = stc_error(STC_EINVAL, __FILE__, __LINE__,
+                      "in: missing (an input file is required: FILE or --in FILE)");
+    if (s == STC_OK) s = cli_surface_import_check(&o.imp);
+    if (s == STC_OK) s = cli_surface_load("in", o.in, &o.imp, &m);
     if (s == STC_OK) s = srf_summits_find(m, o.rule, &su);
     if (s == STC_OK) s = srf_stats_compute(m, su, &st);
     if (s == STC_OK) {
         if (o.json) print_json(&o, m, &st);
         else print_table(&o, m, &st);
     }
+    rc = s == STC_OK ? CLI_EXIT_OK : cli_fail(cmd->name, s);
+out:
     srf_summits_destroy(&su);
     srf_map_destroy(&m);
-    return s == STC_OK ? CLI_EXIT_OK : cli_fail(cmd->name, s);
+    free(o.in);
+    cli_surface_import_free(&o.imp);
+    return rc;
 }

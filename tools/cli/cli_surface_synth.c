@@ -11,9 +11,10 @@
 typedef struct {
     srf_synth_params p;
     unsigned long seed;
-    const char *out, *png, *import;
+    char *out, *png, *import; /* owned */
     int no_png, json;
     cli_surface_import imp;
+    unsigned long long seen; /* cli_opt_bit() of every option given */
 } synth_opts;
 
 static const cli_opt opts[] = {
@@ -80,9 +81,8 @@ static stc_status set_spectrum(synth_opts *o, const char *v)
     return STC_OK;
 }
 
-static stc_status set_opt(void *ctx, const char *key, const char *v)
+static stc_status set_opt1(synth_opts *o, const char *key, const char *v)
 {
-    synth_opts *o = ctx;
     long l;
     stc_status s;
     if (strcmp(key, "size") == 0) return set_size(o, key, v);
@@ -134,12 +134,63 @@ static stc_status set_opt(void *ctx, const char *key, const char *v)
         o->p.threads = (int)l;
         return STC_OK;
     }
-    if (strcmp(key, "out") == 0) o->out = v;
-    else if (strcmp(key, "png") == 0) o->png = v;
-    else if (strcmp(key, "no-png") == 0) o->no_png = 1;
-    else if (strcmp(key, "json") == 0) o->json = 1;
-    else if (strcmp(key, "import") == 0) o->import = v;
-    else return cli_surface_import_opt(&o->imp, key, v);
+    if (strcmp(key, "out") == 0) return cli_set_string(key, v, &o->out);
+    if (strcmp(key, "png") == 0) return cli_set_string(key, v, &o->png);
+    if (strcmp(key, "import") == 0) return cli_set_string(key, v, &o->import);
+    if (strcmp(key, "no-png") == 0) return cli_parse_flag(key, v, &o->no_png);
+    if (strcmp(key, "json") == 0) return cli_parse_flag(key, v, &o->json);
+    return cli_surface_import_opt(&o->imp, key, v);
+}
+
+static stc_status set_opt(void *ctx, const char *key, const char *v)
+{
+    synth_opts *o = ctx;
+    stc_status s = set_opt1(o, key, v);
+    if (s == STC_OK) o->seen |= cli_opt_bit(opts, key);
+    return s;
+}
+
+static int given(const synth_opts *o, const char *key) { return (o->seen & cli_opt_bit(opts, key)) != 0; }
+
+/* Options that shape a synthesized map; an imported map takes none of them. */
+static const char *const SYNTH_KEYS[] = {"size", "length", "rms", "spectrum", "corr-length",
+                                         "hurst", "long-wavelength", "rolloff-wavelength",
+                                         "cutoff-wavelength", "skewness", "kurtosis",
+                                         "amplitude", "seed", NULL};
+static const char *const SELF_AFFINE_KEYS[] = {"hurst", "long-wavelength", "rolloff-wavelength",
+                                               "cutoff-wavelength", NULL};
+static const char *const IMPORT_KEYS[] = {"pixel-size", "dataset", "z-scale", NULL};
+
+/* Refuse combinations in which an option would be silently ignored. */
+static stc_status check_opts(const synth_opts *o)
+{
+    if (o->import) {
+        for (const char *const *k = SYNTH_KEYS; *k; k++)
+            if (given(o, *k))
+                return cli_conflict(*k, "import", "an imported map is measured, not "
+                                    "synthesized: its size and heights come from the file");
+        return cli_surface_import_check(&o->imp);
+    }
+    for (const char *const *k = IMPORT_KEYS; *k; k++)
+        if (given(o, *k))
+            return cli_conflict(*k, "import", "only used when importing a measured map "
+                                "(--import FILE --pixel-size DX[,DY])");
+    if (o->p.spectrum == SRF_SPECTRUM_EXPONENTIAL)
+        for (const char *const *k = SELF_AFFINE_KEYS; *k; k++)
+            if (given(o, *k))
+                return cli_conflict(*k, "spectrum exponential", "only the self-affine "
+                                    "spectrum has a Hurst exponent and band wavelengths (add "
+                                    "--spectrum self-affine)");
+    if (o->p.spectrum == SRF_SPECTRUM_SELF_AFFINE && given(o, "corr-length"))
+        return cli_conflict("corr-length", "spectrum self-affine", "the correlation length "
+                            "shapes only the exponential spectrum");
+    if (o->no_png && o->png)
+        return cli_conflict("png", "no-png", "ask for a PNG file or for none");
+    if (!o->out)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "out: missing (--out FILE.h5 is required)");
+    if (o->png && strcmp(o->png, o->out) == 0)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "png = '%s': must differ from out = '%s'", o->png, o->out);
     return STC_OK;
 }
 
@@ -206,7 +257,7 @@ static stc_status make_map(synth_opts *o, srf_map **m, srf_moments *mo)
         if (o->imp.dx <= 0)
             return stc_error(STC_EINVAL, __FILE__, __LINE__,
                              "import = '%s': --pixel-size DX[,DY] (mm) is required", o->import);
-        return cli_surface_load(o->import, &o->imp, m);
+        return cli_surface_load("import", o->import, &o->imp, m);
     }
     srf_synth *s = NULL;
     stc_status st = srf_synth_create(&o->p, &s);
@@ -216,6 +267,14 @@ static stc_status make_map(synth_opts *o, srf_map **m, srf_moments *mo)
     if (st != STC_OK) srf_map_destroy(m);
     srf_synth_destroy(&s);
     return st;
+}
+
+static void free_opts(synth_opts *o)
+{
+    free(o->out);
+    free(o->png);
+    free(o->import);
+    cli_surface_import_free(&o->imp);
 }
 
 int cli_surface_synth(const cli_cmd *cmd, int argc, char **argv)
@@ -228,29 +287,26 @@ int cli_surface_synth(const cli_cmd *cmd, int argc, char **argv)
     int done;
     int rc = cli_parse(cmd->name, "--out FILE.h5 [options]", argc, argv, opts, NULL, set_opt, &o,
                        &done);
-    if (rc != CLI_EXIT_OK || done) return rc;
-    if (!o.out) {
-        fprintf(stderr, "stiction %s: --out FILE.h5 is required\n", cmd->name);
-        return CLI_EXIT_USAGE;
+    if (rc != CLI_EXIT_OK || done) {
+        free_opts(&o);
+        return rc;
     }
     srf_map *m = NULL;
     srf_moments mo;
-    stc_status s = make_map(&o, &m, &mo);
-    if (s != STC_OK) return cli_fail(cmd->name, s);
+    stc_status s = check_opts(&o);
+    if (s == STC_OK) s = make_map(&o, &m, &mo);
     char pngbuf[4096];
     const char *png = NULL;
-    if (!o.no_png) {
+    if (s == STC_OK && !o.no_png) {
         if (o.png) png = o.png;
         else png_beside(o.out, pngbuf, sizeof pngbuf), png = pngbuf;
         s = srf_map_write_png(m, png);
+        if (s != STC_OK) png = NULL; /* nothing written */
     }
     /* PNG first: if the HDF5 write fails, remove the PNG so nothing partial stays. */
     if (s == STC_OK && (s = srf_map_write_h5(m, o.out)) != STC_OK && png) remove(png);
-    if (s != STC_OK) {
-        srf_map_destroy(&m);
-        return cli_fail(cmd->name, s);
-    }
-    summary(&o, m, png, &mo);
+    if (s == STC_OK) summary(&o, m, png, &mo);
     srf_map_destroy(&m);
-    return CLI_EXIT_OK;
+    free_opts(&o);
+    return s == STC_OK ? CLI_EXIT_OK : cli_fail(cmd->name, s);
 }

@@ -1,0 +1,299 @@
+/* 3D half-model mesh: volumes converge to the exact half hemisphere and
+ * coating shell, every Jacobian is positive (quality bound), boundary flags
+ * sit on their surfaces, regions respect the interface, the contact zone has
+ * the promised size and the coating >= 4 elements.
+ * Set STC_MESH3D_VTK=file.vtk to dump the default mesh for eyeballing. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <cmocka.h>
+
+#include "fe.h"
+
+static const double R = 10.0;
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void elem_coords(const asp_mesh *M, int e, double X[24])
+{
+    for (int a = 0; a < 8; a++)
+        for (int i = 0; i < 3; i++) X[3 * a + i] = M->x[3 * M->conn[8 * e + a] + i];
+}
+
+static double norm3(const double *x) { return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]); }
+
+/* Volume by 2x2x2 Gauss (exact for the trilinear map's Jacobian). */
+static double hex_volume(const double X[24])
+{
+    static const double XI[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                    {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+    double g = 1.0 / sqrt(3.0), V = 0.0;
+    for (int q = 0; q < 8; q++) {
+        double J[3][3] = {{0}};
+        for (int a = 0; a < 8; a++) {
+            double f[3], d[3];
+            for (int i = 0; i < 3; i++) {
+                f[i] = 0.5 * (1 + g * XI[q][i] * XI[a][i]);
+                d[i] = 0.5 * XI[a][i];
+            }
+            double dn[3] = {d[0] * f[1] * f[2], f[0] * d[1] * f[2], f[0] * f[1] * d[2]};
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) J[i][j] += X[3 * a + i] * dn[j];
+        }
+        V += J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+             J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+             J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+    }
+    return V;
+}
+
+static asp_mesh *make(double t, double a, int level)
+{
+    asp_mesh_spec s = {R, t, a, level};
+    asp_mesh *M = NULL;
+    stc_status st = asp_mesh_half3d(&s, &M);
+    if (st != STC_OK) fail_msg("asp_mesh_half3d: %s", stc_errmsg());
+    return M;
+}
+
+/* Relative volume errors of the whole mesh and of the coating region. */
+static void volume_errors(const asp_mesh *M, double t, double *ev, double *ec)
+{
+    double V = 0.0, Vc = 0.0, X[24], Rp = R + t;
+    for (int e = 0; e < M->nelem; e++) {
+        elem_coords(M, e, X);
+        double v = hex_volume(X);
+        V += v;
+        if (M->region[e] == ASP_REGION_COATING) Vc += v;
+    }
+    *ev = fabs(V / (M_PI * Rp * Rp * Rp / 3.0) - 1.0);
+    *ec = t > 0.0 ? fabs(Vc / (M_PI * (Rp * Rp * Rp - R * R * R) / 3.0) - 1.0) : 0.0;
+}
+
+static void test_volume_converges(void **state)
+{
+    (void)state;
+    double prev_v = 1.0, prev_c = 1.0;
+    int prev_n = 0;
+    for (int level = 0; level <= 2; level++) {
+        asp_mesh *M = make(0.05, 0.1, level);
+        double ev, ec;
+        volume_errors(M, 0.05, &ev, &ec);
+        printf("level %d: %d nodes, %d hex8; volume error %.2e, coating volume error %.2e\n",
+               level, M->nnode, M->nelem, ev, ec);
+        assert_true(ev < 1e-2 && ec < 1e-2);
+        assert_true(ev < 0.6 * prev_v && ec < 0.6 * prev_c);
+        assert_true(M->nelem > 3 * prev_n);
+        prev_v = ev, prev_c = ec, prev_n = M->nelem;
+        asp_mesh_destroy(&M);
+        assert_null(M);
+    }
+}
+
+/* Positive Jacobian at every Gauss point (via the element kernel itself)
+ * and the scaled-Jacobian quality bound, over a spread of geometries. */
+static void test_quality(void **state)
+{
+    (void)state;
+    const double cases[][3] = {/* t, a_max, required worst quality */
+                               {0.0, 0.1, 0.3},   {0.0, 0.003, 0.3}, {0.0, 2.5, 0.3},
+                               {0.02, 0.1, 0.3},  {0.02, 0.025, 0.3}, {0.05, 0.1, 0.3},
+                               {0.05, 0.025, 0.3}, {0.25, 0.25, 0.3}, {0.25, 0.1, 0.3},
+                               {0.5, 0.25, 0.3},  {0.5, 0.1, 0.3},   {0.5, 0.025, 0.3},
+                               {0.5, 0.003, 0.3}};
+    stc_material mat = {200000.0, 0.3, 200.0};
+    asp_j2 m;
+    asp_j2_init(&m, &mat);
+    double u[24] = {0}, fe[24];
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        asp_mesh *M = make(cases[c][0], cases[c][1], 1);
+        double worst;
+        assert_int_equal(asp_mesh_quality(M, &worst), STC_OK);
+        int bad = 0;
+        /* Gauss-point Jacobians via the kernel: a few representative cases */
+        for (int e = 0; e < M->nelem && (c == 0 || c == 4 || c == 11); e++) {
+            double X[24];
+            elem_coords(M, e, X);
+            if (asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL) < 0) bad++;
+        }
+        printf("t = %-5g a_max = %-6g: %6d nodes, worst scaled Jacobian %.3f%s\n",
+               cases[c][0], cases[c][1], M->nnode, worst,
+               (c == 0 || c == 4 || c == 11) ? ", all Gauss-point det J > 0" : "");
+        assert_int_equal(bad, 0);
+        assert_true(worst > cases[c][2]);
+        asp_mesh_destroy(&M);
+    }
+}
+
+static void test_flags_and_regions(void **state)
+{
+    (void)state;
+    const double t = 0.05, a = 0.1, Rp = R + t;
+    asp_mesh *M = make(t, a, 1);
+    int nb = 0, ns = 0, nt = 0, base_missing = 0;
+    for (int n = 0; n < M->nnode; n++) {
+        const double *x = M->x + 3 * n;
+        unsigned f = M->flags[n];
+        assert_true(x[1] >= 0.0 && x[2] >= 0.0);
+        assert_true(norm3(x) <= Rp * (1 + 1e-12));
+        assert_false(f & ASP_NODE_AXIS);
+        if (f & ASP_NODE_BASE) { nb++; assert_true(x[2] == 0.0); }
+        else if (x[2] < 1e-9 * R) base_missing++;
+        if (f & ASP_NODE_SYM) { ns++; assert_true(x[1] == 0.0); }
+        int on_top = fabs(norm3(x) - Rp) < 1e-12 * Rp && hypot(x[0], x[1]) <= 3.0 * a;
+        if (on_top) assert_true(f & ASP_NODE_TOP);
+        if (f & ASP_NODE_TOP) {
+            nt++;
+            assert_true(fabs(norm3(x) - Rp) < 1e-12 * Rp);
+            assert_true(hypot(x[0], x[1]) <= 3.0 * a + 1e-12);
+        }
+    }
+    assert_int_equal(base_missing, 0);
+    /* every element lies on its side of the interface |X| = R */
+    int wrong = 0, ncoat = 0;
+    for (int e = 0; e < M->nelem; e++) {
+        ncoat += M->region[e] == ASP_REGION_COATING;
+        for (int k = 0; k < 8; k++) {
+            double r = norm3(M->x + 3 * M->conn[8 * e + k]);
+            if (M->region[e] == ASP_REGION_COATING ? r < R * (1 - 1e-12)
+                                                   : r > R * (1 + 1e-12))
+                wrong++;
+        }
+    }
+    printf("base %d, sym %d, top %d nodes; %d coating elements; misplaced %d\n",
+           nb, ns, nt, ncoat, wrong);
+    assert_int_equal(wrong, 0);
+    assert_true(nb > 0 && ns > 0 && ncoat > 0);
+    asp_mesh_destroy(&M);
+}
+
+/* Size at the contact: edges of surface faces within a_max of the axis are
+ * ≈ h = a_max / (6·2^level); the coating has >= 4 elements on the axis. */
+static void contact_zone(double t, double a, int level)
+{
+    asp_mesh *M = make(t, a, level);
+    double h = a / (6.0 * pow(2.0, level)), emin = 1e30, emax = 0.0;
+    for (int e = 0; e < M->nelem; e++) {
+        const int *c = M->conn + 8 * e;
+        for (int k = 0; k < 8; k++) {
+            int n0 = c[k], n1 = c[(k & 4) | ((k + 1) & 3)];
+            if (!(M->flags[n0] & M->flags[n1] & ASP_NODE_TOP)) continue;
+            const double *x0 = M->x + 3 * n0, *x1 = M->x + 3 * n1;
+            if (hypot(x0[0], x0[1]) > a || hypot(x1[0], x1[1]) > a) continue;
+            double d[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]}, L = norm3(d);
+            emin = fmin(emin, L), emax = fmax(emax, L);
+        }
+    }
+    /* distinct node depths on the axis inside the coating */
+    int nlayer = -1;
+    if (t > 0.0) {
+        double seen[4096];
+        int ns = 0;
+        for (int n = 0; n < M->nnode && ns < 4096; n++) {
+            const double *x = M->x + 3 * n;
+            if (fabs(x[0]) > 1e-12 || x[1] != 0.0 || norm3(x) < R * (1 - 1e-12)) continue;
+            int dup = 0;
+            for (int k = 0; k < ns; k++) dup |= fabs(seen[k] - x[2]) < 1e-12;
+            if (!dup) seen[ns++] = x[2];
+        }
+        nlayer = ns - 1;
+    }
+    printf("t = %g a_max = %g level %d: contact edges in [%.3f, %.3f] h (h = %.3g mm); "
+           "coating layers on the axis %d\n", t, a, level, emin / h, emax / h, h, nlayer);
+    assert_true(emin > 0.85 * h && emax < 1.15 * h);
+    if (t > 0.0) assert_true(nlayer >= 4);
+    asp_mesh_destroy(&M);
+}
+
+static void test_contact_zone(void **state)
+{
+    (void)state;
+    contact_zone(0.0, 0.1, 0);
+    contact_zone(0.0, 0.1, 1);
+    contact_zone(0.02, 0.1, 1); /* coating thinner than h: 4 thin layers */
+    contact_zone(0.05, 0.1, 2);
+    contact_zone(0.5, 0.1, 1);  /* coating much thicker than the fine zone */
+}
+
+static void write_vtk(const asp_mesh *M, const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) return;
+    fprintf(f, "# vtk DataFile Version 3.0\nstiction half3d\nASCII\n"
+               "DATASET UNSTRUCTURED_GRID\nPOINTS %d double\n", M->nnode);
+    for (int n = 0; n < M->nnode; n++)
+        fprintf(f, "%.9g %.9g %.9g\n", M->x[3 * n], M->x[3 * n + 1], M->x[3 * n + 2]);
+    fprintf(f, "CELLS %d %d\n", M->nelem, 9 * M->nelem);
+    for (int e = 0; e < M->nelem; e++) {
+        fprintf(f, "8");
+        for (int a = 0; a < 8; a++) fprintf(f, " %d", M->conn[8 * e + a]);
+        fprintf(f, "\n");
+    }
+    fprintf(f, "CELL_TYPES %d\n", M->nelem);
+    for (int e = 0; e < M->nelem; e++) fprintf(f, "12\n");
+    fprintf(f, "CELL_DATA %d\nSCALARS region int 1\nLOOKUP_TABLE default\n", M->nelem);
+    for (int e = 0; e < M->nelem; e++) fprintf(f, "%d\n", M->region[e]);
+    fprintf(f, "POINT_DATA %d\nSCALARS flags int 1\nLOOKUP_TABLE default\n", M->nnode);
+    for (int n = 0; n < M->nnode; n++) fprintf(f, "%d\n", M->flags[n]);
+    fclose(f);
+}
+
+static void test_speed_and_dump(void **state)
+{
+    (void)state;
+    asp_mesh_spec s = {R, 0.05, 0.1, 1};
+    asp_mesh *M = NULL;
+    double t0 = now();
+    assert_int_equal(asp_mesh_half3d(&s, &M), STC_OK);
+    double dt = now() - t0;
+    printf("default level, a_max/R = 0.01: %d nodes (%d DOFs), %d hex8 in %.3f s\n",
+           M->nnode, 3 * M->nnode, M->nelem, dt);
+    assert_true(dt < 1.0);
+    const char *path = getenv("STC_MESH3D_VTK");
+    if (path) write_vtk(M, path);
+    asp_mesh_destroy(&M);
+}
+
+static void expect_bad(double Rr, double t, double a, int level, const char *needle)
+{
+    asp_mesh_spec s = {Rr, t, a, level};
+    asp_mesh *M = (asp_mesh *)&s; /* must be reset to NULL on failure */
+    stc_error_clear();
+    assert_int_equal(asp_mesh_half3d(&s, &M), STC_EINVAL);
+    assert_null(M);
+    if (!strstr(stc_errmsg(), needle)) fail_msg("'%s' lacks '%s'", stc_errmsg(), needle);
+}
+
+static void test_invalid(void **state)
+{
+    (void)state;
+    expect_bad(-1.0, 0.0, 0.1, 1, "R = -1");
+    expect_bad(10.0, -0.1, 0.1, 1, "t = -0.1");
+    expect_bad(10.0, 0.0, 0.0, 1, "a_max = 0");
+    expect_bad(10.0, 0.0, 0.1, -1, "level = -1");
+    expect_bad(10.0, 0.0, 6.0, 1, "does not fit");
+    printf("invalid specs rejected with messages\n");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_volume_converges),
+        cmocka_unit_test(test_quality),
+        cmocka_unit_test(test_flags_and_regions),
+        cmocka_unit_test(test_contact_zone),
+        cmocka_unit_test(test_speed_and_dump),
+        cmocka_unit_test(test_invalid),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
