@@ -10,7 +10,8 @@
  *   with ratio q(level) = 1 + 0.3 / sqrt(2)^level up to the far-field size
  *   hmax(level) = 0.15 R' / sqrt(2)^level.  The coating always gets at least
  *   4 elements through its thickness (spacing min(h, t/4) starting at the
- *   surface).
+ *   surface); a coating with t <= 3 a_max keeps size h through its whole
+ *   thickness and 0.5 a_max into the substrate (interface stresses).
  *   With a_min < a_max (a load curve whose first yield must be resolved) the
  *   size is a_min/n over 1.25 a_min along the surface and 0.8 a_min in depth,
  *   grows by q to a_max/n and stays there over the a_max zone.
@@ -126,8 +127,14 @@ static int depth_levels(const asp_mesh_spec *s, double amin, double h0, double h
     double L0 = 0.8 * amin, L1 = 0.8 * s->a_max, *a = NULL, *b = NULL;
     int na = 0, nb = 0;
     if (s->t > 0.0) {
+        /* an interface within reach of the contact stresses (t <= 3 a_max)
+         * keeps the contact size h down to 0.5 a_max below it: the
+         * substrate's first yield sits just under the interface */
+        int near = s->t <= 3.0 * s->a_max;
+        double L1c = near ? fmax(L1, s->t) : L1, L1s = near ? fmax(L1 - s->t, 0.5 * s->a_max)
+                                                            : L1 - s->t;
         double hc = fmin(h0, s->t / 4.0);
-        na = graded_sizes(s->t, hc, L0, fmin(h, fmax(hc, s->t / 4.0)), L1, q, hmax, &a);
+        na = graded_sizes(s->t, hc, L0, fmin(h, fmax(hc, s->t / 4.0)), L1c, q, hmax, &a);
         if (na < 0) return -1;
         if (na < 4) { /* at least 4 layers through the coating */
             double *na4 = realloc(a, 4 * sizeof *a);
@@ -138,8 +145,8 @@ static int depth_levels(const asp_mesh_spec *s, double amin, double h0, double h
         }
         double last = a[na - 1], t = s->t;
         /* continue from the coating's last size */
-        nb = graded_sizes(D - t, fmax(last, fmin(h0, h)), L0 - t, fmax(h, last), L1 - t, q,
-                          hmax, &b);
+        nb = graded_sizes(D - t, fmax(last, fmin(h0, h)), L0 - t, fmax(h, last), L1s, q, hmax,
+                          &b);
     } else {
         nb = graded_sizes(D, h0, L0, h, L1, q, hmax, &b);
     }

@@ -10,6 +10,8 @@ static const cli_cmd commands[] = {
     {"formulas", "closed-form contact models (Hertz, yield inception, coated fits, WSP)",
      cli_formulas},
     {"surface", "rough surfaces: synth, stats, predict (stiction surface --help)", cli_surface},
+    {"asperity", "FE model of one coated asperity under normal load (P, A, first yield)",
+     cli_asperity},
     {NULL, NULL, NULL},
 };
 

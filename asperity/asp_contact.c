@@ -1,0 +1,173 @@
+/* Results at a converged state: load, contact radius resolved below the
+ * element size, penetration, per-layer von Mises maxima, first yield.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "solver_impl.h"
+
+/* Consistent nodal force of node k (hat function over the surface nodes'
+ * radii r[k-1], r[k], r[k+1]) for the pressure shape p = sqrt(a² - r²),
+ * without the 2π factor.  The substitution r = a sin φ removes the square-root
+ * edge singularity; composite Simpson on each half of the hat. */
+static double hat_force(const double *r, int k, int nr, double a, int axi)
+{
+    double F = 0.0;
+    for (int side = 0; side < 2; side++) {
+        double lo = side == 0 ? (k > 0 ? r[k - 1] : r[k]) : r[k];
+        double hi = side == 0 ? r[k] : (k + 1 < nr ? r[k + 1] : r[k]);
+        if (hi <= lo || lo >= a) continue;
+        double p0 = asin(fmin(lo / a, 1.0)), p1 = asin(fmin(hi / a, 1.0));
+        enum { NS = 64 };
+        double hstep = (p1 - p0) / NS, sum = 0.0;
+        for (int i = 0; i <= NS; i++) {
+            double ph = p0 + i * hstep, rr = a * sin(ph), c = a * cos(ph);
+            double N = side == 0 ? (rr - lo) / (hi - lo) : (hi - rr) / (hi - lo);
+            double w = (i == 0 || i == NS) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+            sum += w * c * N * (axi ? rr : 1.0) * c; /* p · N · (r) · dr/dφ */
+        }
+        F += sum * hstep / 3.0;
+    }
+    return F;
+}
+
+/* Contact radius from the forces of the last two active surface nodes:
+ * the edge position a in (r_L-1, r_L+1] for which a sqrt(a² - r²) pressure
+ * edge (Hertz, and the elastic edge of elastic–plastic contact; Johnson,
+ * Contact Mechanics, 1985, §4.2 and §6.3) gives the observed force ratio. */
+static double contact_radius(const double *r, const double *F, int L, int nr, int axi)
+{
+    if (L < 0) return 0.0;
+    if (L + 1 >= nr) return r[nr - 1];
+    if (L == 0) return 0.5 * r[1];
+    /* the discrete contact may hold node L just outside the true edge */
+    double obs = F[L] / F[L - 1], lo = r[L - 1] + 1e-6 * (r[L] - r[L - 1]), hi = r[L + 1];
+    double rlo = hat_force(r, L, nr, lo, axi) / hat_force(r, L - 1, nr, lo, axi);
+    double rhi = hat_force(r, L, nr, hi, axi) / hat_force(r, L - 1, nr, hi, axi);
+    if (!(obs > rlo)) return lo;
+    if (!(obs < rhi)) return hi;
+    for (int it = 0; it < 60; it++) {
+        double mid = 0.5 * (lo + hi);
+        double rm = hat_force(r, L, nr, mid, axi) / hat_force(r, L - 1, nr, mid, axi);
+        if (rm < obs) lo = mid;
+        else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+static void layer_maxima(asp_solver *s, asp_point *pt)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim, nen = s->nen, nq = s->nqp, best[2] = {-1, -1};
+    pt->vm_over_Y[0] = pt->vm_over_Y[1] = 0.0;
+    pt->plastic_points = 0;
+    for (int e = 0; e < m->nelem; e++) {
+        int reg = m->region[e];
+        for (int q = 0; q < nq; q++) {
+            size_t iq = (size_t)e * nq + q;
+            double f = asp_von_mises(s->sig + 6 * iq) / s->mat[reg].Y;
+            pt->plastic_points += s->st_old[iq].epbar > 0.0;
+            if (f > pt->vm_over_Y[reg]) pt->vm_over_Y[reg] = f, best[reg] = (int)iq;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        memset(s->yt[k].cur_loc, 0, sizeof s->yt[k].cur_loc);
+        if (best[k] < 0) continue;
+        int e = best[k] / nq, q = best[k] % nq;
+        double X[24], xq[24];
+        for (int a = 0; a < nen; a++)
+            for (int i = 0; i < d; i++) X[d * a + i] = m->x[d * m->conn[nen * e + a] + i];
+        if (d == 2) asp_quad4_qp_coords(X, xq);
+        else asp_hex8_qp_coords(X, xq);
+        for (int i = 0; i < d; i++) s->yt[k].cur_loc[i] = xq[d * q + i];
+    }
+}
+
+/* 3D half model: the radius is read along the symmetry line y = 0, x >= 0,
+ * where on the uniform contact grid the nodal forces are line integrals of
+ * p(x, 0) times the y-hat (no 2πr weight). */
+void asp_contact_results(asp_solver *s, asp_point *pt)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim, L = -1, nr = 0, nc = 0;
+    double P = 0.0, Pb = 0.0, pen = 0.0;
+    double r[4096], F[4096];
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        double fz = s->fint[d * n + d - 1];
+        int line = d == 2 || (m->x[d * n + 1] == 0.0 && m->x[d * n] >= 0.0);
+        if (line && nr < 4096) {
+            r[nr] = m->x[d * n], F[nr] = -fz;
+            if (s->cs[k] != ASP_CS_OPEN) L = nr;
+            nr++;
+        }
+        if (s->cs[k] != ASP_CS_OPEN) {
+            P -= fz;
+            nc++;
+        } else {
+            double gap = s->Rp - s->delta - (m->x[d * n + d - 1] + s->u[d * n + d - 1]);
+            pen = fmax(pen, -gap);
+        }
+    }
+    for (int n = 0; n < m->nnode; n++)
+        if (m->flags[n] & ASP_NODE_BASE) Pb += s->fint[d * n + d - 1];
+    double sym = d == 3 ? 2.0 : 1.0; /* the half model carries half the load */
+    pt->delta = s->delta;
+    pt->P = sym * P;
+    pt->P_base = sym * Pb;
+    pt->n_contact = nc;
+    pt->max_penetration = pen;
+    pt->a = contact_radius(r, F, L, nr, d == 2);
+    pt->A = M_PI * pt->a * pt->a;
+    layer_maxima(s, pt);
+}
+
+/* First yield per layer.  While a layer is elastic its peak von Mises
+ * stress follows a power law of δ (exactly σ ∝ δ^½ for Hertz, Johnson 1985
+ * §4.2); the increment where plastic strain first appears is bracketed, and
+ * δ_y is where the power law through the last two elastic increments
+ * reaches σvm = Y.  The load there is interpolated log-log between the last
+ * elastic and the first plastic increment; the location is the peak's at
+ * the last elastic increment.  The increments are refined near yield
+ * (solver.c: step_limit) so the extrapolation spans at most 3 % in δ. */
+void asp_yield_track(asp_solver *s, const asp_point *pt)
+{
+    const asp_mesh *m = s->mesh;
+    int yielded[2] = {0, 0}, nq = s->nqp;
+    for (int e = 0; e < m->nelem; e++)
+        for (int q = 0; q < nq; q++)
+            if (s->st_old[(size_t)e * nq + q].epbar > 0.0) yielded[m->region[e]] = 1;
+    for (int k = 0; k < 2; k++) {
+        asp_ytrack *t = &s->yt[k];
+        if (t->y.reached) continue;
+        if (!yielded[k]) {
+            if (pt->vm_over_Y[k] <= 0.0) continue;
+            if (t->n == 2) {
+                t->d[0] = t->d[1], t->f[0] = t->f[1], t->P[0] = t->P[1];
+                memcpy(t->loc[0], t->loc[1], sizeof t->loc[0]);
+                t->n = 1;
+            }
+            t->d[t->n] = pt->delta, t->f[t->n] = pt->vm_over_Y[k], t->P[t->n] = pt->P;
+            memcpy(t->loc[t->n], t->cur_loc, sizeof t->loc[0]);
+            t->n++;
+            continue;
+        }
+        t->y.reached = 1;
+        if (t->n == 0) { /* yielded in the first increment */
+            t->y.delta = pt->delta, t->y.P = pt->P;
+            t->y.r = t->cur_loc[0], t->y.z = t->cur_loc[s->dim - 1];
+            continue;
+        }
+        int j = t->n - 1;
+        double mexp = 0.5;
+        if (t->n == 2 && t->f[1] > t->f[0] && t->d[1] > t->d[0])
+            mexp = log(t->f[1] / t->f[0]) / log(t->d[1] / t->d[0]);
+        double dy = t->d[j] * pow(1.0 / t->f[j], 1.0 / mexp);
+        dy = fmin(fmax(dy, t->d[j]), pt->delta);
+        double Py = t->P[j];
+        if (t->P[j] > 0.0 && pt->P > 0.0 && pt->delta > t->d[j])
+            Py = t->P[j] * pow(pt->P / t->P[j], log(dy / t->d[j]) / log(pt->delta / t->d[j]));
+        t->y.delta = dy, t->y.P = Py;
+        t->y.r = t->loc[j][0], t->y.z = t->loc[j][s->dim - 1];
+    }
+}

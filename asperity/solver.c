@@ -1,0 +1,633 @@
+/* Implicit static FE solver of a coated sphere pressed by a rigid flat.
+ *
+ * Structure (PETSc/SUNDIALS style): create() meshes, builds the fixed CSC
+ * sparsity pattern (upper triangle) and the element → matrix scatter map,
+ * and runs cholmod_analyze ONCE; every Newton iteration only refills the
+ * values, factorizes numerically and solves.  Boundary conditions and
+ * contact are imposed WITHOUT changing the pattern: a constrained DOF keeps
+ * its prescribed value in u and gets an identity row/column in K (values
+ * only), so the symbolic analysis stays valid.
+ *
+ * Contact: node-to-analytic-plane, exact (zero penetration for an active
+ * node) by an active set iterated to consistency inside each increment:
+ * an active node has u_z prescribed onto the flat; its reaction is the
+ * contact force; a node whose reaction turns tensile is released (unless
+ * no_separation), a node that penetrates is added.  Stick: tangential DOFs
+ * of a node are frozen at their value when it touched.
+ *
+ * Loading: increments in δ, sized from the contact-radius growth (about one
+ * surface element per increment), refined near first yield, grown after
+ * easy convergence and halved on failure (cut-back).  Every failure ends
+ * with a reason in the message.
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "solver_impl.h"
+#include "stc_check.h"
+#include "stiction/formulas.h"
+
+void asp_options_default(asp_options *o)
+{
+    o->geom = ASP_GEOM_AUTO;
+    o->contact = ASP_CONTACT_SLIP;
+    o->no_separation = 0;
+    o->mesh_level = 1;
+    o->a_safety = 0.0;
+    o->rtol = 1e-8;
+    o->utol = 1e-6;
+    o->max_newton = 30;
+    o->newton_reuse = 1;
+    o->max_active_set = 40;
+    o->max_cutbacks = 10;
+    o->threads = 0;
+}
+
+static stc_status check_options(const asp_options *o)
+{
+    STC_CHECK(o->mesh_level >= 0 && o->mesh_level <= 6, STC_EINVAL,
+              "mesh level = %d: must be in [0, 6]", o->mesh_level);
+    STC_CHECK(o->a_safety == 0.0 || (o->a_safety >= 1.0 && o->a_safety <= 5.0), STC_EINVAL,
+              "a-safety = %g: must be 0 (auto) or in [1, 5]", o->a_safety);
+    STC_CHECK(o->rtol > 0.0 && o->rtol < 1e-2, STC_EINVAL, "rtol = %g: must be in (0, 1e-2)",
+              o->rtol);
+    STC_CHECK(o->utol > 0.0 && o->utol < 1e-2, STC_EINVAL, "utol = %g: must be in (0, 1e-2)",
+              o->utol);
+    STC_CHECK(o->max_newton >= 2 && o->newton_reuse >= 1 && o->max_active_set >= 2 &&
+                  o->max_cutbacks >= 0,
+              STC_EINVAL, "Newton limits: max-newton >= 2, newton-reuse >= 1, "
+                          "max-active-set >= 2, max-cutbacks >= 0");
+    return STC_OK;
+}
+
+/* ---- sparsity pattern ---------------------------------------------------- */
+
+static int cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+/* Node adjacency through elements: nb[ptr[i] .. ptr[i+1]) sorted, unique. */
+static stc_status node_graph(const asp_mesh *m, int **ptr_out, int **nb_out)
+{
+    int n = m->nnode, nen = m->nen;
+    int *cnt = calloc((size_t)n + 1, sizeof *cnt);
+    STC_CHECK(cnt, STC_ENOMEM, "solver: out of memory");
+    for (int e = 0; e < m->nelem; e++)
+        for (int a = 0; a < nen; a++) cnt[m->conn[nen * e + a] + 1] += nen;
+    for (int i = 0; i < n; i++) cnt[i + 1] += cnt[i];
+    int *nb = malloc((size_t)cnt[n] * sizeof *nb), *fill = malloc((size_t)n * sizeof *fill);
+    if (!nb || !fill) {
+        free(cnt), free(nb), free(fill);
+        return STC_FAIL(STC_ENOMEM, "solver: out of memory");
+    }
+    memcpy(fill, cnt, (size_t)n * sizeof *fill);
+    for (int e = 0; e < m->nelem; e++)
+        for (int a = 0; a < nen; a++)
+            for (int b = 0; b < nen; b++)
+                nb[fill[m->conn[nen * e + a]]++] = m->conn[nen * e + b];
+    /* sort and compact in place */
+    int w = 0;
+    for (int i = 0; i < n; i++) {
+        int lo = cnt[i], hi = cnt[i + 1];
+        qsort(nb + lo, (size_t)(hi - lo), sizeof *nb, cmp_int);
+        cnt[i] = w;
+        for (int k = lo; k < hi; k++)
+            if (k == lo || nb[k] != nb[k - 1]) nb[w++] = nb[k];
+    }
+    cnt[n] = w;
+    free(fill);
+    *ptr_out = cnt;
+    *nb_out = nb;
+    return STC_OK;
+}
+
+/* Upper-triangular CSC pattern of K and the element scatter map. */
+static stc_status build_pattern(asp_solver *s)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim, *ptr = NULL, *nb = NULL;
+    STC_CALL(node_graph(m, &ptr, &nb));
+    size_t nnz = 0;
+    for (int i = 0; i < m->nnode; i++)
+        for (int k = ptr[i]; k < ptr[i + 1]; k++)
+            for (int c = 0; c < d; c++)
+                for (int r = 0; r < d; r++)
+                    nnz += (size_t)(nb[k] * d + r <= i * d + c);
+    s->K = cholmod_allocate_sparse((size_t)s->ndof, (size_t)s->ndof, nnz, 1, 1, 1, CHOLMOD_REAL,
+                                   &s->cc);
+    if (!s->K) {
+        free(ptr), free(nb);
+        return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
+    }
+    int *Kp = s->K->p, *Ki = s->K->i, w = 0;
+    for (int i = 0; i < m->nnode; i++)
+        for (int c = 0; c < d; c++) {
+            int col = i * d + c;
+            Kp[col] = w;
+            for (int k = ptr[i]; k < ptr[i + 1]; k++)
+                for (int r = 0; r < d; r++)
+                    if (nb[k] * d + r <= col) Ki[w++] = nb[k] * d + r;
+        }
+    Kp[s->ndof] = w;
+    free(ptr), free(nb);
+    size_t nmap = (size_t)m->nelem * s->nde * s->nde;
+    s->emap = malloc(nmap * sizeof *s->emap);
+    STC_CHECK(s->emap, STC_ENOMEM, "solver: out of memory");
+    for (int e = 0; e < m->nelem; e++)
+        for (int a = 0; a < s->nde; a++)
+            for (int b = 0; b < s->nde; b++) {
+                int I = m->conn[s->nen * e + a / d] * d + a % d;
+                int J = m->conn[s->nen * e + b / d] * d + b % d;
+                int pos = -1;
+                if (I <= J) {
+                    const int *lo = Ki + Kp[J], *hi = Ki + Kp[J + 1];
+                    const int *f = bsearch(&I, lo, (size_t)(hi - lo), sizeof *lo, cmp_int);
+                    pos = (int)(f - Ki);
+                }
+                s->emap[((size_t)e * s->nde + a) * s->nde + b] = pos;
+            }
+    return STC_OK;
+}
+
+/* ---- assembly -------------------------------------------------------------- */
+
+/* Internal forces (and K if want_K) at s->u from the converged state st_old.
+ * Fills fint, sig, st_new.  Returns STC_ENOCONV if an element inverted. */
+static stc_status assemble(asp_solver *s, int want_K)
+{
+    const asp_mesh *m = s->mesh;
+    double *Kx = s->K->x;
+    int bad = -1, nde = s->nde, d = s->dim, nen = s->nen;
+    memset(s->fint, 0, (size_t)s->ndof * sizeof *s->fint);
+    if (want_K) memset(Kx, 0, s->K->nzmax * sizeof *Kx);
+#pragma omp parallel for schedule(static)
+    for (int e = 0; e < m->nelem; e++) {
+        double X[24], ue[24], fe[24], Ke[24 * 24];
+        const int *c = m->conn + (size_t)nen * e;
+        for (int a = 0; a < nen; a++)
+            for (int i = 0; i < d; i++) {
+                X[d * a + i] = m->x[d * c[a] + i];
+                ue[d * a + i] = s->u[d * c[a] + i];
+            }
+        size_t q0 = (size_t)e * s->nqp;
+        const asp_j2 *mat = &s->mat[m->region[e]];
+        int r = d == 2 ? asp_quad4_axi(X, ue, mat, s->st_old + q0, s->st_new + q0, fe,
+                                       want_K ? Ke : NULL, s->sig + 6 * q0)
+                       : asp_hex8(X, ue, mat, s->st_old + q0, s->st_new + q0, fe,
+                                  want_K ? Ke : NULL, s->sig + 6 * q0);
+        if (r < 0) {
+#pragma omp critical
+            bad = e;
+            continue;
+        }
+        for (int a = 0; a < nde; a++) {
+#pragma omp atomic
+            s->fint[d * c[a / d] + a % d] += fe[a];
+        }
+        if (!want_K) continue;
+        const int *map = s->emap + (size_t)e * nde * nde;
+        for (int k = 0; k < nde * nde; k++)
+            if (map[k] >= 0) {
+#pragma omp atomic
+                Kx[map[k]] += Ke[k];
+            }
+    }
+    STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
+    return STC_OK;
+}
+
+/* Identity rows/columns for the constrained DOFs (values only). */
+static void apply_constraints(asp_solver *s)
+{
+    const int *Kp = s->K->p, *Ki = s->K->i;
+    double *Kx = s->K->x;
+    for (int j = 0; j < s->ndof; j++)
+        for (int k = Kp[j]; k < Kp[j + 1]; k++) {
+            int i = Ki[k];
+            if (s->fixed[i] || s->fixed[j]) Kx[k] = (i == j) ? 1.0 : 0.0;
+        }
+}
+
+/* ---- constraints and contact -------------------------------------------- */
+
+static double node_z(const asp_solver *s, int n) { return s->mesh->x[s->dim * n + s->dim - 1]; }
+
+/* Mark the fixed DOFs and write their prescribed values into u. */
+static void set_dirichlet(asp_solver *s, double delta)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim;
+    memset(s->fixed, 0, (size_t)s->ndof);
+    for (int n = 0; n < m->nnode; n++) {
+        unsigned f = m->flags[n];
+        if (f & ASP_NODE_BASE)
+            for (int c = 0; c < d; c++) s->fixed[d * n + c] = 1, s->u[d * n + c] = 0.0;
+        if (d == 2 && (f & ASP_NODE_AXIS)) s->fixed[d * n] = 1, s->u[d * n] = 0.0;
+        if (d == 3 && (f & ASP_NODE_SYM)) s->fixed[d * n + 1] = 1, s->u[d * n + 1] = 0.0;
+    }
+    for (int k = 0; k < s->ncand; k++) {
+        if (s->cs[k] == ASP_CS_OPEN) continue;
+        int n = s->cand[k];
+        s->fixed[d * n + d - 1] = 1;
+        s->u[d * n + d - 1] = s->Rp - delta - node_z(s, n);
+        if (s->cs[k] != ASP_CS_STICK) continue;
+        for (int c = 0; c < d - 1; c++)
+            if (!s->fixed[d * n + c]) s->fixed[d * n + c] = 1, s->u[d * n + c] = s->cstick[(d - 1) * k + c];
+    }
+}
+
+/* Update the active set from the converged state; returns the number of
+ * changes. */
+static int update_active_set(asp_solver *s, double delta)
+{
+    int d = s->dim, changes = 0;
+    double fref = 0.0;
+    for (int k = 0; k < s->ncand; k++)
+        if (s->cs[k] != ASP_CS_OPEN) fref = fmax(fref, fabs(s->fint[d * s->cand[k] + d - 1]));
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        if (s->cs[k] != ASP_CS_OPEN) {
+            /* reaction = fint; the flat can only push down: fint_z <= 0 */
+            if (!s->opt.no_separation && s->fint[d * n + d - 1] > 1e-9 * fref)
+                s->cs[k] = ASP_CS_OPEN, changes++;
+        } else {
+            double gap = s->Rp - delta - (node_z(s, n) + s->u[d * n + d - 1]);
+            if (gap < -1e-9 * delta) {
+                /* stick where it touched: interpolate between the converged
+                 * state (gap g0 >= 0 at s->delta) and this one (gap < 0) */
+                double g0 = s->Rp - s->delta - (node_z(s, n) + s->u_conv[d * n + d - 1]);
+                double lam = g0 > 0.0 ? g0 / (g0 - gap) : 0.0;
+                s->cs[k] = s->opt.contact == ASP_CONTACT_STICK ? ASP_CS_STICK : ASP_CS_SLIP;
+                for (int c = 0; c < d - 1; c++)
+                    s->cstick[(d - 1) * k + c] =
+                        s->u_conv[d * n + c] + lam * (s->u[d * n + c] - s->u_conv[d * n + c]);
+                changes++;
+            }
+        }
+    }
+    return changes;
+}
+
+/* ---- Newton ---------------------------------------------------------------- */
+
+typedef struct nstat {
+    int iters, facts;
+} nstat;
+
+static double norm_sel(const asp_solver *s, const double *v, int want_fixed)
+{
+    double a = 0.0;
+    for (int i = 0; i < s->ndof; i++)
+        if (!s->fixed[i] == !want_fixed) a += v[i] * v[i];
+    return sqrt(a);
+}
+
+static stc_status factorize(asp_solver *s, nstat *ns)
+{
+    apply_constraints(s);
+    cholmod_factorize(s->K, s->L, &s->cc);
+    ns->facts++;
+    STC_CHECK(s->cc.status == CHOLMOD_OK, STC_ESOLVER,
+              "CHOLMOD factorization at δ = %g mm: %s (column %d of %d)", s->delta,
+              s->cc.status == CHOLMOD_NOT_POSDEF ? "matrix not positive definite"
+                                                 : "numerical failure",
+              (int)s->L->minor, s->ndof);
+    return STC_OK;
+}
+
+static stc_status newton_solve(asp_solver *s, cholmod_dense *b, double *du)
+{
+    double *bx = b->x;
+    for (int i = 0; i < s->ndof; i++) bx[i] = s->fixed[i] ? 0.0 : -s->fint[i];
+    cholmod_dense *x = cholmod_solve(CHOLMOD_A, s->L, b, &s->cc);
+    STC_CHECK(x, STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
+    memcpy(du, x->x, (size_t)s->ndof * sizeof *du);
+    cholmod_free_dense(&x, &s->cc);
+    return STC_OK;
+}
+
+/* Newton with backtracking line search for the current constraints. */
+static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, double *u0,
+                         cholmod_dense *b, double loose)
+{
+    const asp_options *o = &s->opt;
+    double rtol = o->rtol * loose, utol = o->utol * loose;
+    double r_first = -1.0, dun = INFINITY;
+    int age = o->newton_reuse;
+    STC_CALL(assemble(s, 1));
+    for (int it = 0;; it++) {
+        double rn = norm_sel(s, s->fint, 0), ref = norm_sel(s, s->fint, 1);
+        double uscale = fmax(norm_sel(s, s->u, 0), delta);
+        if (r_first < 0.0) r_first = rn;
+        STC_CHECK(isfinite(rn) && rn <= 1e8 * fmax(r_first, 1e-30), STC_ENOCONV,
+                  "Newton diverged at δ = %g mm (residual %.3g N)", delta, rn);
+        if (rn <= rtol * ref && (dun <= utol * uscale || rn <= 1e-3 * rtol * ref))
+            return STC_OK;
+        if (rn <= 1e-300) return STC_OK; /* nothing loads the body yet */
+        STC_CHECK(it < o->max_newton, STC_ENOCONV,
+                  "Newton: %d iterations at δ = %g mm, residual %.3g (tolerance %.3g)",
+                  it, delta, rn / fmax(ref, 1e-300), o->rtol);
+        if (age >= o->newton_reuse) {
+            STC_CALL(factorize(s, ns));
+            age = 0;
+        }
+        age++;
+        STC_CALL(newton_solve(s, b, du));
+        ns->iters++;
+        memcpy(u0, s->u, (size_t)s->ndof * sizeof *u0);
+        double alpha = 1.0;
+        for (int ls = 0;; ls++) {
+            for (int i = 0; i < s->ndof; i++) s->u[i] = u0[i] + alpha * du[i];
+            stc_status st = assemble(s, age >= o->newton_reuse);
+            double rt = st == STC_OK ? norm_sel(s, s->fint, 0) : INFINITY;
+            if (rt <= (1.0 - 1e-4 * alpha) * rn || ls == 4) {
+                STC_CHECK(st == STC_OK, STC_ENOCONV, "line search: element inverted at δ = %g mm",
+                          delta);
+                break;
+            }
+            alpha *= 0.5;
+        }
+        dun = alpha * norm_sel(s, du, 0);
+    }
+}
+
+/* One increment to `delta`, iterating the active set.  On failure the
+ * caller restores the converged state. */
+static stc_status increment(asp_solver *s, double delta, nstat *ns)
+{
+    int n = s->ndof;
+    double *du = malloc((size_t)n * sizeof *du), *u0 = malloc((size_t)n * sizeof *u0);
+    cholmod_dense *b = cholmod_allocate_dense((size_t)n, 1, (size_t)n, CHOLMOD_REAL, &s->cc);
+    stc_status st = STC_OK;
+    STC_CHECK_GOTO(du && u0 && b, st, done, STC_ENOMEM, "solver: out of memory");
+    /* predictor: scale the last increment */
+    double f = s->dlast > 0.0 ? (delta - s->delta) / s->dlast : 0.0;
+    for (int i = 0; i < n; i++) s->u[i] = s->u_conv[i] + f * s->du_last[i];
+    double loose = fmin(1e4, 1e-4 / s->opt.rtol);
+    for (int pass = 0;; pass++) {
+        STC_CHECK_GOTO(pass < s->opt.max_active_set, st, done, STC_ENOCONV,
+                       "contact active set did not settle in %d passes at δ = %g mm (cycling)",
+                       pass, delta);
+        /* settle the active set on loosely converged states first, then
+         * converge fully and check it once more */
+        set_dirichlet(s, delta);
+        STC_CALL_GOTO(newton(s, delta, ns, du, u0, b, loose), st, done);
+        int ch = update_active_set(s, delta);
+        if (ch == 0 && loose > 1.0) {
+            loose = 1.0;
+            STC_CALL_GOTO(newton(s, delta, ns, du, u0, b, loose), st, done);
+            ch = update_active_set(s, delta);
+        }
+        if (ch == 0) break;
+    }
+done:
+    free(du), free(u0);
+    cholmod_free_dense(&b, &s->cc);
+    return st;
+}
+
+/* ---- create / destroy ---------------------------------------------------- */
+
+static stc_status setup_candidates(asp_solver *s)
+{
+    const asp_mesh *m = s->mesh;
+    int n = 0;
+    for (int i = 0; i < m->nnode; i++) n += !!(m->flags[i] & ASP_NODE_TOP);
+    s->cand = malloc((size_t)n * sizeof *s->cand);
+    s->cs = calloc((size_t)n, 1);
+    s->cstick = calloc((size_t)n * 2, sizeof *s->cstick);
+    STC_CHECK(s->cand && s->cs && s->cstick, STC_ENOMEM, "solver: out of memory");
+    n = 0;
+    for (int i = 0; i < m->nnode; i++)
+        if (m->flags[i] & ASP_NODE_TOP) s->cand[n++] = i;
+    /* sort by height, highest first = by distance from the axis */
+    for (int a = 1; a < n; a++)
+        for (int k = a; k > 0 && node_z(s, s->cand[k]) > node_z(s, s->cand[k - 1]); k--) {
+            int t = s->cand[k];
+            s->cand[k] = s->cand[k - 1], s->cand[k - 1] = t;
+        }
+    s->ncand = n;
+    STC_CHECK(n >= 3, STC_EINVAL, "mesh has %d contact candidate nodes (< 3)", n);
+    return STC_OK;
+}
+
+static stc_status alloc_state(asp_solver *s)
+{
+    size_t n = (size_t)s->ndof, nq = (size_t)s->mesh->nelem * s->nqp;
+    s->u = calloc(n, sizeof *s->u), s->u_conv = calloc(n, sizeof *s->u);
+    s->du_last = calloc(n, sizeof *s->u), s->fint = calloc(n, sizeof *s->u);
+    s->sig = calloc(6 * nq, sizeof *s->sig);
+    s->st_old = calloc(nq, sizeof *s->st_old), s->st_new = calloc(nq, sizeof *s->st_new);
+    s->fixed = calloc(n, 1);
+    STC_CHECK(s->u && s->u_conv && s->du_last && s->fint && s->sig && s->st_old && s->st_new &&
+                  s->fixed,
+              STC_ENOMEM, "solver: out of memory for %zu DOFs", n);
+    return STC_OK;
+}
+
+static stc_status make_mesh(asp_solver *s, double delta_max)
+{
+    stc_material su, co;
+    stc_critical c;
+    stc_params_materials(&s->par, &su, &co);
+    asp_j2_init(&s->mat[ASP_REGION_SUBSTRATE], &su);
+    asp_j2_init(&s->mat[ASP_REGION_COATING], &co);
+    double t = stc_params_t(&s->par);
+    s->Rp = s->par.R + t;
+    STC_CALL(stc_critical_eval(&su, s->par.R, &c));
+    /* elastic: a = sqrt(R δ) (Hertz); well past yield the contact grows
+     * towards the truncated cap, a² -> 2 R δ (Kogut & Etsion 2002, fig. 6) */
+    double safety = s->opt.a_safety > 0.0 ? s->opt.a_safety
+                    : delta_max <= 2.0 * c.omega_c ? 1.1 : 1.45;
+    s->a_max = safety * sqrt(s->Rp * delta_max);
+    /* a load curve past first yield also resolves the contact at yield
+     * (0.8 of the smaller layer's ωc; for a coating in stick δc1 ≈ ωc_co) */
+    stc_critical cc;
+    STC_CALL(stc_critical_eval(&co, s->par.R, &cc));
+    double dres = 0.8 * fmin(c.omega_c, t > 0.0 ? cc.omega_c : c.omega_c);
+    s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
+    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->opt.mesh_level};
+    if (s->opt.geom == ASP_GEOM_3D) {
+        s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
+        STC_CALL(asp_mesh_half3d(&spec, &s->mesh));
+    } else {
+        STC_CALL(asp_mesh_axisym_graded(&spec, s->a_min, &s->mesh));
+    }
+    STC_CALL(asp_mesh_quality(s->mesh, &s->quality));
+    s->dim = s->mesh->dim, s->nen = s->mesh->nen;
+    s->nqp = s->dim == 2 ? ASP_QUAD4_NQP : ASP_HEX8_NQP;
+    s->nde = s->dim * s->nen;
+    s->ndof = s->dim * s->mesh->nnode;
+    s->h = s->a_max / (6 << s->opt.mesh_level); /* mesh.c: h = a_max / (6 2^level) */
+    s->h0 = s->a_min / (6 << s->opt.mesh_level);
+    return STC_OK;
+}
+
+stc_status asp_solver_create(const stc_params *p, const asp_options *o, double delta_max,
+                             asp_solver **out)
+{
+    *out = NULL;
+    STC_CALL(stc_params_validate(p));
+    asp_solver *s = calloc(1, sizeof *s);
+    STC_CHECK(s, STC_ENOMEM, "solver: out of memory");
+    s->par = *p;
+    if (o) s->opt = *o;
+    else asp_options_default(&s->opt);
+    stc_status st;
+    cholmod_start(&s->cc);
+    s->cc.print = 0;
+    s->cc.error_handler = NULL;
+    STC_CALL_GOTO(check_options(&s->opt), st, fail);
+    STC_CHECK_GOTO(delta_max > 0.0 && delta_max <= 0.01 * p->R, st, fail, STC_EINVAL,
+                   "delta = %g mm: must be in (0, 0.01 R] (small-strain model)", delta_max);
+    s->delta_max = delta_max;
+    STC_CALL_GOTO(make_mesh(s, delta_max), st, fail);
+    STC_CALL_GOTO(build_pattern(s), st, fail);
+    STC_CALL_GOTO(setup_candidates(s), st, fail);
+    STC_CALL_GOTO(alloc_state(s), st, fail);
+    s->L = cholmod_analyze(s->K, &s->cc);
+    STC_CHECK_GOTO(s->L, st, fail, STC_ESOLVER, "CHOLMOD analyze failed (status %d)",
+                   s->cc.status);
+    for (int k = 0; k < 2; k++) s->yt[k].y.reached = 0;
+    *out = s;
+    return STC_OK;
+fail:
+    asp_solver_destroy(&s);
+    return st;
+}
+
+void asp_solver_destroy(asp_solver **sp)
+{
+    if (!sp || !*sp) return;
+    asp_solver *s = *sp;
+    if (s->L) cholmod_free_factor(&s->L, &s->cc);
+    if (s->K) cholmod_free_sparse(&s->K, &s->cc);
+    cholmod_finish(&s->cc);
+    asp_mesh_destroy(&s->mesh);
+    free(s->emap), free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
+    free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
+    free(s);
+    *sp = NULL;
+}
+
+void asp_solver_info(const asp_solver *s, asp_info *info)
+{
+    info->dim = s->dim;
+    info->nodes = s->mesh->nnode;
+    info->elements = s->mesh->nelem;
+    info->dofs = s->ndof;
+    info->mesh_quality = s->quality;
+    info->h_contact = s->h;
+    info->a_max = s->a_max;
+}
+
+void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y)
+{
+    *y = s->yt[layer ? 1 : 0].y;
+}
+
+/* ---- load stepping ------------------------------------------------------- */
+
+/* Largest increment from δ.  Elastic frictionless contact is path
+ * independent, so it is solved in one increment (the active set does the
+ * rest).  Otherwise the contact may grow by about one surface element per
+ * increment under stick (a node's stick position is taken when it touches)
+ * and three under slip; near the first yield of a layer the steps shrink so
+ * the yield point is bracketed tightly (asp_contact.c). */
+static double step_limit(const asp_solver *s)
+{
+    int any_plastic = s->pt.plastic_points > 0, near = 0;
+    double lim = INFINITY;
+    for (int k = 0; k < 2; k++) {
+        if (s->yt[k].y.reached) continue;
+        double f = s->pt.vm_over_Y[k];
+        if (f > 0.9) lim = fmin(lim, 0.03 * s->delta), near = 1;
+        else if (f > 0.7) lim = fmin(lim, 0.1 * s->delta), near = 1;
+    }
+    if (s->opt.contact == ASP_CONTACT_SLIP && !any_plastic && !near && s->delta > 0.0) {
+        /* elastic so far: jump, but not further than where the elastic
+         * trend σ ∝ δ^½ predicts first yield */
+        double fmx = fmax(s->pt.vm_over_Y[0], s->pt.vm_over_Y[1]);
+        if (fmx > 0.0) lim = fmin(lim, s->delta * (pow(0.85 / fmx, 2.0) - 1.0));
+        /* at most x4 per step: the trend is unreliable on a few-node contact */
+        return fmax(fmin(lim, 3.0 * s->delta), 0.02 * s->delta);
+    }
+    double a = sqrt(2.0 * s->Rp * s->delta);
+    double g = (s->opt.contact == ASP_CONTACT_STICK ? 1.0 : 3.0) * (a < s->a_min ? s->h0 : s->h);
+    return fmin(lim, ((a + g) * (a + g) - a * a) / (2.0 * s->Rp));
+}
+
+static void commit(asp_solver *s, double delta, const nstat *ns)
+{
+    size_t nq = (size_t)s->mesh->nelem * s->nqp;
+    for (int i = 0; i < s->ndof; i++) s->du_last[i] = s->u[i] - s->u_conv[i];
+    memcpy(s->u_conv, s->u, (size_t)s->ndof * sizeof *s->u);
+    memcpy(s->st_old, s->st_new, nq * sizeof *s->st_old);
+    s->dlast = delta - s->delta;
+    s->delta = delta;
+    s->pt.increments++;
+    s->pt.newton_iterations += ns->iters;
+    s->pt.factorizations += ns->facts;
+    asp_contact_results(s, &s->pt);
+    asp_yield_track(s, &s->pt);
+}
+
+stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
+{
+    STC_CHECK(delta >= s->delta && delta <= s->delta_max * (1 + 1e-12), STC_EINVAL,
+              "delta = %g mm: must be in [%g, %g] (current, meshed maximum)", delta, s->delta,
+              s->delta_max);
+    unsigned char *cs0 = malloc((size_t)s->ncand);
+    double *cst0 = malloc((size_t)s->ncand * 2 * sizeof *cst0);
+    if (!cs0 || !cst0) {
+        free(cs0), free(cst0);
+        return STC_FAIL(STC_ENOMEM, "solver: out of memory");
+    }
+    double t0 = omp_get_wtime();
+    int saved_thr = omp_get_max_threads();
+    if (s->opt.threads > 0) omp_set_num_threads(s->opt.threads);
+    stc_status st = STC_OK;
+    int cuts = 0;
+    while (s->delta < delta * (1 - 1e-14)) {
+        double lim = step_limit(s);
+        if (s->step <= 0.0) s->step = lim;
+        double dnew = fmin(delta, s->delta + fmin(s->step, lim));
+        if (delta - dnew < 0.2 * fmin(s->step, lim)) dnew = delta; /* no sliver steps */
+        nstat ns = {0, 0};
+        memcpy(cs0, s->cs, (size_t)s->ncand);
+        memcpy(cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *cst0);
+        st = increment(s, dnew, &ns);
+        if (st == STC_OK) {
+            commit(s, dnew, &ns);
+            s->step = ns.iters <= 6 ? 1.5 * s->dlast : s->dlast;
+            cuts = 0;
+            continue;
+        }
+        /* cut back: restore the converged state and halve */
+        s->pt.newton_iterations += ns.iters;
+        s->pt.factorizations += ns.facts;
+        memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
+        memcpy(s->cs, cs0, (size_t)s->ncand);
+        memcpy(s->cstick, cst0, (size_t)s->ncand * 2 * sizeof *cst0);
+        s->step = 0.5 * (dnew - s->delta);
+        s->pt.cutbacks++;
+        if (++cuts > s->opt.max_cutbacks) {
+            char why[512];
+            snprintf(why, sizeof why, "%s", stc_errmsg());
+            st = STC_FAIL(STC_ENOCONV, "cut-back limit (%d halvings) reached at δ = %g mm: %s",
+                          s->opt.max_cutbacks, s->delta, why);
+            break;
+        }
+        st = STC_OK;
+    }
+    free(cs0), free(cst0);
+    s->pt.wall_s += omp_get_wtime() - t0;
+    omp_set_num_threads(saved_thr);
+    if (out) *out = s->pt;
+    return st;
+}

@@ -1,0 +1,60 @@
+/* Private layout of asp_solver (shared by solver.c, asp_contact.c, xdmf.c). */
+#ifndef STICTION_SOLVER_IMPL_H
+#define STICTION_SOLVER_IMPL_H
+
+#include <cholmod.h>
+
+#include "fe.h"
+#include "stiction/asperity.h"
+
+/* Per-node contact state; keeps the design open for the tangential step. */
+enum { ASP_CS_OPEN = 0, ASP_CS_STICK = 1, ASP_CS_SLIP = 2 };
+
+/* Elastic history of one layer, for the first-yield interpolation. */
+typedef struct asp_ytrack {
+    int n;               /* elastic points stored (0..2) */
+    double d[2], f[2];   /* δ and max σvm/Y of the last two elastic increments */
+    double P[2];         /* load there */
+    double loc[2][3];    /* location of the maximum */
+    double cur_loc[3];   /* location of the maximum at the converged state */
+    asp_yield y;
+} asp_ytrack;
+
+struct asp_solver {
+    stc_params par;
+    asp_options opt;
+    asp_mesh *mesh;
+    asp_j2 mat[2];        /* per region */
+    int dim, nen, nqp, nde; /* nde = dim * nen */
+    int ndof;
+    double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
+
+    cholmod_common cc;
+    cholmod_sparse *K;    /* upper triangle, fixed pattern */
+    cholmod_factor *L;    /* analysed once per mesh */
+    int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
+
+    double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
+    double *fint;                 /* [ndof] internal force at u */
+    double *sig;                  /* [nelem][nqp][6] stress at u */
+    asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
+    unsigned char *fixed;         /* [ndof] Dirichlet flag (values in u) */
+
+    int ncand;                    /* contact candidates, sorted by distance from the axis */
+    int *cand;                    /* node ids */
+    unsigned char *cs;            /* [ncand] ASP_CS_* */
+    double *cstick;               /* [ncand][dim - 1] tangential displacement when stuck */
+
+    double delta;                 /* current converged interference */
+    double step;                  /* next increment, mm */
+    double dlast;                 /* size of the last accepted increment */
+    asp_point pt;                 /* response at the converged state */
+    asp_ytrack yt[2];
+    double t_start;
+};
+
+/* asp_contact.c: results at the converged state. */
+void asp_contact_results(asp_solver *s, asp_point *pt);
+void asp_yield_track(asp_solver *s, const asp_point *pt);
+
+#endif

@@ -1,0 +1,122 @@
+/* stiction — finite-element model of one coated spherical asperity pressed
+ * by a rigid flat (SPEC §2–§4): implicit static Newton, CHOLMOD, active-set
+ * contact with an analytic plane.
+ *
+ * Model: substrate sphere of radius R with a bonded coating of thickness t,
+ * both elastic–perfectly plastic (von Mises); base plane fixed; flat at
+ * z = R' - δ.  Small-strain kinematics: adequate for δ/R below about 1e-2
+ * (a/R below about 0.1); the reference grid of the thesis stays below 1e-3.
+ *
+ * Usage: asp_solver_create() meshes the sphere for the largest interference
+ * to be reached; asp_solver_load() then advances the flat monotonically
+ * (adaptive increments, cut-back) and returns the response at each requested
+ * δ.  All numbers the CLI prints come from the structs below.
+ *
+ * Thread safety: one solver per thread; the solver itself uses OpenMP for
+ * the element loop.
+ */
+#ifndef STICTION_ASPERITY_H
+#define STICTION_ASPERITY_H
+
+#include "stiction/params.h"
+#include "stiction/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct asp_solver asp_solver;
+
+typedef enum asp_geom {
+    ASP_GEOM_AUTO = 0,  /* axisymmetric unless something breaks the symmetry */
+    ASP_GEOM_AXISYM = 1,
+    ASP_GEOM_3D = 2     /* half model, symmetry plane y = 0 */
+} asp_geom;
+
+typedef enum asp_contact_law {
+    ASP_CONTACT_SLIP = 0, /* frictionless */
+    ASP_CONTACT_STICK = 1 /* a node that touches stops moving tangentially */
+} asp_contact_law;
+
+/* Solver options.  Defaults from asp_options_default(). */
+typedef struct asp_options {
+    asp_geom geom;           /* default ASP_GEOM_AUTO */
+    asp_contact_law contact; /* default ASP_CONTACT_SLIP */
+    int no_separation;       /* 1: a node in contact never opens; default 0 */
+    int mesh_level;          /* 0 coarse, 1 default, 2 fine, 3+ finer; default 1 */
+    double a_safety;         /* a_max = a_safety sqrt(R' δmax) sizes the fine zone;
+                                0 = automatic (1.1 elastic, 1.45 plastic); default 0 */
+    double rtol;             /* Newton: residual / reaction norm; default 1e-8 */
+    double utol;             /* Newton: increment / displacement norm; default 1e-6 */
+    int max_newton;          /* Newton iterations per active set; default 30 */
+    int newton_reuse;        /* reuse a factorization for up to k iterations
+                                (1 = full Newton); default 1 */
+    int max_active_set;      /* active-set passes per increment; default 40 */
+    int max_cutbacks;        /* consecutive increment halvings; default 10 */
+    int threads;             /* OpenMP threads for assembly, 0 = runtime default */
+} asp_options;
+
+void asp_options_default(asp_options *o);
+
+/* Mesh and problem size. */
+typedef struct asp_info {
+    int dim;             /* 2 axisymmetric, 3 half model */
+    int nodes, elements, dofs;
+    double mesh_quality; /* worst scaled Jacobian in (0, 1] */
+    double h_contact;    /* element size at the contact, mm */
+    double a_max;        /* contact radius the mesh was sized for, mm */
+} asp_info;
+
+/* Response at one interference. */
+typedef struct asp_point {
+    double delta;           /* interference, mm */
+    double P;               /* normal load = sum of contact reactions, N */
+    double P_base;          /* reaction of the fixed base, N (equilibrium check) */
+    double a;               /* contact radius, mm (sub-element, from the nodal forces) */
+    double A;               /* contact area π a², mm² */
+    int n_contact;          /* nodes in contact */
+    double max_penetration; /* largest penetration of any node into the flat, mm */
+    double vm_over_Y[2];    /* max von Mises / Y in substrate [0] and coating [1] */
+    int plastic_points;     /* quadrature points with plastic strain */
+    int increments;         /* cumulative accepted load increments */
+    int cutbacks;           /* cumulative increment halvings */
+    int newton_iterations;  /* cumulative */
+    int factorizations;     /* cumulative */
+    double wall_s;          /* cumulative wall time in the solver, s */
+} asp_point;
+
+/* First yield of one layer (first = substrate/uncoated: layer 0, coating: 1). */
+typedef struct asp_yield {
+    int reached;   /* 0 if the layer has not yielded up to the current δ */
+    double delta;  /* interference at first yield, mm (interpolated, see solver.c) */
+    double P;      /* load at that interference, N */
+    double r, z;   /* location (axisymmetric r, z; 3D: x = r, z), mm */
+} asp_yield;
+
+/* Create a solver for the parameters `p` (copied) and options `o` (copied,
+ * NULL = defaults), meshed for interferences up to delta_max (mm).
+ * Returns new in *out. */
+stc_status asp_solver_create(const stc_params *p, const asp_options *o, double delta_max,
+                             asp_solver **out);
+void asp_solver_destroy(asp_solver **s); /* sets *s = NULL */
+
+/* Advance the flat to interference `delta` (mm, >= the current one, <= the
+ * delta_max of create) and fill `out` (nullable).  On failure the solver stays
+ * at the last converged state and the message gives the reason
+ * (STC_ENOCONV: Newton / active set / cut-back limit; STC_ESOLVER: CHOLMOD). */
+stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out);
+
+void asp_solver_info(const asp_solver *s, asp_info *info);
+
+/* First yield of layer 0 (substrate) or 1 (coating). */
+void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);
+
+/* Write the current fields (displacement, stress, von Mises, equivalent
+ * plastic strain, layer id) to `prefix`.h5 and an XDMF index `prefix`.xmf
+ * (ParaView).  `prefix` is borrowed. */
+stc_status asp_solver_write_fields(const asp_solver *s, const char *prefix);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

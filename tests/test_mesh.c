@@ -1,0 +1,156 @@
+/* Axisymmetric mesh of the coated hemisphere: geometry, layers, grading,
+ * quality, invalid input. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "fe.h"
+
+static double quad_area(const asp_mesh *m, int e, double *rc, double *zc)
+{
+    double A = 0.0, cr = 0.0, cz = 0.0;
+    for (int a = 0; a < 4; a++) {
+        const double *p = m->x + 2 * m->conn[4 * e + a], *q = m->x + 2 * m->conn[4 * e + (a + 1) % 4];
+        A += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+        cr += 0.25 * p[0], cz += 0.25 * p[1];
+    }
+    *rc = cr, *zc = cz;
+    return A;
+}
+
+/* Area = quarter disk (up to the chord error of the arc), every element
+ * positively oriented, quality bounded away from zero. */
+static void check_mesh(const asp_mesh_spec *s, int *nelem)
+{
+    asp_mesh *m = NULL;
+    double Rp = s->R + s->t, worst, area = 0.0;
+    assert_int_equal(asp_mesh_axisym(s, &m), STC_OK);
+    assert_int_equal(asp_mesh_quality(m, &worst), STC_OK);
+    assert_true(worst > 0.2);
+    for (int e = 0; e < m->nelem; e++) {
+        double rc, zc, A = quad_area(m, e, &rc, &zc);
+        assert_true(A > 0.0);
+        area += A;
+        (void)rc, (void)zc;
+        for (int a = 0; a < 4; a++) { /* every node of an element in its layer */
+            const double *p = m->x + 2 * m->conn[4 * e + a];
+            double rho = hypot(p[0], p[1]);
+            if (m->region[e] == ASP_REGION_COATING) assert_true(rho > s->R * (1 - 1e-12));
+            else assert_true(rho < s->R * (1 + 1e-12));
+        }
+    }
+    /* exact area of the polygon inscribed in the outer arc */
+    double *th = malloc((size_t)m->nnode * sizeof *th), exact = M_PI * Rp * Rp / 4.0;
+    int nb = 0;
+    for (int i = 0; i < m->nnode; i++)
+        if (fabs(hypot(m->x[2 * i], m->x[2 * i + 1]) - Rp) < 1e-9 * Rp)
+            th[nb++] = atan2(m->x[2 * i], m->x[2 * i + 1]);
+    for (int i = 1; i < nb; i++) /* insertion sort */
+        for (int k = i; k > 0 && th[k] < th[k - 1]; k--) {
+            double t = th[k];
+            th[k] = th[k - 1], th[k - 1] = t;
+        }
+    for (int i = 1; i < nb; i++) {
+        double d = th[i] - th[i - 1];
+        exact -= 0.5 * Rp * Rp * (d - sin(d));
+    }
+    free(th);
+    assert_true(fabs(area - exact) < 1e-9 * exact);
+    /* surface spacing at the contact: h = a_max / (6 2^level) */
+    double h = s->a_max / (6 << s->level), dmin = 1e9;
+    int ntop = 0, naxis_coat = 0;
+    for (int i = 0; i < m->nnode; i++) {
+        double r = m->x[2 * i], z = m->x[2 * i + 1];
+        if (m->flags[i] & ASP_NODE_TOP) {
+            ntop++;
+            if (r > 0.0) dmin = fmin(dmin, r);
+        }
+        if ((m->flags[i] & ASP_NODE_AXIS) && z >= s->R - 1e-12 && z < Rp - 1e-12) naxis_coat++;
+        if (m->flags[i] & ASP_NODE_BASE) assert_true(z == 0.0);
+    }
+    assert_true(fabs(dmin - h) < 1e-3 * h);
+    assert_true(ntop >= 10);
+    if (s->t > 0.0) assert_true(naxis_coat >= 4); /* >= 4 layers through the coating */
+    printf("# R' %g t %g a_max %g level %d: %d nodes %d elements, worst scaled Jacobian %.3f\n",
+           Rp, s->t, s->a_max, s->level, m->nnode, m->nelem, worst);
+    *nelem = m->nelem;
+    asp_mesh_destroy(&m);
+    assert_null(m);
+}
+
+static void test_uncoated_levels(void **state)
+{
+    (void)state;
+    int n[4];
+    for (int l = 0; l < 4; l++) {
+        asp_mesh_spec s = {10.0, 0.0, 0.1, l};
+        check_mesh(&s, &n[l]);
+        if (l) assert_true(n[l] > 2 * n[l - 1]); /* refinement adds elements */
+    }
+}
+
+static void test_coated(void **state)
+{
+    (void)state;
+    int n;
+    asp_mesh_spec thin = {10.0, 0.01, 0.18, 1}, thick = {10.0, 0.5, 0.1, 1};
+    asp_mesh_spec mid = {10.0, 0.25, 0.05, 0};
+    check_mesh(&thin, &n);
+    check_mesh(&thick, &n);
+    check_mesh(&mid, &n);
+}
+
+static void test_small_contact(void **state)
+{
+    (void)state;
+    int n;
+    for (double a = 0.002; a < 1.0; a *= 4.0) {
+        asp_mesh_spec s = {10.0, 0.0, a, 1};
+        check_mesh(&s, &n);
+    }
+}
+
+static void test_invalid(void **state)
+{
+    (void)state;
+    asp_mesh *m = NULL;
+    asp_mesh_spec s = {10.0, 0.0, -1.0, 1};
+    assert_int_equal(asp_mesh_axisym(&s, &m), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "a_max = -1"));
+    s.a_max = 0.1, s.level = 9;
+    assert_int_equal(asp_mesh_axisym(&s, &m), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "level = 9"));
+    s.level = 1, s.t = 5.0;
+    assert_int_equal(asp_mesh_axisym(&s, &m), STC_EINVAL);
+    assert_null(m);
+}
+
+/* an inverted element is reported by the quality check */
+static void test_inverted(void **state)
+{
+    (void)state;
+    asp_mesh *m = NULL;
+    asp_mesh_spec s = {10.0, 0.0, 0.1, 0};
+    double w;
+    assert_int_equal(asp_mesh_axisym(&s, &m), STC_OK);
+    int t = m->conn[1];
+    m->conn[1] = m->conn[3], m->conn[3] = t;
+    assert_int_equal(asp_mesh_quality(m, &w), STC_EFORMAT);
+    assert_true(w < 0.0);
+    asp_mesh_destroy(&m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_uncoated_levels), cmocka_unit_test(test_coated),
+        cmocka_unit_test(test_small_contact), cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_inverted),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,251 @@
+/* Asperity FE solver, coarse versions of the issue-3 acceptance checks
+ * (the full-size ones are in tools/validate.d/20-asperity.sh):
+ * Hertz and its mesh convergence, yield inception (slip, stick), coated
+ * first yield in the coating, equilibrium, zero penetration, error paths,
+ * field output.  Tolerances are those of the coarse meshes used here, each
+ * stated with the measured value at the time of writing. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+#include <hdf5.h>
+
+#include "stiction/asperity.h"
+#include "stiction/formulas.h"
+
+/* The thesis's Hertz check: R = 10.09 mm, E = 74 GPa, ν = 0.32, elastic
+ * (Y far above any stress reached). */
+static void hertz_params(stc_params *p)
+{
+    stc_params_default(p);
+    p->R = 10.09, p->E_su = 74000.0, p->nu = 0.32, p->Y_su = p->Y_co = 70000.0;
+}
+
+static double hertz_run(int level, double delta, asp_point *pt)
+{
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    hertz_params(&p);
+    asp_options_default(&o);
+    o.mesh_level = level;
+    o.threads = 1; /* the test runner shares the machine */
+    assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, delta, pt), STC_OK);
+    asp_solver_destroy(&s);
+    assert_null(s);
+    return pt->P;
+}
+
+static void test_hertz(void **state)
+{
+    (void)state;
+    stc_material m = {74000.0, 0.32, 70000.0};
+    double delta = 0.003 * 0.003 * 10.09; /* a/R = 0.003 */
+    asp_point pt;
+    stc_hertz h;
+    assert_int_equal(stc_hertz_eval(&m, 10.09, delta, &h), STC_OK);
+    hertz_run(1, delta, &pt);
+    printf("# Hertz a/R = 0.003, level 1: P/P_H - 1 = %+.3f %%, a/a_H - 1 = %+.3f %%\n",
+           100 * (pt.P / h.P - 1), 100 * (pt.a / h.a - 1));
+    /* measured: +0.42 % (base stiffening + discretization), -0.09 % */
+    assert_true(fabs(pt.P / h.P - 1) < 0.006);
+    assert_true(fabs(pt.a / h.a - 1) < 0.01);
+    assert_true(fabs(pt.P_base / pt.P - 1) < 1e-8); /* equilibrium */
+    assert_true(pt.max_penetration <= 1e-3 * delta);
+}
+
+/* P converges under refinement: successive differences shrink. */
+static void test_hertz_convergence(void **state)
+{
+    (void)state;
+    double delta = 0.001, P[3];
+    asp_point pt;
+    for (int l = 0; l < 3; l++) P[l] = hertz_run(l, delta, &pt);
+    double d1 = fabs(P[1] - P[0]), d2 = fabs(P[2] - P[1]);
+    printf("# Hertz a/R = 0.01: P = %.6g %.6g %.6g N (levels 0-2), ratio of differences %.2f\n",
+           P[0], P[1], P[2], d1 / d2);
+    /* measured 0.14 %; level 0 is pre-asymptotic (the observed order over
+     * levels 1-3 is reported by make validate) */
+    assert_true(d2 / P[2] < 0.003); /* the level-1 answer is within 0.3 % of level 2 */
+    assert_true(d1 / P[2] < 0.003);
+}
+
+typedef struct {
+    double dy, Py, r, z, Rp, ac;
+} yres;
+
+static void yield_run(double t_over_R, double E_ratio, asp_contact_law law, double wmax,
+                      int layer, yres *y)
+{
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_material su;
+    stc_critical c;
+    asp_yield yy;
+    stc_params_default(&p);
+    p.t_over_R = t_over_R, p.E_ratio = E_ratio;
+    stc_params_materials(&p, &su, NULL);
+    assert_int_equal(stc_critical_eval(&su, p.R, &c), STC_OK);
+    asp_options_default(&o);
+    o.contact = law;
+    o.threads = 1;
+    assert_int_equal(asp_solver_create(&p, &o, wmax * c.omega_c, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, wmax * c.omega_c, NULL), STC_OK);
+    asp_solver_yield(s, layer, &yy);
+    assert_true(yy.reached);
+    y->dy = yy.delta / c.omega_c, y->Py = yy.P / c.P_c, y->r = yy.r, y->z = yy.z;
+    y->Rp = p.R * (1 + t_over_R), y->ac = sqrt(p.R * c.omega_c);
+    asp_solver_destroy(&s);
+}
+
+static void test_yield_slip(void **state)
+{
+    (void)state;
+    yres y;
+    yield_run(0.0, 1.0, ASP_CONTACT_SLIP, 1.2, 0, &y);
+    printf("# slip first yield: delta/wc = %.4f, P/Pc = %.4f, r = %.3g mm, depth/a = %.3f\n",
+           y.dy, y.Py, y.r, (y.Rp - y.z) / y.ac);
+    /* level 1 measured 0.967 / 0.950; converges to 1 (level 3: 0.997) */
+    assert_true(fabs(y.dy - 1.0) < 0.05 && fabs(y.Py - 1.0) < 0.07);
+    /* on the axis, below the surface (Hertz: 0.48 a; Johnson 1985 fig. 4.6) */
+    assert_true(y.r < 0.05 * y.ac);
+    assert_true(fabs((y.Rp - y.z) / y.ac - 0.48) < 0.1);
+}
+
+static void test_yield_stick(void **state)
+{
+    (void)state;
+    yres y;
+    stc_material su = {200000.0, 0.32, 200.0};
+    stc_critical c;
+    stc_critical_eval(&su, 10.0, &c);
+    yield_run(0.0, 1.0, ASP_CONTACT_STICK, 1.2, 0, &y);
+    printf("# stick first yield: delta/wc = %.4f (Brizmer %.4f), L/Pc = %.4f (Brizmer %.4f)\n",
+           y.dy, c.delta_c_stick_over_omega_c, y.Py, c.L_c_stick_over_P_c);
+    /* level 1 measured +2.1 % and +2.9 % */
+    assert_true(fabs(y.dy / c.delta_c_stick_over_omega_c - 1) < 0.04);
+    assert_true(fabs(y.Py / c.L_c_stick_over_P_c - 1) < 0.05);
+    assert_true(y.r < 0.05 * y.ac && y.Rp - y.z > 0.2 * y.ac);
+}
+
+/* Table 4.2: t/R = 0.025, Eco/Esu = 2, stick: δc1/ωc_su = 1.03 (thesis),
+ * first yield in the coating. */
+static void test_coated_first_yield(void **state)
+{
+    (void)state;
+    yres y;
+    stc_params p;
+    stc_coated cf;
+    stc_params_default(&p);
+    p.t_over_R = 0.025, p.E_ratio = 2.0;
+    assert_int_equal(stc_coated_eval(&p, &cf), STC_OK);
+    yield_run(0.025, 2.0, ASP_CONTACT_STICK, 2.0, 1, &y);
+    printf("# coated stick t/R 0.025 Eco/Esu 2: delta_c1/wc = %.4f (fit %.4f), depth %.3g mm\n",
+           y.dy, cf.delta_c1_over_omega_c_su, y.Rp - y.z);
+    assert_true(fabs(y.dy / cf.delta_c1_over_omega_c_su - 1) < 0.1);
+    assert_true(y.Rp - y.z < 0.25); /* inside the coating (t = 0.25 mm) */
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_params_default(&p);
+    asp_options_default(&o);
+    assert_int_equal(asp_solver_create(&p, &o, -1.0, &s), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "delta = -1"));
+    assert_null(s);
+    o.mesh_level = 9;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-4, &s), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "level = 9"));
+    o.mesh_level = 0;
+    o.rtol = 0.5;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-4, &s), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "rtol = 0.5"));
+    o.rtol = 1e-8;
+    o.geom = ASP_GEOM_AXISYM;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-4, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, 2e-4, NULL), STC_EINVAL); /* beyond the meshed δ */
+    assert_int_equal(asp_solver_load(s, 1e-4, NULL), STC_OK);
+    assert_int_equal(asp_solver_load(s, 0.5e-4, NULL), STC_EINVAL); /* unloading */
+    asp_solver_destroy(&s);
+    /* a Newton limit too small to converge ends with a reason */
+    o.max_newton = 2;
+    o.max_cutbacks = 1;
+    assert_int_equal(asp_solver_create(&p, &o, 5e-4, &s), STC_OK);
+    stc_status st = asp_solver_load(s, 5e-4, NULL);
+    if (st != STC_OK) {
+        assert_int_equal(st, STC_ENOCONV);
+        assert_non_null(strstr(stc_errmsg(), "cut-back limit"));
+    }
+    asp_solver_destroy(&s);
+}
+
+static void test_fields(void **state)
+{
+    (void)state;
+    stc_params p;
+    asp_solver *s = NULL;
+    char dir[] = "/tmp/stc_fieldsXXXXXX", path[256];
+    assert_non_null(mkdtemp(dir));
+    stc_params_default(&p);
+    p.t_over_R = 0.01, p.E_ratio = 2.0;
+    assert_int_equal(asp_solver_create(&p, NULL, 3e-4, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, 3e-4, NULL), STC_OK);
+    snprintf(path, sizeof path, "%s/f", dir);
+    assert_int_equal(asp_solver_write_fields(s, path), STC_OK);
+    snprintf(path, sizeof path, "%s/f.xmf", dir);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char buf[4096];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    assert_non_null(strstr(buf, "Quadrilateral"));
+    assert_non_null(strstr(buf, "f.h5:/von_mises"));
+    remove(path);
+    snprintf(path, sizeof path, "%s/f.h5", dir);
+    assert_int_equal(access(path, R_OK), 0);
+    /* the heavy data: load attribute and one von Mises value per element */
+    asp_point pt;
+    asp_info in;
+    asp_solver_load(s, 3e-4, &pt);
+    asp_solver_info(s, &in);
+    hid_t h = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(h >= 0);
+    double P = 0.0;
+    hid_t at = H5Aopen(h, "P_N", H5P_DEFAULT);
+    assert_true(at >= 0 && H5Aread(at, H5T_NATIVE_DOUBLE, &P) >= 0);
+    H5Aclose(at);
+    assert_true(fabs(P - pt.P) <= 1e-12 * pt.P && P > 0.0);
+    hid_t ds = H5Dopen2(h, "/von_mises", H5P_DEFAULT), sp = H5Dget_space(ds);
+    hsize_t dims[2] = {0, 0};
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    assert_int_equal((int)dims[0], in.elements);
+    H5Sclose(sp), H5Dclose(ds), H5Fclose(h);
+    remove(path);
+    snprintf(path, sizeof path, "%s/nodir/f", dir);
+    assert_int_equal(asp_solver_write_fields(s, path), STC_EIO);
+    rmdir(dir);
+    asp_solver_destroy(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hertz),       cmocka_unit_test(test_hertz_convergence),
+        cmocka_unit_test(test_yield_slip),  cmocka_unit_test(test_yield_stick),
+        cmocka_unit_test(test_coated_first_yield), cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_fields),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,290 @@
+/* stiction asperity: the FE model of one coated asperity under normal
+ * loading (a thin layer over include/stiction/asperity.h). */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "stiction/asperity.h"
+#include "stiction/formulas.h"
+
+static const char usage[] =
+    "[common options] --delta LIST | --delta-mm LIST [options]\n"
+    "\n"
+    "Finite-element model of one coated sphere pressed by a rigid flat: load P,\n"
+    "contact radius a and area A, first yield of coating (delta_c1) and substrate\n"
+    "(delta_c2).  LIST is a,b,c or start:stop:count, increasing; several values\n"
+    "give a load curve (one solver run).  --delta is in units of omega_c_su.\n"
+    "Small-strain model: delta <= 0.01 R.";
+
+static const cli_opt opts[] = {
+    {"delta", "LIST", "interference(s) / omega_c_su (> 0, increasing)"},
+    {"delta-mm", "LIST", "interference(s) in mm (> 0, increasing)"},
+    {"contact", "slip|stick", "contact condition of the normal step (default slip)"},
+    {"model", "axisym|3d|auto", "geometry (default auto = axisymmetric)"},
+    {"mesh", "LEVEL", "coarse|default|fine or a level 0..6 (default: default = 1)"},
+    {"no-separation", NULL, "a node in contact never opens"},
+    {"threads", "N", "OpenMP threads for the element loop (default: runtime)"},
+    {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
+    {"json", NULL, "print JSON (one object, or an array for a curve)"},
+    {NULL, NULL, NULL},
+};
+
+typedef struct {
+    double *delta;
+    int ndelta, in_mm, json;
+    char *out;
+    asp_options o;
+} aopts;
+
+static stc_status bad(const char *key, const char *value, const char *what)
+{
+    return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s", key, value, what);
+}
+
+static stc_status set_opt(void *ctx, const char *key, const char *value)
+{
+    aopts *a = ctx;
+    if (!strcmp(key, "delta") || !strcmp(key, "delta-mm")) {
+        free(a->delta);
+        a->delta = NULL;
+        stc_status s = cli_parse_list(key, value, &a->delta, &a->ndelta);
+        if (s) return s;
+        for (int i = 0; i < a->ndelta; i++)
+            if (!(a->delta[i] > 0.0) || (i && a->delta[i] <= a->delta[i - 1]))
+                return bad(key, value, "positive and increasing");
+        a->in_mm = !strcmp(key, "delta-mm");
+    } else if (!strcmp(key, "contact")) {
+        if (!strcmp(value, "slip")) a->o.contact = ASP_CONTACT_SLIP;
+        else if (!strcmp(value, "stick")) a->o.contact = ASP_CONTACT_STICK;
+        else return bad(key, value, "slip or stick");
+    } else if (!strcmp(key, "model")) {
+        if (!strcmp(value, "auto")) a->o.geom = ASP_GEOM_AUTO;
+        else if (!strcmp(value, "axisym")) a->o.geom = ASP_GEOM_AXISYM;
+        else if (!strcmp(value, "3d")) a->o.geom = ASP_GEOM_3D;
+        else return bad(key, value, "axisym, 3d or auto");
+    } else if (!strcmp(key, "mesh")) {
+        long l;
+        if (!strcmp(value, "coarse")) a->o.mesh_level = 0;
+        else if (!strcmp(value, "default")) a->o.mesh_level = 1;
+        else if (!strcmp(value, "fine")) a->o.mesh_level = 2;
+        else if (stc_parse_long(key, value, &l) == STC_OK && l >= 0 && l <= 6)
+            a->o.mesh_level = (int)l;
+        else return bad(key, value, "coarse, default, fine or a level in [0, 6]");
+    } else if (!strcmp(key, "threads")) {
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 256)
+            return bad(key, value, "an integer in [1, 256]");
+        a->o.threads = (int)l;
+    } else if (!strcmp(key, "no-separation")) {
+        a->o.no_separation = strcmp(value, "0") != 0;
+    } else if (!strcmp(key, "json")) {
+        a->json = strcmp(value, "0") != 0;
+    } else if (!strcmp(key, "out")) {
+        free(a->out);
+        a->out = strdup(value);
+        if (!a->out) return stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+    } else {
+        return STC_EUNSUPPORTED;
+    }
+    return STC_OK;
+}
+
+/* One converged point with the yields known at that point. */
+typedef struct {
+    asp_point pt;
+    asp_yield y[2];
+    stc_status st;
+    char reason[256];
+} arow;
+
+static const asp_yield *first_yield(const arow *r, int *layer)
+{
+    const asp_yield *a = &r->y[0], *b = &r->y[1];
+    *layer = -1;
+    if (a->reached && (!b->reached || a->delta <= b->delta)) return *layer = 0, a;
+    if (b->reached) return *layer = 1, b;
+    return NULL;
+}
+
+static void json_row(cli_json *j, const arow *r, const stc_critical *c, const asp_info *in,
+                     int coated)
+{
+    int layer;
+    const asp_yield *fy = first_yield(r, &layer);
+    cj_obj(j, NULL);
+    cj_num(j, "delta_mm", r->pt.delta);
+    cj_num(j, "delta_over_omega_c_su", r->pt.delta / c->omega_c);
+    cj_num(j, "P_N", r->pt.P);
+    cj_num(j, "P_over_P_c", r->pt.P / c->P_c);
+    cj_num(j, "P_base_N", r->pt.P_base);
+    cj_num(j, "A_mm2", r->pt.A);
+    cj_num(j, "A_over_A_c", r->pt.A / c->A_c);
+    cj_num(j, "a_mm", r->pt.a);
+    cj_int(j, "nodes_in_contact", r->pt.n_contact);
+    cj_num(j, "max_penetration_mm", r->pt.max_penetration);
+    cj_num(j, "vm_over_Y_substrate", r->pt.vm_over_Y[0]);
+    if (coated) cj_num(j, "vm_over_Y_coating", r->pt.vm_over_Y[1]);
+    else cj_null(j, "vm_over_Y_coating");
+    if (fy) {
+        cj_num(j, "first_yield_delta_over_omega_c_su", fy->delta / c->omega_c);
+        cj_num(j, "first_yield_P_over_P_c", fy->P / c->P_c);
+        cj_str(j, "first_yield_layer", layer ? "coating" : "substrate");
+        cj_num(j, "first_yield_r_mm", fy->r);
+        cj_num(j, "first_yield_z_mm", fy->z);
+    } else {
+        cj_null(j, "first_yield_delta_over_omega_c_su");
+        cj_null(j, "first_yield_P_over_P_c");
+        cj_null(j, "first_yield_layer");
+        cj_null(j, "first_yield_r_mm");
+        cj_null(j, "first_yield_z_mm");
+    }
+    if (r->y[1].reached) cj_num(j, "delta_c1_over_omega_c_su", r->y[1].delta / c->omega_c);
+    else cj_null(j, "delta_c1_over_omega_c_su");
+    if (r->y[0].reached) cj_num(j, "delta_c2_over_omega_c_su", r->y[0].delta / c->omega_c);
+    else cj_null(j, "delta_c2_over_omega_c_su");
+    cj_bool(j, "converged", r->st == STC_OK);
+    cj_str(j, "reason", r->st == STC_OK ? "converged" : r->reason);
+    cj_int(j, "dofs", in->dofs);
+    cj_int(j, "elements", in->elements);
+    cj_num(j, "mesh_quality", in->mesh_quality);
+    cj_int(j, "increments", r->pt.increments);
+    cj_int(j, "newton_iterations", r->pt.newton_iterations);
+    cj_int(j, "factorizations", r->pt.factorizations);
+    cj_num(j, "wall_s", r->pt.wall_s);
+    cj_end_obj(j);
+}
+
+static void print_table(const arow *rows, int n, const stc_critical *c, const asp_info *in)
+{
+    printf("mesh: %d elements, %d DOFs, worst scaled Jacobian %.3f, h = %.3g mm at the "
+           "contact (sized for a <= %.4g mm)\n",
+           in->elements, in->dofs, in->mesh_quality, in->h_contact, in->a_max);
+    printf("omega_c_su = %.5g mm, P_c_su = %.5g N, A_c_su = %.5g mm^2\n\n", c->omega_c, c->P_c,
+           c->A_c);
+    printf("%10s %11s %11s %9s %10s %9s %7s %7s %7s %6s %8s\n", "delta/wc", "delta mm", "P N",
+           "P/Pc", "a mm", "A/Ac", "vm/Ysu", "vm/Yco", "newton", "incr", "wall s");
+    for (int i = 0; i < n; i++) {
+        const asp_point *p = &rows[i].pt;
+        printf("%10.4g %11.5g %11.5g %9.5g %10.5g %9.5g %7.3f %7.3f %7d %6d %8.3f%s\n",
+               p->delta / c->omega_c, p->delta, p->P, p->P / c->P_c, p->a, p->A / c->A_c,
+               p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->increments, p->wall_s,
+               rows[i].st == STC_OK ? "" : "  NOT CONVERGED");
+    }
+    if (n == 0) return;
+    const arow *r = &rows[n - 1];
+    const char *name[2] = {"substrate (delta_c2)", "coating (delta_c1)"};
+    for (int k = 1; k >= 0; k--) {
+        const asp_yield *y = &r->y[k];
+        if (y->reached)
+            printf("first yield in the %s: delta/wc = %.4g, P/Pc = %.4g at r = %.4g mm, "
+                   "z = %.6g mm\n",
+                   name[k], y->delta / c->omega_c, y->P / c->P_c, y->r, y->z);
+    }
+}
+
+static int write_csv(const char *dir, const arow *rows, int n, const stc_critical *c)
+{
+    char path[4096], tmp[4200];
+    snprintf(path, sizeof path, "%s/curve.csv", dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) return -1;
+    fprintf(f, "delta_mm,delta_over_omega_c_su,P_N,P_over_P_c,a_mm,A_mm2,A_over_A_c,"
+               "vm_over_Y_su,vm_over_Y_co,newton_iterations,wall_s\n");
+    for (int i = 0; i < n; i++) {
+        const asp_point *p = &rows[i].pt;
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%d,%.4f\n", p->delta,
+                p->delta / c->omega_c, p->P, p->P / c->P_c, p->a, p->A, p->A / c->A_c,
+                p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->wall_s);
+    }
+    if (fclose(f) != 0 || rename(tmp, path) != 0) return remove(tmp), -1;
+    return 0;
+}
+
+static int run(const char *cmd, const stc_params *p, aopts *a)
+{
+    stc_material su;
+    stc_critical c;
+    stc_params_materials(p, &su, NULL);
+    stc_status s = stc_critical_eval(&su, p->R, &c);
+    if (s) return cli_fail(cmd, s);
+    double scale = a->in_mm ? 1.0 : c.omega_c;
+    if (a->delta[a->ndelta - 1] * scale > 0.01 * p->R) {
+        fprintf(stderr, "stiction %s: delta = %g mm: must be <= 0.01 R = %g mm (small strain)\n",
+                cmd, a->delta[a->ndelta - 1] * scale, 0.01 * p->R);
+        return CLI_EXIT_USAGE;
+    }
+    if (a->out && mkdir(a->out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "stiction %s: out = '%s': cannot create directory\n", cmd, a->out);
+        return CLI_EXIT_FAIL;
+    }
+    asp_solver *sv;
+    s = asp_solver_create(p, &a->o, a->delta[a->ndelta - 1] * scale, &sv);
+    if (s) return cli_fail(cmd, s);
+    asp_info in;
+    asp_solver_info(sv, &in);
+    arow *rows = calloc((size_t)a->ndelta, sizeof *rows);
+    if (!rows) return asp_solver_destroy(&sv), cli_fail(cmd, STC_ENOMEM);
+    int n = 0, rc = CLI_EXIT_OK;
+    for (; n < a->ndelta; n++) {
+        arow *r = &rows[n];
+        r->st = asp_solver_load(sv, a->delta[n] * scale, &r->pt);
+        if (r->st) snprintf(r->reason, sizeof r->reason, "%s", stc_errmsg());
+        for (int k = 0; k < 2; k++) asp_solver_yield(sv, k, &r->y[k]);
+        if (r->st) {
+            fprintf(stderr, "stiction %s: %s\n", cmd, r->reason);
+            rc = CLI_EXIT_FAIL;
+            n++;
+            break;
+        }
+        if (a->out) {
+            char prefix[4096];
+            snprintf(prefix, sizeof prefix, "%s/fields_%03d", a->out, n);
+            if ((s = asp_solver_write_fields(sv, prefix)) != STC_OK) {
+                cli_fail(cmd, s);
+                rc = CLI_EXIT_FAIL;
+            }
+        }
+    }
+    if (a->json) {
+        cli_json j;
+        cj_init(&j, stdout);
+        if (a->ndelta > 1) cj_arr(&j, NULL);
+        for (int i = 0; i < n; i++) json_row(&j, &rows[i], &c, &in, p->t_over_R > 0.0);
+        if (a->ndelta > 1) cj_end_arr(&j);
+        cj_done(&j);
+    } else {
+        print_table(rows, n, &c, &in);
+    }
+    if (a->out && rc == CLI_EXIT_OK && write_csv(a->out, rows, n, &c) != 0) {
+        fprintf(stderr, "stiction %s: cannot write %s/curve.csv\n", cmd, a->out);
+        rc = CLI_EXIT_FAIL;
+    }
+    free(rows);
+    asp_solver_destroy(&sv);
+    return rc;
+}
+
+int cli_asperity(const cli_cmd *cmd, int argc, char **argv)
+{
+    stc_params p;
+    aopts a = {0};
+    int done;
+    stc_params_default(&p);
+    asp_options_default(&a.o);
+    int rc = cli_parse(cmd->name, usage, argc, argv, opts, &p, set_opt, &a, &done);
+    if (rc == CLI_EXIT_OK && !done) {
+        if (!a.delta) {
+            fprintf(stderr, "stiction %s: --delta or --delta-mm is required\n", cmd->name);
+            rc = CLI_EXIT_USAGE;
+        } else {
+            rc = run(cmd->name, &p, &a);
+        }
+    }
+    free(a.delta);
+    free(a.out);
+    return rc;
+}
