@@ -2,6 +2,7 @@
  * element size, penetration, per-layer von Mises maxima, first yield.
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "solver_impl.h"
@@ -170,4 +171,58 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
         t->y.delta = dy, t->y.P = Py;
         t->y.r = t->loc[j][0], t->y.z = t->loc[j][s->dim - 1];
     }
+}
+
+/* ---- load with the node-entry sawtooth removed ---------------------------
+ * Past yield a contact node entering the flat makes P jump (the contact
+ * area is quantized by the surface nodes; between entries perfect
+ * plasticity caps the mean pressure, so P(δ) is a sawtooth).  Measured on
+ * the homogeneous slip curve to 60 ωc (closing note of issue 3): sawtooth
+ * rms 4.2 / 2.0 / 0.8 % at mesh levels 0 / 1 / 2, while a smooth fit
+ * through the same points agreed to 0.5 % across the three levels.  So the
+ * converged load is estimated by a local linear regression (LOESS,
+ * tricube weights; Cleveland, J. Am. Stat. Assoc. 74 (1979) 829) of ln P
+ * on ln δ over all converged increments within a factor ASP_SMOOTH_W of δ. */
+#define ASP_SMOOTH_W 2.0
+enum { ASP_SMOOTH_MIN = 5 };
+
+void asp_history_push(asp_solver *s, double delta, double P)
+{
+    if (s->nh == s->caph) {
+        int cap = s->caph ? 2 * s->caph : 64;
+        double *d = realloc(s->hd, (size_t)cap * sizeof *d);
+        if (!d) return; /* the estimate then uses fewer points */
+        s->hd = d;
+        double *q = realloc(s->hP, (size_t)cap * sizeof *q);
+        if (!q) return;
+        s->hP = q;
+        s->caph = cap;
+    }
+    s->hd[s->nh] = delta, s->hP[s->nh] = P;
+    s->nh++;
+}
+
+int asp_solver_P_smooth(const asp_solver *s, double delta, double *P)
+{
+    double x0 = log(delta), hw = log(ASP_SMOOTH_W);
+    *P = NAN;
+    if (!(delta > 0.0)) return 0;
+    for (int widen = 0; widen < 4; widen++, hw *= 1.5) {
+        /* weighted sums for ln P = c0 + c1 (ln δ_i - ln δ) */
+        double S = 0.0, Sx = 0.0, Sxx = 0.0, Sy = 0.0, Sxy = 0.0;
+        int n = 0, left = 0;
+        for (int i = 0; i < s->nh; i++) {
+            if (!(s->hd[i] > 0.0 && s->hP[i] > 0.0)) continue;
+            double x = log(s->hd[i]) - x0, u = fabs(x) / hw;
+            if (u >= 1.0) continue;
+            double w = pow(1.0 - u * u * u, 3.0), y = log(s->hP[i]);
+            S += w, Sx += w * x, Sxx += w * x * x, Sy += w * y, Sxy += w * x * y;
+            n++, left += x < 0.0;
+        }
+        double det = S * Sxx - Sx * Sx;
+        if (n < ASP_SMOOTH_MIN || left < 2 || !(det > 1e-12 * S * S)) continue;
+        *P = exp((Sxx * Sy - Sx * Sxy) / det);
+        return n;
+    }
+    return 0;
 }

@@ -27,6 +27,7 @@ struct asp_solver {
     asp_j2 mat[2];        /* per region */
     int dim, nen, nqp, nde; /* nde = dim * nen */
     int ndof;
+    double omega_est;     /* closed-form first-yield estimate (smaller layer ωc), mm */
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
 
     cholmod_common cc;
@@ -38,7 +39,12 @@ struct asp_solver {
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
-    unsigned char *fixed;         /* [ndof] Dirichlet flag (values in u) */
+    unsigned char *fixed;         /* [ndof] Dirichlet flag */
+    double *ubc;                  /* [ndof] prescribed values of the fixed DOFs */
+    double *cvec;                 /* [ndof] scratch: constraint defect */
+    int nthr;                     /* assembly threads */
+    int serial_factor;            /* run CHOLMOD and OpenBLAS on one thread */
+    int k_fresh;                  /* K holds the unconstrained tangent at u */
 
     int ncand;                    /* contact candidates, sorted by distance from the axis */
     int *cand;                    /* node ids */
@@ -51,10 +57,14 @@ struct asp_solver {
     asp_point pt;                 /* response at the converged state */
     asp_ytrack yt[2];
     double t_start;
+    double *hd, *hP;              /* history of converged increments: δ, P */
+    int nh, caph;
+    int n_asm;                    /* element-loop evaluations (cumulative) */
 };
 
 /* asp_contact.c: results at the converged state. */
 void asp_contact_results(asp_solver *s, asp_point *pt);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
+void asp_history_push(asp_solver *s, double delta, double P);
 
 #endif

@@ -239,13 +239,94 @@ static void test_fields(void **state)
     asp_solver_destroy(&s);
 }
 
+/* Load curve past yield (slip, homogeneous) on meshes 0 and 1: the raw P
+ * is a sawtooth (one tooth per surface node entering the contact), the
+ * smoothed load asp_solver_P_smooth agrees across the two meshes. */
+static void curve_run(int level, int n, const double *d, double *P, double *Ps, int *incr)
+{
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_material su;
+    stc_critical c;
+    asp_point pt;
+    stc_params_default(&p);
+    stc_params_materials(&p, &su, NULL);
+    stc_critical_eval(&su, p.R, &c);
+    asp_options_default(&o);
+    o.mesh_level = level;
+    o.threads = 1;
+    assert_int_equal(asp_solver_create(&p, &o, d[n - 1] * c.omega_c, &s), STC_OK);
+    for (int i = 0; i < n; i++) {
+        assert_int_equal(asp_solver_load(s, d[i] * c.omega_c, &pt), STC_OK);
+        P[i] = pt.P / c.P_c;
+        *incr = pt.increments;
+    }
+    for (int i = 0; i < n; i++) {
+        assert_true(asp_solver_P_smooth(s, d[i] * c.omega_c, &Ps[i]) >= 5);
+        Ps[i] /= c.P_c;
+    }
+    asp_solver_destroy(&s);
+}
+
+static void test_smooth_load(void **state)
+{
+    (void)state;
+    enum { N = 5 };
+    const double d[N] = {6, 12, 18, 24, 30};
+    double P0[N], S0[N], P1[N], S1[N], raw = 0.0, sm = 0.0;
+    int i0, i1;
+    curve_run(0, N, d, P0, S0, &i0);
+    curve_run(1, N, d, P1, S1, &i1);
+    for (int i = 0; i < N; i++) {
+        printf("# delta/wc %4.0f: P/Pc %.3f | %.3f (levels 0 | 1), smoothed %.3f | %.3f\n", d[i],
+               P0[i], P1[i], S0[i], S1[i]);
+        raw = fmax(raw, fabs(P0[i] / P1[i] - 1));
+        sm = fmax(sm, fabs(S0[i] / S1[i] - 1));
+        /* the smoothed curve stays within the sawtooth's reach */
+        assert_true(fabs(S1[i] / P1[i] - 1) < 0.06);
+    }
+    printf("# max level 0/1 difference: raw %.2f %%, smoothed %.2f %% (%d, %d increments)\n",
+           100 * raw, 100 * sm, i0, i1);
+    /* measured: raw 7.5 %, smoothed 0.65 % (level 1 vs the level-2
+     * smoothed curve to 60 wc: within 0.4 %, closing note of issue 3) */
+    assert_true(sm < 0.01);
+}
+
+/* 3D half model against the axisymmetric model, Hertz a/R = 0.01, coarsest
+ * 3D mesh (its discretization dominates): measured P -0.05 %, a +0.66 %,
+ * 2 s (P +1.35 % with the 3D mesh before the perf3d rework). */
+static void test_3d_vs_axisym(void **state)
+{
+    (void)state;
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    asp_point p3, p2;
+    double delta = 0.01 * 0.01 * 10.09;
+    hertz_params(&p);
+    asp_options_default(&o);
+    o.mesh_level = 0;
+    o.geom = ASP_GEOM_3D;
+    assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, delta, &p3), STC_OK);
+    asp_solver_destroy(&s);
+    hertz_run(2, delta, &p2);
+    printf("# 3D level 0 vs axisymmetric level 2: P %+.2f %%, a %+.2f %% (%.1f s)\n",
+           100 * (p3.P / p2.P - 1), 100 * (p3.a / p2.a - 1), p3.wall_s);
+    assert_true(fabs(p3.P / p2.P - 1) < 0.01);
+    assert_true(fabs(p3.a / p2.a - 1) < 0.02);
+    assert_true(fabs(p3.P_base / p3.P - 1) < 1e-6);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz),       cmocka_unit_test(test_hertz_convergence),
         cmocka_unit_test(test_yield_slip),  cmocka_unit_test(test_yield_stick),
         cmocka_unit_test(test_coated_first_yield), cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_fields),
+        cmocka_unit_test(test_fields),      cmocka_unit_test(test_smooth_load),
+        cmocka_unit_test(test_3d_vs_axisym),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

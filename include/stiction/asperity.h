@@ -82,6 +82,8 @@ typedef struct asp_point {
     int cutbacks;           /* cumulative increment halvings */
     int newton_iterations;  /* cumulative */
     int factorizations;     /* cumulative */
+    int assemblies;         /* cumulative element-loop evaluations (the main cost) */
+    int active_set_passes;  /* cumulative contact active-set passes */
     double wall_s;          /* cumulative wall time in the solver, s */
 } asp_point;
 
@@ -107,6 +109,16 @@ void asp_solver_destroy(asp_solver **s); /* sets *s = NULL */
 stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out);
 
 void asp_solver_info(const asp_solver *s, asp_info *info);
+
+/* Load at interference `delta` (mm) with the node-entry sawtooth removed:
+ * past first yield P(δ) of a node-to-flat contact jumps each time a surface
+ * node touches (about ±2 % rms at mesh level 1); this is a local linear
+ * fit of ln P against ln δ (tricube weights, window δ/2 .. 2 δ, widened
+ * up to 3.4x if fewer than 5 increments fall in it) through ALL converged
+ * increments so far, so it is best called after the whole curve is solved.
+ * Writes *P (N; NaN if not enough increments) and returns the number of
+ * increments used (0: no estimate). */
+int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
 
 /* First yield of layer 0 (substrate) or 1 (coating). */
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);

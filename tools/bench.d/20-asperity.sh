@@ -2,7 +2,9 @@
 # make bench fragment (issue 3): work-precision tables of the asperity FE
 # solver (error vs the finest mesh and the closed form, wall time, DOFs, peak
 # memory from getrusage) for the Hertz case and for delta = 10 wc_su,
-# t/R = 0.025, Eco/Esu = 2, stick; plus the wall time of a load curve.
+# t/R = 0.025, Eco/Esu = 2, stick; the 3D half model's Hertz point (levels
+# 0-1); the slip load curve to 60 wc (levels 0-2 and 3D level 0), raw and
+# sawtooth-free (P_smooth) load against the finest level.
 # Called as: 20-asperity.sh CLI RESULTS_DIR.
 set -eu
 CLI=$1

@@ -95,6 +95,7 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
 /* One converged point with the yields known at that point. */
 typedef struct {
     asp_point pt;
+    double P_smooth; /* N, NaN if no estimate (asp_solver_P_smooth) */
     asp_yield y[2];
     stc_status st;
     char reason[256];
@@ -119,6 +120,13 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
     cj_num(j, "delta_over_omega_c_su", r->pt.delta / c->omega_c);
     cj_num(j, "P_N", r->pt.P);
     cj_num(j, "P_over_P_c", r->pt.P / c->P_c);
+    if (isfinite(r->P_smooth)) {
+        cj_num(j, "P_smooth_N", r->P_smooth);
+        cj_num(j, "P_smooth_over_P_c", r->P_smooth / c->P_c);
+    } else {
+        cj_null(j, "P_smooth_N");
+        cj_null(j, "P_smooth_over_P_c");
+    }
     cj_num(j, "P_base_N", r->pt.P_base);
     cj_num(j, "A_mm2", r->pt.A);
     cj_num(j, "A_over_A_c", r->pt.A / c->A_c);
@@ -153,6 +161,8 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
     cj_int(j, "increments", r->pt.increments);
     cj_int(j, "newton_iterations", r->pt.newton_iterations);
     cj_int(j, "factorizations", r->pt.factorizations);
+    cj_int(j, "assemblies", r->pt.assemblies);
+    cj_int(j, "active_set_passes", r->pt.active_set_passes);
     cj_num(j, "wall_s", r->pt.wall_s);
     cj_end_obj(j);
 }
@@ -164,12 +174,14 @@ static void print_table(const arow *rows, int n, const stc_critical *c, const as
            in->elements, in->dofs, in->mesh_quality, in->h_contact, in->a_max);
     printf("omega_c_su = %.5g mm, P_c_su = %.5g N, A_c_su = %.5g mm^2\n\n", c->omega_c, c->P_c,
            c->A_c);
-    printf("%10s %11s %11s %9s %10s %9s %7s %7s %7s %6s %8s\n", "delta/wc", "delta mm", "P N",
-           "P/Pc", "a mm", "A/Ac", "vm/Ysu", "vm/Yco", "newton", "incr", "wall s");
+    printf("%10s %11s %11s %9s %9s %10s %9s %7s %7s %7s %6s %8s\n", "delta/wc", "delta mm",
+           "P N", "P/Pc", "Psm/Pc", "a mm", "A/Ac", "vm/Ysu", "vm/Yco", "newton", "incr",
+           "wall s");
     for (int i = 0; i < n; i++) {
         const asp_point *p = &rows[i].pt;
-        printf("%10.4g %11.5g %11.5g %9.5g %10.5g %9.5g %7.3f %7.3f %7d %6d %8.3f%s\n",
-               p->delta / c->omega_c, p->delta, p->P, p->P / c->P_c, p->a, p->A / c->A_c,
+        printf("%10.4g %11.5g %11.5g %9.5g %9.5g %10.5g %9.5g %7.3f %7.3f %7d %6d %8.3f%s\n",
+               p->delta / c->omega_c, p->delta, p->P, p->P / c->P_c, rows[i].P_smooth / c->P_c,
+               p->a, p->A / c->A_c,
                p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->increments, p->wall_s,
                rows[i].st == STC_OK ? "" : "  NOT CONVERGED");
     }
@@ -192,12 +204,13 @@ static int write_csv(const char *dir, const arow *rows, int n, const stc_critica
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     FILE *f = fopen(tmp, "w");
     if (!f) return -1;
-    fprintf(f, "delta_mm,delta_over_omega_c_su,P_N,P_over_P_c,a_mm,A_mm2,A_over_A_c,"
+    fprintf(f, "delta_mm,delta_over_omega_c_su,P_N,P_over_P_c,P_smooth_N,a_mm,A_mm2,A_over_A_c,"
                "vm_over_Y_su,vm_over_Y_co,newton_iterations,wall_s\n");
     for (int i = 0; i < n; i++) {
         const asp_point *p = &rows[i].pt;
-        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%d,%.4f\n", p->delta,
-                p->delta / c->omega_c, p->P, p->P / c->P_c, p->a, p->A, p->A / c->A_c,
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%d,%.4f\n", p->delta,
+                p->delta / c->omega_c, p->P, p->P / c->P_c, rows[i].P_smooth, p->a, p->A,
+                p->A / c->A_c,
                 p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->wall_s);
     }
     if (fclose(f) != 0 || rename(tmp, path) != 0) return remove(tmp), -1;
@@ -249,6 +262,8 @@ static int run(const char *cmd, const stc_params *p, aopts *a)
             }
         }
     }
+    /* after the whole curve: the estimate uses increments on both sides */
+    for (int i = 0; i < n; i++) asp_solver_P_smooth(sv, rows[i].pt.delta, &rows[i].P_smooth);
     if (a->json) {
         cli_json j;
         cj_init(&j, stdout);
