@@ -4,8 +4,10 @@
  * Meaning of `level` (asp_mesh_spec), shared with the 3D generator:
  *   n(level) = ASP_MESH_N0 * 2^level elements across the largest contact
  *   radius a_max, i.e. the element size at the contact is h = a_max / n
- *   (level 0: a_max/6, 1: a_max/12, 2: a_max/24, 3: a_max/48).  The fine
+ *   (level 0: a_max/6, 1: a_max/12, 2: a_max/24, 3: a_max/48).  Here the fine
  *   zone is uniform over 1.25 a_max along the surface and 0.8 a_max in depth
+ *   (the 3D half model uses a 1.0 a_max core and its own shell growth, see
+ *   mesh3d.c)
  *   (the Hertz stress maximum sits at 0.48 a), then sizes grow geometrically
  *   with ratio q(level) = 1 + 0.3 / sqrt(2)^level up to the far-field size
  *   hmax(level) = 0.15 R' / sqrt(2)^level.  The coating always gets at least
