@@ -4,7 +4,9 @@
  * Meaning of `level` (asp_mesh_spec), shared with the 3D generator:
  *   n(level) = ASP_MESH_N0 * 2^level elements across the largest contact
  *   radius a_max, i.e. the element size at the contact is h = a_max / n
- *   (level 0: a_max/6, 1: a_max/12, 2: a_max/24, 3: a_max/48).  Here the fine
+ *   (level 0: a_max/6, 1: a_max/12, 2: a_max/24, 3: a_max/48).  An n between
+ *   levels (asp_mesh_axisym_n, the solver's elements_per_contact) uses the
+ *   same formulas with sqrt(2)^level replaced by sqrt(n / 6).  Here the fine
  *   zone is uniform over 1.25 a_max along the surface and 0.8 a_max in depth
  *   (the 3D half model uses a 1.0 a_max core and its own shell growth, see
  *   mesh3d.c)
@@ -32,6 +34,7 @@
 #include <string.h>
 
 #include "fe.h"
+#include "solver_impl.h" /* asp_mesh_axisym_n */
 #include "stc_check.h"
 
 enum { ASP_MESH_N0 = 6 };
@@ -316,12 +319,15 @@ static stc_status check_spec(const asp_mesh_spec *s)
     return STC_OK;
 }
 
-static stc_status build_axisym(const asp_mesh_spec *s, double a_min, mbuild *b, asp_mesh *m)
+/* n: elements across a_max (ASP_MESH_N0 2^level, or a value between levels;
+ * sq = sqrt(n / ASP_MESH_N0) keeps the level formulas for q and hmax). */
+static stc_status build_axisym(const asp_mesh_spec *s, double a_min, double n, mbuild *b,
+                               asp_mesh *m)
 {
-    double Rp = s->R + s->t, sq = pow(M_SQRT2, s->level);
-    double h = s->a_max / (ASP_MESH_N0 * (1 << s->level));
+    double Rp = s->R + s->t, sq = sqrt(n / ASP_MESH_N0);
+    double h = s->a_max / n;
     double amin = a_min > 0.0 ? fmin(a_min, s->a_max) : s->a_max;
-    double h0 = amin / (ASP_MESH_N0 * (1 << s->level));
+    double h0 = amin / n;
     double q = 1.0 + 0.3 / sq, hmax = 0.15 * Rp / sq, rc = 0.4 * Rp;
     double *arc = NULL, *d = NULL, *oth = NULL, *ith = NULL;
     int *on = NULL, *in = NULL;
@@ -371,12 +377,20 @@ stc_status asp_mesh_axisym(const asp_mesh_spec *spec, asp_mesh **out)
 
 stc_status asp_mesh_axisym_graded(const asp_mesh_spec *spec, double a_min, asp_mesh **out)
 {
+    /* & 7: no undefined shift before check_spec rejects a bad level */
+    return asp_mesh_axisym_n(spec, a_min, ASP_MESH_N0 * (double)(1 << (spec->level & 7)), out);
+}
+
+stc_status asp_mesh_axisym_n(const asp_mesh_spec *spec, double a_min, double n, asp_mesh **out)
+{
     *out = NULL;
     STC_CALL(check_spec(spec));
+    STC_CHECK(n >= 3.0 && n <= ASP_MESH_N0 * 64.0, STC_EINVAL,
+              "elements per contact = %g: must be in [3, %d]", n, ASP_MESH_N0 * 64);
     asp_mesh *m = calloc(1, sizeof *m);
     mbuild b = {0};
     STC_CHECK(m, STC_ENOMEM, "mesh: out of memory");
-    stc_status st = build_axisym(spec, a_min, &b, m);
+    stc_status st = build_axisym(spec, a_min, n, &b, m);
     free(b.x), free(b.conn), free(b.region);
     if (st != STC_OK) {
         asp_mesh_destroy(&m);

@@ -62,6 +62,10 @@ struct asp_solver {
     int n_asm;                    /* element-loop evaluations (cumulative) */
 };
 
+/* mesh.c: asp_mesh_axisym_graded with n elements across a_max instead of
+ * 6 2^level (n in [3, 384], any real value; spec->level is still checked). */
+stc_status asp_mesh_axisym_n(const asp_mesh_spec *spec, double a_min, double n, asp_mesh **out);
+
 /* asp_contact.c: results at the converged state. */
 void asp_contact_results(asp_solver *s, asp_point *pt);
 void asp_yield_track(asp_solver *s, const asp_point *pt);

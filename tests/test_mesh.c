@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "fe.h"
+#include "solver_impl.h" /* asp_mesh_axisym_n */
 
 static double quad_area(const asp_mesh *m, int e, double *rc, double *zc)
 {
@@ -130,6 +131,36 @@ static void test_invalid(void **state)
     assert_null(m);
 }
 
+/* n elements across a_max: n = 6 2^level is that level's mesh exactly; an n
+ * between two levels gives a valid mesh of intermediate size. */
+static void test_elements_per_contact(void **state)
+{
+    (void)state;
+    asp_mesh_spec s = {10.0, 0.0, 0.1, 0};
+    asp_mesh *a = NULL, *b = NULL;
+    assert_int_equal(asp_mesh_axisym_graded(&s, 0.02, &a), STC_OK);
+    assert_int_equal(asp_mesh_axisym_n(&s, 0.02, 6.0, &b), STC_OK);
+    assert_int_equal(a->nnode, b->nnode);
+    assert_int_equal(a->nelem, b->nelem);
+    assert_memory_equal(a->x, b->x, (size_t)a->nnode * 2 * sizeof *a->x);
+    asp_mesh_destroy(&a), asp_mesh_destroy(&b);
+    int ne[3];
+    const double n[3] = {6.0, 8.0, 12.0};
+    for (int k = 0; k < 3; k++) {
+        double worst;
+        assert_int_equal(asp_mesh_axisym_n(&s, 0.02, n[k], &a), STC_OK);
+        assert_int_equal(asp_mesh_quality(a, &worst), STC_OK);
+        assert_true(worst > 0.2);
+        ne[k] = a->nelem;
+        asp_mesh_destroy(&a);
+    }
+    printf("# elements for n = 6, 8, 12 across a_max: %d %d %d\n", ne[0], ne[1], ne[2]);
+    assert_true(ne[0] < ne[1] && ne[1] < ne[2]);
+    assert_int_equal(asp_mesh_axisym_n(&s, 0.02, 2.0, &a), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "elements per contact = 2"));
+    assert_null(a);
+}
+
 /* an inverted element is reported by the quality check */
 static void test_inverted(void **state)
 {
@@ -150,7 +181,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_uncoated_levels), cmocka_unit_test(test_coated),
         cmocka_unit_test(test_small_contact), cmocka_unit_test(test_invalid),
-        cmocka_unit_test(test_inverted),
+        cmocka_unit_test(test_inverted),    cmocka_unit_test(test_elements_per_contact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -293,6 +293,48 @@ static void test_smooth_load(void **state)
     assert_true(sm < 0.01);
 }
 
+/* elements_per_contact: 6 is mesh level 0 exactly; 8 adds DOFs and stays
+ * within 0.5 % of level 1 (Hertz a/R = 0.01).  P is NOT monotone in n:
+ * measured P - P(level 2) = +0.25 % (level 0), +0.41 % (n = 8), +0.13 %
+ * (level 1); the contact edge sits at 5.5, 7.3 and 10.9 element sizes, and
+ * P depends on where it falls between two nodes (the node-entry sawtooth),
+ * so there is no "closer than level 0" check.  Bad values are rejected. */
+static void test_elements_per_contact(void **state)
+{
+    (void)state;
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    asp_point pt;
+    asp_info in;
+    double P[3], delta = 0.001;
+    int dofs[3];
+    const double n[3] = {6.0, 0.0, 8.0}; /* 0: from the level */
+    hertz_params(&p);
+    for (int k = 0; k < 3; k++) {
+        asp_options_default(&o);
+        o.mesh_level = 0, o.threads = 1, o.elements_per_contact = n[k];
+        assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+        assert_int_equal(asp_solver_load(s, delta, &pt), STC_OK);
+        asp_solver_info(s, &in);
+        P[k] = pt.P, dofs[k] = in.dofs;
+        asp_solver_destroy(&s);
+    }
+    double P1 = hertz_run(1, delta, &pt);
+    printf("# Hertz a/R = 0.01: P level 0 %.6g, n = 8 %.6g, level 1 %.6g N (%d, %d DOFs)\n",
+           P[1], P[2], P1, dofs[1], dofs[2]);
+    assert_true(P[0] == P[1] && dofs[0] == dofs[1]);
+    assert_true(dofs[2] > dofs[1]);
+    assert_true(fabs(P[2] / P1 - 1) < 0.005);
+    asp_options_default(&o);
+    o.elements_per_contact = 2.0;
+    assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "elements per contact = 2"));
+    o.elements_per_contact = 8.0, o.geom = ASP_GEOM_3D;
+    assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_EINVAL);
+    assert_null(s);
+}
+
 /* 3D half model against the axisymmetric model, Hertz a/R = 0.01, coarsest
  * 3D mesh (its discretization dominates): measured P -0.05 %, a +0.66 %,
  * 2 s (P +1.35 % with the 3D mesh before the perf3d rework). */
@@ -326,7 +368,7 @@ int main(void)
         cmocka_unit_test(test_yield_slip),  cmocka_unit_test(test_yield_stick),
         cmocka_unit_test(test_coated_first_yield), cmocka_unit_test(test_errors),
         cmocka_unit_test(test_fields),      cmocka_unit_test(test_smooth_load),
-        cmocka_unit_test(test_3d_vs_axisym),
+        cmocka_unit_test(test_3d_vs_axisym), cmocka_unit_test(test_elements_per_contact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

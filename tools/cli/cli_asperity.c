@@ -25,6 +25,11 @@ static const cli_opt opts[] = {
     {"contact", "slip|stick", "contact condition of the normal step (default slip)"},
     {"model", "axisym|3d|auto", "geometry (default auto = axisymmetric)"},
     {"mesh", "LEVEL", "coarse|default|fine or a level 0..6 (default: default = 1)"},
+    {"elements-per-contact", "N",
+     "axisymmetric: elements across the largest contact radius, overrides --mesh "
+     "(6 2^level); "
+     "values between levels, e.g. 8 (in [3, 384])"},
+    {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
     {"no-separation", NULL, "a node in contact never opens"},
     {"threads", "N", "OpenMP threads for the element loop (default: runtime)"},
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
@@ -73,6 +78,16 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         else if (stc_parse_long(key, value, &l) == STC_OK && l >= 0 && l <= 6)
             a->o.mesh_level = (int)l;
         else return bad(key, value, "coarse, default, fine or a level in [0, 6]");
+    } else if (!strcmp(key, "elements-per-contact")) {
+        double v;
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 3.0 && v <= 384.0))
+            return bad(key, value, "a number in [3, 384]");
+        a->o.elements_per_contact = v;
+    } else if (!strcmp(key, "newton-reuse")) {
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 100)
+            return bad(key, value, "an integer in [1, 100]");
+        a->o.newton_reuse = (int)l;
     } else if (!strcmp(key, "threads")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 256)
