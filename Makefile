@@ -79,7 +79,7 @@ $(CLI): $(CLI_OBJ) $(STATIC)
 	@mkdir -p $(@D)
 	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(STATIC) $(LDLIBS)
 
-$(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) | $(DEPSTAMP)
+$(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) $(wildcard tests/*.h) | $(DEPSTAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -o $@ $< $(STATIC) -lcmocka $(LDFLAGS) $(LDLIBS)
 

@@ -17,25 +17,15 @@
 #include <unistd.h>
 #include <cmocka.h>
 
+#include "cli_util.h"
+
 static char cli[PATH_MAX];
 static char ini[64]; /* scratch INI file */
 
 static int find_cli(void **state)
 {
     (void)state;
-    const char *env = getenv("STICTION_CLI");
-    if (env && *env) {
-        snprintf(cli, sizeof cli, "%s", env);
-    } else {
-        char self[PATH_MAX];
-        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-        if (n <= 0) return -1;
-        self[n] = '\0';
-        char *slash = strrchr(self, '/');
-        if (!slash) return -1;
-        *slash = '\0';
-        snprintf(cli, sizeof cli, "%.*s/../bin/stiction", PATH_MAX - 32, self);
-    }
+    if (cli_locate(cli, sizeof cli) != 0) return -1;
     if (access(cli, X_OK) != 0) {
         fprintf(stderr, "test_cli: no executable CLI at '%s' (build it, or set STICTION_CLI)\n", cli);
         return -1;
@@ -186,7 +176,6 @@ static void test_output_file(void **state)
     remove(out);
 }
 
-#include "json_check.h"
 
 /* Value of a top-level-style "key": number (first occurrence). */
 static double jnum(const char *text, const char *key)

@@ -22,6 +22,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cmocka.h>
+
+#include "cli_util.h"
 #include <hdf5.h>
 
 static char cli[PATH_MAX];
@@ -139,7 +141,6 @@ static void expect_fail(const char *args, const char *n1, const char *n2, const 
 /* Run what is queued (call before anything that reads or writes files). */
 static void expect_done(void) { run_batch(); }
 
-#include "json_check.h"
 
 /* Number of the k-th occurrence (0-based) of "key": in text (NaN for null). */
 static double jnum_k(const char *text, const char *key, int k)
@@ -288,19 +289,7 @@ static void make_text_fixtures(void)
 static int setup(void **state)
 {
     (void)state;
-    const char *env = getenv("STICTION_CLI");
-    if (env && *env) {
-        snprintf(cli, sizeof cli, "%s", env);
-    } else {
-        char self[PATH_MAX];
-        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-        if (n <= 0) return -1;
-        self[n] = '\0';
-        char *slash = strrchr(self, '/');
-        if (!slash) return -1;
-        *slash = '\0';
-        snprintf(cli, sizeof cli, "%.*s/../bin/stiction", PATH_MAX - 32, self);
-    }
+    if (cli_locate(cli, sizeof cli) != 0) return -1;
     char *real = realpath(cli, NULL);
     if (!real || access(real, X_OK) != 0) {
         fprintf(stderr, "test_cli_surface: no executable CLI at '%s' (build it, or set "

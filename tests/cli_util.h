@@ -1,12 +1,36 @@
-/* A small strict JSON checker for the CLI tests (RFC 8259 grammar, no
- * semantics).  Header-only: include after <cmocka.h> in one test program. */
-#ifndef STICTION_TESTS_JSON_CHECK_H
-#define STICTION_TESTS_JSON_CHECK_H
+/* Helpers of the CLI tests: find the CLI binary, and a small strict JSON
+ * checker (RFC 8259 grammar, no semantics).  Header-only: include after
+ * <cmocka.h> in one test program. */
+#ifndef STICTION_TESTS_CLI_UTIL_H
+#define STICTION_TESTS_CLI_UTIL_H
+
+#include <limits.h>
+#include <stdio.h>
+#include <unistd.h>
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* Path of the CLI: $STICTION_CLI, else ../bin/stiction beside this test
+ * program (works for any O=).  Returns 0, or -1 if /proc/self/exe fails. */
+static int cli_locate(char *cli, size_t n)
+{
+    const char *env = getenv("STICTION_CLI");
+    if (env && *env) {
+        snprintf(cli, n, "%s", env);
+        return 0;
+    }
+    char self[PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len <= 0) return -1;
+    self[len] = '\0';
+    char *slash = strrchr(self, '/');
+    if (!slash) return -1;
+    *slash = '\0';
+    snprintf(cli, n, "%.*s/../bin/stiction", PATH_MAX - 32, self);
+    return 0;
+}
 
 static const char *ws(const char *s)
 {
