@@ -319,6 +319,19 @@ static int get_s(hid_t o, const char *n, char *buf, size_t cap)
 
 /* ------------------------------------------------------------ HDF5 import */
 
+/* Every height of a map read from `path` (dataset `name`) must be finite;
+ * the message gives the first bad row and column. */
+static stc_status check_finite(const srf_map *m, const char *path, const char *pre,
+                               const char *name)
+{
+    size_t nx = (size_t)m->nx, n = nx * (size_t)m->ny;
+    for (size_t k = 0; k < n; k++)
+        STC_CHECK(isfinite(m->z[k]), STC_EFORMAT,
+                  "%s: %s%s' row %zu, column %zu: height is not finite", path, pre, name,
+                  k / nx + 1, k % nx + 1);
+    return STC_OK;
+}
+
 stc_status srf_map_import_h5(const char *path, const char *dataset, double dx, double dy,
                              double zscale, srf_map **out)
 {
@@ -353,10 +366,7 @@ stc_status srf_map_import_h5(const char *path, const char *dataset, double dx, d
     H5E_BEGIN_TRY { r = H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, (*out)->z); } H5E_END_TRY;
     STC_CHECK_GOTO(r >= 0, st, done, STC_EFORMAT, "%s: cannot read dataset '%s' as numbers", path,
                    dataset);
-    for (size_t k = 0; k < (size_t)nx * ny; k++)
-        STC_CHECK_GOTO(isfinite((*out)->z[k]), st, done, STC_EFORMAT,
-                       "%s: dataset '%s' row %zu, column %zu: height is not finite", path,
-                       dataset, k / nx + 1, k % nx + 1);
+    STC_CALL_GOTO(check_finite(*out, path, "dataset '", dataset), st, done);
     char src[256];
     snprintf(src, sizeof src, "%s:%s", path, dataset);
     STC_CALL_GOTO(import_finish(*out, src, zscale), st, done);
@@ -548,10 +558,7 @@ stc_status srf_map_read(const char *path, srf_map **out)
     H5E_BEGIN_TRY { r = H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, (*out)->z); } H5E_END_TRY;
     STC_CHECK_GOTO(r >= 0, st, done, STC_EFORMAT, "%s: cannot read '%s' as numbers", path,
                    SRF_DATASET);
-    for (size_t k = 0; k < (size_t)dims[0] * dims[1]; k++)
-        STC_CHECK_GOTO(isfinite((*out)->z[k]), st, done, STC_EFORMAT,
-                       "%s: '%s' row %zu, column %zu: height is not finite", path, SRF_DATASET,
-                       k / (size_t)dims[1] + 1, k % (size_t)dims[1] + 1);
+    STC_CALL_GOTO(check_finite(*out, path, "'", SRF_DATASET), st, done);
     H5E_BEGIN_TRY { read_meta(d, *out); } H5E_END_TRY;
 done:
     if (st != STC_OK) srf_map_destroy(out);
