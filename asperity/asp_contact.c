@@ -56,6 +56,46 @@ static double contact_radius(const double *r, const double *F, int L, int nr, in
     return 0.5 * (lo + hi);
 }
 
+/* First-yield sampling.  0: the largest von Mises stress over the Gauss
+ * points (the material law lives there; a maximum ON the surface is seen
+ * 0.21 h below it).  1: also over the element corners, each element's
+ * Gauss stresses extrapolated bilinearly / trilinearly to its own corners
+ * (no averaging across elements or layers); yield is then declared when a
+ * corner reaches Y, before any Gauss point turns plastic.  Measured in
+ * docs/yield-discrepancies.md §1.3; -D override for experiments only. */
+#ifndef ASP_YIELD_AT_CORNERS
+#define ASP_YIELD_AT_CORNERS 0
+#endif
+
+/* Natural coordinate i of corner a (quad4 = bottom face of hex8, elem.c). */
+static double corner_xi(int a, int i)
+{
+    if (i == 0) return (a % 4 == 1 || a % 4 == 2) ? 1.0 : -1.0;
+    if (i == 1) return a % 4 >= 2 ? 1.0 : -1.0;
+    return a >= 4 ? 1.0 : -1.0;
+}
+
+/* Largest corner von Mises stress of element e (Gauss point q sits at
+ * corner q's natural coordinates / √3, elem.c, so the extrapolation weight
+ * is a product of (1 ± √3) / 2 per direction).  *best: corner index. */
+static double corner_vm(const asp_solver *s, int e, int *best)
+{
+    int d = s->dim, nen = s->nen, nq = s->nqp;
+    const double *sq = s->sig + (size_t)6 * e * nq;
+    double fmax = -1.0, hi = 0.5 * (1.0 + sqrt(3.0)), lo = 0.5 * (1.0 - sqrt(3.0));
+    for (int a = 0; a < nen; a++) {
+        double sa[6] = {0, 0, 0, 0, 0, 0};
+        for (int q = 0; q < nq; q++) {
+            double w = 1.0;
+            for (int i = 0; i < d; i++) w *= corner_xi(a, i) == corner_xi(q, i) ? hi : lo;
+            for (int c = 0; c < 6; c++) sa[c] += w * sq[6 * q + c];
+        }
+        double f = asp_von_mises(sa);
+        if (f > fmax) fmax = f, *best = a;
+    }
+    return fmax;
+}
+
 static void layer_maxima(asp_solver *s, asp_point *pt)
 {
     const asp_mesh *m = s->mesh;
@@ -70,9 +110,20 @@ static void layer_maxima(asp_solver *s, asp_point *pt)
             pt->plastic_points += s->st_old[iq].epbar > 0.0;
             if (f > pt->vm_over_Y[reg]) pt->vm_over_Y[reg] = f, best[reg] = (int)iq;
         }
+        if (ASP_YIELD_AT_CORNERS) {
+            int a = 0;
+            double f = corner_vm(s, e, &a) / s->mat[reg].Y;
+            /* encoded as -2 - (corner index over all elements) */
+            if (f > pt->vm_over_Y[reg]) pt->vm_over_Y[reg] = f, best[reg] = -2 - (nen * e + a);
+        }
     }
     for (int k = 0; k < 2; k++) {
         memset(s->yt[k].cur_loc, 0, sizeof s->yt[k].cur_loc);
+        if (best[k] <= -2) {
+            int node = m->conn[-2 - best[k]];
+            for (int i = 0; i < d; i++) s->yt[k].cur_loc[i] = m->x[d * node + i];
+            continue;
+        }
         if (best[k] < 0) continue;
         int e = best[k] / nq, q = best[k] % nq;
         double X[24], xq[24];
@@ -127,10 +178,14 @@ void asp_contact_results(asp_solver *s, asp_point *pt)
  * stress follows a power law of δ (exactly σ ∝ δ^½ for Hertz, Johnson 1985
  * §4.2); the increment where plastic strain first appears is bracketed, and
  * δ_y is where the power law through the last two elastic increments
- * reaches σvm = Y.  The load there is interpolated log-log between the last
- * elastic and the first plastic increment; the location is the peak's at
- * the last elastic increment.  The increments are refined near yield
- * (solver.c: step_limit) so the extrapolation spans at most 3 % in δ. */
+ * reaches σvm = Y.  With corner sampling (ASP_YIELD_AT_CORNERS) the sampled
+ * peak may pass Y in an increment that is still elastic at every Gauss
+ * point: δ_y is then where the power law through the last elastic sample
+ * and this one reaches Y, located at this increment's peak.  The load there
+ * is interpolated log-log between the last elastic and the first yielded
+ * increment; the location is the peak's at the last elastic increment.
+ * The increments are refined near yield (solver.c: step_limit) so the
+ * extrapolation spans at most 3 % in δ. */
 void asp_yield_track(asp_solver *s, const asp_point *pt)
 {
     const asp_mesh *m = s->mesh;
@@ -141,7 +196,8 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
     for (int k = 0; k < 2; k++) {
         asp_ytrack *t = &s->yt[k];
         if (t->y.reached) continue;
-        if (!yielded[k]) {
+        int crossed = !yielded[k] && pt->vm_over_Y[k] >= 1.0;
+        if (!yielded[k] && !crossed) {
             if (pt->vm_over_Y[k] <= 0.0) continue;
             if (t->n == 2) {
                 t->d[0] = t->d[1], t->f[0] = t->f[1], t->P[0] = t->P[1];
@@ -161,7 +217,9 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
         }
         int j = t->n - 1;
         double mexp = 0.5;
-        if (t->n == 2 && t->f[1] > t->f[0] && t->d[1] > t->d[0])
+        if (crossed && pt->vm_over_Y[k] > t->f[j] && pt->delta > t->d[j])
+            mexp = log(pt->vm_over_Y[k] / t->f[j]) / log(pt->delta / t->d[j]);
+        else if (!crossed && t->n == 2 && t->f[1] > t->f[0] && t->d[1] > t->d[0])
             mexp = log(t->f[1] / t->f[0]) / log(t->d[1] / t->d[0]);
         double dy = t->d[j] * pow(1.0 / t->f[j], 1.0 / mexp);
         dy = fmin(fmax(dy, t->d[j]), pt->delta);
@@ -169,7 +227,8 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
         if (t->P[j] > 0.0 && pt->P > 0.0 && pt->delta > t->d[j])
             Py = t->P[j] * pow(pt->P / t->P[j], log(dy / t->d[j]) / log(pt->delta / t->d[j]));
         t->y.delta = dy, t->y.P = Py;
-        t->y.r = t->loc[j][0], t->y.z = t->loc[j][s->dim - 1];
+        const double *loc = crossed ? t->cur_loc : t->loc[j];
+        t->y.r = loc[0], t->y.z = loc[s->dim - 1];
     }
 }
 

@@ -19,6 +19,8 @@
  *   With a_min < a_max (a load curve whose first yield must be resolved) the
  *   size is a_min/n over 1.25 a_min along the surface and 0.8 a_min in depth,
  *   grows by q to a_max/n and stays there over the a_max zone.
+ *   Optional surface layers (asp_options.surface_layers = N): the top row
+ *   is split into N + 1 rows halving towards the surface (h/2^N there).
  *
  * Layout (axisymmetric, (r, z), θ measured from the z axis, ρ from the
  * sphere centre): a polar band mesh on circles ρ_k (the outer surface ρ = R'
@@ -319,10 +321,48 @@ static stc_status check_spec(const asp_mesh_spec *s)
     return STC_OK;
 }
 
+/* Surface boundary layer: the top row of depth levels (size d1 = d[1]) is
+ * split into nl + 1 rows halving towards the surface, d1/2^nl, d1/2^nl,
+ * d1/2^(nl-1), ..., d1/2.  Why: under stick the surface near the axis is
+ * held at its touch position (ε_r ≈ ε_θ ≈ 0), and at low ν the von Mises
+ * maximum sits on that surface; the 2x2 Gauss points of a full-size top row
+ * lie 0.21 h below it.  The rows span every θ (the band layout has no
+ * depth transitions), so far from the contact they are thin, flat
+ * rectangles: 2^nl more elongated than the top row already is, which the
+ * direct solver takes (measured: slip Hertz load +0.004 % with 3 layers, the
+ * same to 1e-5 with 6; docs/yield-discrepancies.md §1.3).  Rewrites *d,
+ * returns the new count (-1: out of memory, *d untouched). */
+static int surface_rows(double **d, int nd, int nl)
+{
+    if (nl <= 0) return nd;
+    double *o = *d, d1 = o[1];
+    double *nw = malloc((size_t)(nd + nl + 1) * sizeof *nw);
+    if (!nw) return -1;
+    nw[0] = 0.0;
+    for (int i = 1; i <= nl + 1; i++) nw[i] = d1 * ldexp(1.0, i - 1 - nl);
+    nw[nl + 1] = d1; /* exact */
+    for (int i = 2; i <= nd; i++) nw[nl + i] = o[i];
+    free(o);
+    *d = nw;
+    return nd + nl;
+}
+
+/* Automatic surface layers: 3 under stick, where the first yield of a low-ν
+ * or thin hard-coated sphere sits on the stuck surface (ν = 0.25, level 3:
+ * δc/ωc 0.785 → 0.763 with 3 layers, 6 layers a further -0.9 % at level 2;
+ * t/R 0.005, Eco/Esu 4: δc1 -3 to -4 %), none under slip, whose first yield
+ * is below the surface (+0.03 to +0.1 % with 3 layers; cost +6 % elements;
+ * docs/yield-discrepancies.md §1.3). */
+int asp_surface_layers(const asp_options *o)
+{
+    if (o->surface_layers >= 0) return o->surface_layers;
+    return o->contact == ASP_CONTACT_STICK ? 3 : 0;
+}
+
 /* n: elements across a_max (ASP_MESH_N0 2^level, or a value between levels;
  * sq = sqrt(n / ASP_MESH_N0) keeps the level formulas for q and hmax). */
-static stc_status build_axisym(const asp_mesh_spec *s, double a_min, double n, mbuild *b,
-                               asp_mesh *m)
+static stc_status build_axisym(const asp_mesh_spec *s, double a_min, double n, int nl,
+                               mbuild *b, asp_mesh *m)
 {
     double Rp = s->R + s->t, sq = sqrt(n / ASP_MESH_N0);
     double h = s->a_max / n;
@@ -334,6 +374,7 @@ static stc_status build_axisym(const asp_mesh_spec *s, double a_min, double n, m
     stc_status st = STC_ENOMEM;
     int na = graded_sizes(Rp * M_PI_2, h0, 1.25 * amin, h, 1.25 * s->a_max, q, hmax, &arc);
     int nd = depth_levels(s, amin, h0, h, q, hmax, Rp - rc, &d);
+    if (nd >= 1) nd = surface_rows(&d, nd, nl);
     if (na < 0 || nd < 0) goto fail;
     oth = malloc((size_t)(na + 1) * sizeof *oth), ith = malloc((size_t)(na + 1) * sizeof *ith);
     on = malloc((size_t)(na + 1) * sizeof *on), in = malloc((size_t)(na + 1) * sizeof *in);
@@ -383,14 +424,23 @@ stc_status asp_mesh_axisym_graded(const asp_mesh_spec *spec, double a_min, asp_m
 
 stc_status asp_mesh_axisym_n(const asp_mesh_spec *spec, double a_min, double n, asp_mesh **out)
 {
+    return asp_mesh_axisym_nl(spec, a_min, n, 0, out);
+}
+
+stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
+                              int surface_layers, asp_mesh **out)
+{
     *out = NULL;
     STC_CALL(check_spec(spec));
     STC_CHECK(n >= 3.0 && n <= ASP_MESH_N0 * 64.0, STC_EINVAL,
               "elements per contact = %g: must be in [3, %d]", n, ASP_MESH_N0 * 64);
+    STC_CHECK(surface_layers >= 0 && surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS, STC_EINVAL,
+              "surface layers = %d: must be in [0, %d]", surface_layers,
+              ASP_MESH_MAX_SURFACE_LAYERS);
     asp_mesh *m = calloc(1, sizeof *m);
     mbuild b = {0};
     STC_CHECK(m, STC_ENOMEM, "mesh: out of memory");
-    stc_status st = build_axisym(spec, a_min, n, &b, m);
+    stc_status st = build_axisym(spec, a_min, n, surface_layers, &b, m);
     free(b.x), free(b.conn), free(b.region);
     if (st != STC_OK) {
         asp_mesh_destroy(&m);

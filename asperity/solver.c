@@ -38,6 +38,11 @@
  * the CPU time of level 0 (0.88 % vs level 3); n = 7 and 9 were worse
  * (1.72 %, 0.76 %): the P_smooth error is set by how the node-entry
  * sawtooth is sampled, not monotone in n.
+ * 3D (speed3d): a factorization costs ~50 triangular solves there, so the
+ * Newton steps are solved by PCG preconditioned with the last factor
+ * (Newton-Krylov, see linear_step); level-0 slip curve to 60 ωc: the same
+ * 160 Newton iterations and answers, 160 -> 15 factorizations + 1334 PCG
+ * iterations, 91 -> 38 s on the shared machine (CPU 96 -> 37 s).
  */
 #include <math.h>
 #include <omp.h>
@@ -77,9 +82,12 @@ void asp_options_default(asp_options *o)
     o->utol = 1e-6;
     o->max_newton = 30;
     o->newton_reuse = 1;
+    o->krylov = ASP_KRYLOV_AUTO;
+    o->krylov_max = 30;
     o->max_active_set = 40;
     o->max_cutbacks = 10;
     o->threads = 0;
+    o->surface_layers = -1;
 }
 
 static stc_status check_options(const asp_options *o)
@@ -93,12 +101,21 @@ static stc_status check_options(const asp_options *o)
     STC_CHECK(o->elements_per_contact == 0.0 || o->geom != ASP_GEOM_3D, STC_EINVAL,
               "elements per contact = %g: axisymmetric model only (3D: use the mesh level)",
               o->elements_per_contact);
+    STC_CHECK(o->surface_layers >= -1 && o->surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS,
+              STC_EINVAL, "surface layers = %d: must be -1 (auto) or in [0, %d]",
+              o->surface_layers, ASP_MESH_MAX_SURFACE_LAYERS);
+    STC_CHECK(o->surface_layers <= 0 || o->geom != ASP_GEOM_3D, STC_EINVAL,
+              "surface layers = %d: axisymmetric model only (3D: -1 or 0)", o->surface_layers);
     STC_CHECK(o->a_safety == 0.0 || (o->a_safety >= 1.0 && o->a_safety <= 5.0), STC_EINVAL,
               "a-safety = %g: must be 0 (auto) or in [1, 5]", o->a_safety);
     STC_CHECK(o->rtol > 0.0 && o->rtol < 1e-2, STC_EINVAL, "rtol = %g: must be in (0, 1e-2)",
               o->rtol);
     STC_CHECK(o->utol > 0.0 && o->utol < 1e-2, STC_EINVAL, "utol = %g: must be in (0, 1e-2)",
               o->utol);
+    STC_CHECK(o->krylov >= ASP_KRYLOV_OFF && o->krylov <= ASP_KRYLOV_ON, STC_EINVAL,
+              "krylov = %d: must be 0 (off), 1 (auto) or 2 (on)", (int)o->krylov);
+    STC_CHECK(o->krylov_max >= 1 && o->krylov_max <= 1000, STC_EINVAL,
+              "krylov max = %d: must be in [1, 1000]", o->krylov_max);
     STC_CHECK(o->max_newton >= 2 && o->newton_reuse >= 1 && o->max_active_set >= 2 &&
                   o->max_cutbacks >= 0,
               STC_EINVAL, "Newton limits: max-newton >= 2, newton-reuse >= 1, "
@@ -269,6 +286,7 @@ static stc_status assemble(asp_solver *s, int want_K)
         scatter(s, e, want_K, fe, Ke, nthr > 1);
     }
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
+    if (s->shear) asp_shear_assemble(s, want_K); /* stick-law springs (shear.c) */
     s->k_fresh = want_K;
     return STC_OK;
 }
@@ -312,7 +330,8 @@ static void set_dirichlet(asp_solver *s, double delta)
         int n = s->cand[k];
         s->fixed[d * n + d - 1] = 1;
         s->ubc[d * n + d - 1] = s->Rp - delta - node_z(s, n);
-        if (s->cs[k] != ASP_CS_STICK) continue;
+        /* the tangential ramp: stick/slip is the friction law's (shear.c) */
+        if (s->cs[k] != ASP_CS_STICK || s->shear) continue;
         for (int c = 0; c < d - 1; c++)
             if (!s->fixed[d * n + c])
                 s->fixed[d * n + c] = 1, s->ubc[d * n + c] = s->cstick[(d - 1) * k + c];
@@ -344,6 +363,10 @@ static int update_active_set(asp_solver *s, double delta, int add_only)
                 for (int c = 0; c < d - 1; c++)
                     s->cstick[(d - 1) * k + c] =
                         s->u_conv[d * n + c] + lam * (s->u[d * n + c] - s->u_conv[d * n + c]);
+                if (s->shear) { /* ramp: touches stuck, slip s = g there (shear.c) */
+                    s->cs[k] = ASP_CS_STICK;
+                    s->cstick[2 * k] -= s->ux_conv + lam * (s->ux - s->ux_conv);
+                }
                 changes++;
             }
         }
@@ -390,6 +413,8 @@ static stc_status factorize(asp_solver *s, nstat *ns)
     cholmod_factorize(s->K, s->L, &s->cc);
     if (s->serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
     ns->facts++;
+    s->have_factor = s->cc.status == CHOLMOD_OK;
+    s->k_last = 0;
     STC_CHECK(s->cc.status == CHOLMOD_OK, STC_ESOLVER,
               "CHOLMOD factorization at δ = %g mm: %s (column %d of %d)", s->delta,
               s->cc.status == CHOLMOD_NOT_POSDEF ? "matrix not positive definite"
@@ -426,8 +451,8 @@ static double constraint_defect(const asp_solver *s, double *c)
 /* Newton step for K du = -r with du = c on the fixed DOFs (lifting: the
  * free DOFs get -K_fc c, the linear response to the prescribed jump).
  * When cn > 0, du holds K c (unconstrained K) on entry. */
-static stc_status newton_solve(asp_solver *s, cholmod_dense *b, const double *c, double cn,
-                               double *du)
+static void newton_rhs(const asp_solver *s, cholmod_dense *b, const double *c, double cn,
+                       const double *du)
 {
     double *bx = b->x;
     if (cn > 0.0) {
@@ -435,11 +460,150 @@ static stc_status newton_solve(asp_solver *s, cholmod_dense *b, const double *c,
     } else {
         for (int i = 0; i < s->ndof; i++) bx[i] = s->fixed[i] ? 0.0 : -s->fint[i];
     }
+}
+
+/* du = A^-1 b with the current factor. */
+static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
+{
     cholmod_dense *x = cholmod_solve(CHOLMOD_A, s->L, b, &s->cc);
     STC_CHECK(x, STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
     memcpy(du, x->x, (size_t)s->ndof * sizeof *du);
     cholmod_free_dense(&x, &s->cc);
     return STC_OK;
+}
+
+static stc_status newton_solve(asp_solver *s, cholmod_dense *b, const double *c, double cn,
+                               double *du)
+{
+    newton_rhs(s, b, c, cn, du);
+    return direct_solve(s, b, du);
+}
+
+/* ---- Newton-Krylov (speed3d) ----------------------------------------------
+ * The tangent is assembled every iteration anyway (the element loop is
+ * 5-13 % of a 3D iteration), but a numeric Cholesky factorization costs
+ * ~50 triangular solves (3D level 0: 0.63 s against 0.012 s).  So a Newton
+ * step is solved by the preconditioned conjugate gradient on the free DOFs
+ * (Saad, Iterative Methods for Sparse Linear Systems, 2nd ed. 2003,
+ * alg. 9.1) with the LAST factor as the preconditioner (Newton-Krylov:
+ * Knoll & Keyes, J. Comput. Phys. 193 (2004) 357).  The factor may belong
+ * to an earlier tangent and an earlier active set: any SPD matrix is a
+ * valid preconditioner, its distance from the current one only sets the
+ * iteration count; past krylov_max iterations the tangent is refactorized
+ * (and the direct solve used).  The constrained K is SPD (identity rows and
+ * columns on the fixed DOFs), and the fixed DOFs are exactly the prescribed
+ * jump c: PCG works on the free block only, with the preconditioner
+ * projected onto it (a principal block of an SPD inverse is SPD). */
+
+static double dot(const double *a, const double *b, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; i++) s += a[i] * b[i];
+    return s;
+}
+
+/* PCG tolerance: the smaller of an absolute 1e-3 rtol |reaction|, the
+ * smallest residual the tests of newton() distinguish, so the iterates
+ * pass the same tests as with the exact solve, and 1e-6 of the step's
+ * right-hand side, so a step near convergence still lowers the residual
+ * (the line search needs it).  Measured on the coated stick axisymmetric
+ * case δ = 10 ωc (PCG forced): the same 98 Newton iterations and answers
+ * as factorizing; a relative 1e-2 moved P by 1 % (the stick positions
+ * come from the iterates), and a floor at 1e-2 rtol |reaction| cost 25 %
+ * more Newton iterations and 50 % more line-search evaluations. */
+#define KRYLOV_ABS 1e-3
+#define KRYLOV_ETA 1e-6
+
+/* z = P L^-1 P r with the stored factor (P: zero the fixed DOFs). */
+static int precondition(asp_solver *s, const double *r, double *z)
+{
+    memcpy(s->kb->x, r, (size_t)s->ndof * sizeof *r);
+    if (!cholmod_solve2(CHOLMOD_A, s->L, s->kb, NULL, &s->kx, NULL, &s->ky, &s->ke, &s->cc))
+        return -1;
+    const double *x = s->kx->x;
+    for (int i = 0; i < s->ndof; i++) z[i] = s->fixed[i] ? 0.0 : x[i];
+    return 0;
+}
+
+/* PCG for A du = b (A: constrained tangent in s->K, b in bx): du = b on the
+ * fixed DOFs, the free block to |r| <= tol.  Returns the iterations, or -1
+ * when it needs more than kmax (or the preconditioner failed). */
+static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax)
+{
+    int n = s->ndof;
+    double *r = s->kv, *z = r + n, *p = z + n, *q = p + n;
+    for (int i = 0; i < n; i++) r[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
+    double rz = 0.0;
+    double rel = KRYLOV_ETA * sqrt(dot(r, r, n));
+    tol = tol > 0.0 ? fmin(tol, rel) : rel; /* no reaction yet: relative only */
+    for (int k = 0;; k++) {
+        if (sqrt(dot(r, r, n)) <= tol) {
+            for (int i = 0; i < n; i++)
+                if (s->fixed[i]) du[i] = bx[i];
+            return k;
+        }
+        if (k == kmax || precondition(s, r, z)) return -1;
+        double rz1 = dot(r, z, n), beta = k ? rz1 / rz : 0.0;
+        rz = rz1;
+        for (int i = 0; i < n; i++) p[i] = z[i] + beta * p[i];
+        sym_matvec(s->K, p, q, n); /* zero on the fixed DOFs: p is */
+        double pq = dot(p, q, n), alpha = rz / pq;
+        if (!(pq > 0.0) || !isfinite(alpha)) return -1;
+        for (int i = 0; i < n; i++) du[i] += alpha * p[i], r[i] -= alpha * q[i];
+    }
+}
+
+static stc_status krylov_alloc(asp_solver *s)
+{
+    if (s->kv) return STC_OK;
+    size_t n = (size_t)s->ndof;
+    s->kv = malloc(4 * n * sizeof *s->kv);
+    s->kb = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
+    STC_CHECK(s->kv && s->kb, STC_ENOMEM, "solver: out of memory for the PCG vectors");
+    return STC_OK;
+}
+
+/* PCG pays where a factorization costs many PCG iterations (one solve and
+ * one mat-vec each): the flop ratio fl / (nnz(L) + nnz(K)) of the analysis
+ * is ~700 on the 3D level-0 half model, where the measured time ratio is
+ * ~50, but 60-180 on the axisymmetric meshes (levels 1-3), where a
+ * factorization costs a few PCG iterations and PCG (~15 per step measured
+ * at level 1) was slower than factorizing every step; 320 lies between. */
+static int krylov_pays(const asp_solver *s)
+{
+    if (s->opt.krylov != ASP_KRYLOV_AUTO) return s->opt.krylov == ASP_KRYLOV_ON;
+    double nnzk = ((const int *)s->K->p)[s->ndof];
+    return s->cc.fl > 320.0 * (s->cc.lnz + nnzk);
+}
+
+/* One Newton step at a fresh tangent: PCG with the last factor when there
+ * is one (tolerance tol on the free-DOF residual), else, or when PCG needs
+ * more than krylov_max iterations, factorize and solve directly.  When
+ * cn > 0, du holds K c (unconstrained K) on entry, as for newton_solve. */
+static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const double *c,
+                              double cn, double *du, double tol)
+{
+    apply_constraints(s);
+    newton_rhs(s, b, c, cn, du);
+    /* refactorize once PCG needs half its budget: the tangent has drifted
+     * (plastic zone, contact) and the count climbs from there (3D level 0,
+     * curve to 30 ωc: 2 factorizations + 1754 PCG iterations with the hard
+     * limit only, 11 + 939 with this rule; a factorization costs ~45) */
+    if (s->have_factor && krylov_pays(s) && 2 * s->k_last <= s->opt.krylov_max) {
+        STC_CALL(krylov_alloc(s));
+        /* one right-hand side: the triangular solves are memory bound and
+         * OpenBLAS's threads only spin (3D level 0, loaded machine: 55 ms
+         * per solve threaded, 13.5 ms serial) */
+        int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
+        omp_set_max_active_levels(0), openblas_set_num_threads(1);
+        int k = pcg(s, b->x, du, tol, s->opt.krylov_max);
+        omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
+        s->k_last = k;
+        s->n_kits += k >= 0 ? k : s->opt.krylov_max;
+        if (k >= 0) return STC_OK;
+    }
+    STC_CALL(factorize(s, ns));
+    return direct_solve(s, b, du);
 }
 
 /* Newton with backtracking line search for the current constraints.  With
@@ -470,11 +634,12 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
         if (age >= o->newton_reuse || cn > 0.0) {
             STC_CHECK(s->k_fresh, STC_ESOLVER, "solver: stale stiffness at δ = %g mm", delta);
             if (cn > 0.0) sym_matvec(s->K, c, du, s->ndof); /* before the identity rows */
-            STC_CALL(factorize(s, ns));
+            STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref));
             age = 0;
+        } else {
+            STC_CALL(newton_solve(s, b, c, cn, du));
         }
         age++;
-        STC_CALL(newton_solve(s, b, c, cn, du));
         ns->iters++;
         memcpy(u0, s->u, (size_t)s->ndof * sizeof *u0);
         double alpha = 1.0;
@@ -610,7 +775,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
         s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
         STC_CALL(asp_mesh_half3d(&spec, &s->mesh));
     } else {
-        STC_CALL(asp_mesh_axisym_n(&spec, s->a_min, n, &s->mesh));
+        STC_CALL(asp_mesh_axisym_nl(&spec, s->a_min, n, asp_surface_layers(&s->opt), &s->mesh));
     }
     STC_CALL(asp_mesh_quality(s->mesh, &s->quality));
     s->dim = s->mesh->dim, s->nen = s->mesh->nen;
@@ -678,11 +843,14 @@ void asp_solver_destroy(asp_solver **sp)
     asp_solver *s = *sp;
     if (s->L) cholmod_free_factor(&s->L, &s->cc);
     if (s->K) cholmod_free_sparse(&s->K, &s->cc);
+    free(s->kv), cholmod_free_dense(&s->kb, &s->cc), cholmod_free_dense(&s->kx, &s->cc);
+    cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);
     free(s->emap), free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
+    asp_shear_release(s);
     free(s);
     *sp = NULL;
 }
@@ -830,6 +998,17 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
     free(cs0), free(cst0);
     s->pt.wall_s += omp_get_wtime() - t0;
     s->pt.assemblies = s->n_asm;
+    s->pt.krylov_iterations = s->n_kits;
     if (out) *out = s->pt;
+    return st;
+}
+
+/* ---- entry points for shear.c ---- */
+
+stc_status asp_solver_increment_here(asp_solver *s, int *iters, int *facts, int *passes)
+{
+    nstat ns = {0, 0, 0};
+    stc_status st = increment(s, s->delta, &ns); /* Δδ = 0: starts from u_conv */
+    *iters += ns.iters, *facts += ns.facts, *passes += ns.passes;
     return st;
 }

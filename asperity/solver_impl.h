@@ -6,6 +6,7 @@
 
 #include "fe.h"
 #include "stiction/asperity.h"
+#include "tangential.h"
 
 /* Per-node contact state; keeps the design open for the tangential step. */
 enum { ASP_CS_OPEN = 0, ASP_CS_STICK = 1, ASP_CS_SLIP = 2 };
@@ -35,6 +36,14 @@ struct asp_solver {
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
 
+    /* linear algebra (speed3d) */
+    int have_factor;      /* L holds a numeric factor (of an earlier tangent) */
+    cholmod_dense *kx, *ky, *ke; /* cholmod_solve2 solution and workspace */
+    cholmod_dense *kb;    /* PCG: preconditioner right-hand side */
+    double *kv;           /* [4][ndof] PCG vectors r, z, p, q (lazily allocated) */
+    int n_kits;           /* PCG iterations (cumulative) */
+    int k_last;           /* PCG iterations of the last step (-1: failed) */
+
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
@@ -60,15 +69,49 @@ struct asp_solver {
     double *hd, *hP;              /* history of converged increments: δ, P */
     int nh, caph;
     int n_asm;                    /* element-loop evaluations (cumulative) */
+
+    /* tangential step (shear.c) */
+    int shear;                    /* 1 during the ramp: contact nodes keep u_z only,
+                                     their tangential DOFs carry the stick law */
+    double ux, ux_conv;           /* flat displacement along x: trial, converged, mm */
+    asp_fric_law fric;            /* τc and penalty k_t */
+    double *carea;                /* [ncand] tributary area, mm² */
+    double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
+    unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
+    double *cslip_new;            /* [ncand][2] trial slip; cstick holds the converged one */
+    double *cfric;                /* [ncand][2] friction force on the flat at u, N */
+    unsigned char *cfst;          /* [ncand] trial ASP_CS_STICK / ASP_CS_SLIP */
+    int *cpos;                    /* [ncand][3] K->x positions of (x,x), (x,y), (y,y) */
+    int fric_frozen;              /* next assembly: converged stick nodes stay stuck
+                                     (first iteration of an increment, see shear.c) */
+    struct asp_shear_snap *snap;  /* [ASP_SHEAR_NSNAP] kept field snapshots (shear.c) */
 };
 
 /* mesh.c: asp_mesh_axisym_graded with n elements across a_max instead of
  * 6 2^level (n in [3, 384], any real value; spec->level is still checked). */
 stc_status asp_mesh_axisym_n(const asp_mesh_spec *spec, double a_min, double n, asp_mesh **out);
+/* ... and with the top row split into surface_layers + 1 rows halving towards
+ * the surface (asp_options.surface_layers; in [0, ASP_MESH_MAX_SURFACE_LAYERS]). */
+enum { ASP_MESH_MAX_SURFACE_LAYERS = 6 };
+stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
+                              int surface_layers, asp_mesh **out);
+/* mesh.c: asp_options.surface_layers with -1 (automatic) resolved. */
+int asp_surface_layers(const asp_options *o);
 
 /* asp_contact.c: results at the converged state. */
 void asp_contact_results(asp_solver *s, asp_point *pt);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
 void asp_history_push(asp_solver *s, double delta, double P);
+
+/* shear.c: friction springs of the contact nodes added to fint (and K) at
+ * s->u, s->ux (called by assemble() when s->shear); frees the shear arrays. */
+void asp_shear_assemble(asp_solver *s, int want_K);
+void asp_shear_release(asp_solver *s);
+
+/* solver.c entry points for shear.c: one increment at the current δ and
+ * the trial s->ux, started from u_conv (active set iterated), with its
+ * Newton iterations, factorizations and active-set passes added to the
+ * counters.  On failure the caller restores the state. */
+stc_status asp_solver_increment_here(asp_solver *s, int *iters, int *facts, int *passes);
 
 #endif

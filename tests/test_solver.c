@@ -361,6 +361,120 @@ static void test_3d_vs_axisym(void **state)
     assert_true(fabs(p3.P_base / p3.P - 1) < 1e-6);
 }
 
+/* Coated stick run with the Newton steps solved by a factorization each
+ * (krylov off) or by PCG preconditioned with the last factor (on). */
+static void krylov_run(asp_krylov mode, asp_point *pt, asp_yield y[2])
+{
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_params_default(&p);
+    p.t_over_R = 0.025, p.E_ratio = 2.0;
+    asp_options_default(&o);
+    o.contact = ASP_CONTACT_STICK, o.mesh_level = 0, o.threads = 1, o.krylov = mode;
+    stc_material su, co;
+    stc_critical c;
+    stc_params_materials(&p, &su, &co);
+    assert_int_equal(stc_critical_eval(&su, p.R, &c), STC_OK);
+    assert_int_equal(asp_solver_create(&p, &o, 4.0 * c.omega_c, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, 4.0 * c.omega_c, pt), STC_OK);
+    asp_solver_yield(s, 0, &y[0]), asp_solver_yield(s, 1, &y[1]);
+    asp_solver_destroy(&s);
+}
+
+/* Newton-Krylov changes the cost, not the answer: the stick positions come
+ * from the iterates (path dependent), so an inexact step would show.
+ * Measured: the same 48 Newton iterations, answers equal to 3e-14,
+ * 48 -> 12 factorizations (516 PCG iterations; PCG forced on: on this
+ * axisymmetric mesh auto would factorize, factorizations being cheap). */
+static void test_krylov(void **state)
+{
+    (void)state;
+    asp_point pd, pk;
+    asp_yield yd[2], yk[2];
+    krylov_run(ASP_KRYLOV_OFF, &pd, yd);
+    krylov_run(ASP_KRYLOV_ON, &pk, yk);
+    printf("# krylov: P %+.2e, a %+.2e, delta_c1 %+.2e relative; Newton %d -> %d, "
+           "factorizations %d -> %d, PCG iterations %d\n",
+           pk.P / pd.P - 1, pk.a / pd.a - 1, yk[1].delta / yd[1].delta - 1, pd.newton_iterations,
+           pk.newton_iterations, pd.factorizations, pk.factorizations, pk.krylov_iterations);
+    assert_true(yd[1].reached && yk[1].reached);
+    assert_true(fabs(pk.P / pd.P - 1) < 1e-6);
+    assert_true(fabs(pk.a / pd.a - 1) < 1e-6);
+    assert_true(fabs(yk[1].delta / yd[1].delta - 1) < 1e-6);
+    assert_int_equal(yk[0].reached, yd[0].reached);
+    assert_int_equal(pk.increments, pd.increments);
+    assert_int_equal(pd.krylov_iterations, 0);
+    assert_true(pk.krylov_iterations > 0);
+    assert_true(pk.factorizations * 2 < pd.factorizations);
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_params_default(&p);
+    asp_options_default(&o);
+    o.krylov_max = 0;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-4, &s), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "krylov max = 0"));
+    assert_null(s);
+}
+
+/* Surface boundary layer (asp_options.surface_layers): at ν = 0.25 the
+ * stick first yield sits on the stuck surface near the axis (Brizmer et al.
+ * 2006: the stick yield point moves to the surface as ν falls), which the
+ * Gauss points of a full-size top row see 0.21 h below it.  The automatic
+ * layers (3 under stick) must lower δ_y and move the yield point onto the
+ * surface; under slip (yield at 0.48 a below the surface) they must not
+ * matter.  Level 1, measured: stick δ_y/ωc 0.8125 (0 layers, depth 1.9e-3
+ * mm) → 0.8006 (auto, depth 2.4e-4 mm); slip 0.9800 → 0.9808. */
+static double layers_run(asp_contact_law law, int layers, double *depth, double *ac)
+{
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_material su;
+    stc_critical c;
+    asp_yield y;
+    stc_params_default(&p);
+    p.nu = 0.25;
+    stc_params_materials(&p, &su, NULL);
+    assert_int_equal(stc_critical_eval(&su, p.R, &c), STC_OK);
+    asp_options_default(&o);
+    o.contact = law, o.surface_layers = layers, o.threads = 1;
+    assert_int_equal(asp_solver_create(&p, &o, 1.3 * c.omega_c, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, 1.3 * c.omega_c, NULL), STC_OK);
+    asp_solver_yield(s, 0, &y);
+    assert_true(y.reached);
+    *depth = p.R - y.z, *ac = sqrt(p.R * c.omega_c);
+    asp_solver_destroy(&s);
+    return y.delta / c.omega_c;
+}
+
+static void test_surface_layers(void **state)
+{
+    (void)state;
+    double z0, za, zs0, zs3, ac;
+    double d0 = layers_run(ASP_CONTACT_STICK, 0, &z0, &ac);
+    double da = layers_run(ASP_CONTACT_STICK, -1, &za, &ac);
+    double s0 = layers_run(ASP_CONTACT_SLIP, 0, &zs0, &ac);
+    double s3 = layers_run(ASP_CONTACT_SLIP, 3, &zs3, &ac);
+    printf("# nu = 0.25 stick delta_y/wc: %.4f (0 layers, depth/a_c %.4f), %.4f (auto, %.4f); "
+           "slip %.4f -> %.4f (3 layers)\n", d0, z0 / ac, da, za / ac, s0, s3);
+    assert_true(da < 0.992 * d0);                  /* measured -1.5 % */
+    assert_true(za < 0.02 * ac && z0 > 0.05 * ac); /* onto the surface */
+    assert_true(fabs(s3 / s0 - 1) < 0.003);        /* measured +0.08 % */
+    /* the option is checked */
+    stc_params p;
+    asp_options o;
+    asp_solver *s = NULL;
+    stc_params_default(&p);
+    asp_options_default(&o);
+    o.surface_layers = 7;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-4, &s), STC_EINVAL);
+    o.surface_layers = 2, o.geom = ASP_GEOM_3D;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-4, &s), STC_EINVAL);
+    assert_null(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -369,6 +483,8 @@ int main(void)
         cmocka_unit_test(test_coated_first_yield), cmocka_unit_test(test_errors),
         cmocka_unit_test(test_fields),      cmocka_unit_test(test_smooth_load),
         cmocka_unit_test(test_3d_vs_axisym), cmocka_unit_test(test_elements_per_contact),
+        cmocka_unit_test(test_krylov),
+        cmocka_unit_test(test_surface_layers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -103,14 +103,22 @@ def omega_c(E, nu, Y, R):
     return w, P
 
 
+def brizmer(nu):
+    """Brizmer, Kligerman & Etsion 2006 stick fits (SPEC section 3)."""
+    return 6.82 * nu - 7.83 * (nu * nu + 0.0586), 8.88 * nu - 10.13 * (nu * nu + 0.089)
+
+
 def yield_section(cli, rep):
     rep.out("## 2. Yield inception, homogeneous (E = 200 GPa, nu = 0.32, E/Y = 1000, R = 10)")
+    rep.out("")
+    rep.out("Stick runs use the automatic surface layers (3, asp_options.surface_layers). "
+            "Known failure: the mesh-converged stick first yield at nu = 0.32 is ~4.5-5 % above "
+            "Brizmer's fit, not within 3 % (docs/yield-discrepancies.md section 1.3).")
     rep.out("")
     rep.out("| check | value | limit | |")
     rep.out("|---|---|---|---|")
     nu = 0.32
-    dst = 6.82 * nu - 7.83 * (nu * nu + 0.0586)
-    lst = 8.88 * nu - 10.13 * (nu * nu + 0.089)
+    dst, lst = brizmer(nu)
     for law, dref, lref, tol in (("slip", 1.0, 1.0, 0.02), ("stick", dst, lst, 0.03)):
         for lev in (1, 2):
             j, w, m = run(cli, ["--delta", "1.2", "--contact", law, "--mesh", str(lev)])
@@ -125,6 +133,31 @@ def yield_section(cli, rep):
                       "on the axis, below the surface",
                       j["first_yield_r_mm"] < 2e-3 and 10 - j["first_yield_z_mm"] > 1e-3)
     rep.out("(level-1 rows are informative; the limits apply from level 2)")
+    rep.out("")
+    rep.out("| check | value | limit | |")
+    rep.out("|---|---|---|---|")
+    # nu = 0.25: the stick first yield sits on the stuck surface; resolved by the layers
+    dst, lst = brizmer(0.25)
+    j, w, m = run(cli, ["--nu", "0.25", "--delta", "1.3", "--contact", "stick", "--mesh", "3"])
+    rep.check("stick nu = 0.25 level 3: delta_y / Brizmer (%.4f)" % dst,
+              "%.4f" % (j["first_yield_delta_over_omega_c_su"] / dst), "1 +- 0.03",
+              abs(j["first_yield_delta_over_omega_c_su"] / dst - 1) < 0.03)
+    rep.check("stick nu = 0.25 level 3: L_y / Brizmer (%.4f)" % lst,
+              "%.4f" % (j["first_yield_P_over_P_c"] / lst), "1 +- 0.03",
+              abs(j["first_yield_P_over_P_c"] / lst - 1) < 0.03)
+    rep.check("stick nu = 0.25 level 3: depth (mm)", "%.2g" % (10 - j["first_yield_z_mm"]),
+              "on the surface (< 1e-3)", 10 - j["first_yield_z_mm"] < 1e-3)
+    rep.out("")
+    # convergence of the stick first yield: levels 1-3 are pre-asymptotic
+    # (steps +0.0063, +0.0054), levels 2-4 gave order 0.74 (level 4: ~2 min)
+    d = []
+    for lev in (2, 3, 4):
+        j, w, m = run(cli, ["--delta", "1.3", "--contact", "stick", "--mesh", str(lev)])
+        d.append(j["first_yield_delta_over_omega_c_su"])
+    p, dinf = richardson(*d)
+    rep.out("stick nu = 0.32, delta_y/wc at levels 2-4: %.4f %.4f %.4f; observed order %.2f, "
+            "extrapolated %.4f (%+.1f %% vs Brizmer %.4f)"
+            % (d[0], d[1], d[2], p, dinf, 100 * (dinf / brizmer(0.32)[0] - 1), brizmer(0.32)[0]))
     rep.out("")
 
 
@@ -167,6 +200,37 @@ def coated_section(cli, rep):
     rep.out("")
 
 
+def coated_convergence(cli, rep):
+    """Issue 3 item 5: coated stick case (t/R = 0.025, Eco/Esu = 2) at three
+    mesh levels, observed order of dc1 and dc2."""
+    rep.out("## 5. Convergence of the coated stick first yields (t/R = 0.025, Eco/Esu = 2)")
+    rep.out("")
+    c1f, c2f = ronen(0.025, 2)
+    c1, c2, rows = [], [], []
+    for lev in (1, 2, 3):
+        j, w, m = run(cli, ["--t-over-R", "0.025", "--E-ratio", "2", "--contact", "stick",
+                            "--mesh", str(lev), "--delta", "%g" % (1.3 * c2f)])
+        c1.append(j["delta_c1_over_omega_c_su"]), c2.append(j["delta_c2_over_omega_c_su"])
+        rows.append("level %d: dc1 = %.4f, dc2 = %.3f, %d DOFs, %.0f s"
+                    % (lev, c1[-1], c2[-1], j["dofs"], w))
+    for r in rows:
+        rep.out("* " + r)
+    p1, i1 = richardson(*c1)
+    p2, i2 = richardson(*c2)
+    rep.out("")
+    rep.out("| check | value | limit | |")
+    rep.out("|---|---|---|---|")
+    # dc1 (a subsurface stick maximum) is pre-asymptotic at levels 1-3: steps
+    # +0.0063, +0.0060 here, +0.0040, +0.0057, +0.0040 at levels 1-4 with
+    # --delta 1.5 (order ~0.5; docs/yield-discrepancies.md section 3), so
+    # it is reported, not checked
+    rep.out("| dc1: observed order, extrapolated (fit %.3f) | %.2f, %.4f | info | |"
+            % (c1f, p1, i1))
+    rep.check("dc2: observed order, extrapolated (fit %.2f)" % c2f, "%.2f, %.3f" % (p2, i2),
+              "differences fall", abs(c2[2] - c2[1]) < abs(c2[1] - c2[0]))
+    rep.out("")
+
+
 def validate(cli, path):
     rep = Report()
     rep.out("# Asperity FE solver: validation (issue 3)")
@@ -174,6 +238,7 @@ def validate(cli, path):
     hertz_section(cli, rep)
     yield_section(cli, rep)
     coated_section(cli, rep)
+    coated_convergence(cli, rep)
     rep.out("overall: %s" % ("ok" if rep.ok else "FAILED"))
     with open(path + ".tmp", "w") as f:
         f.write("\n".join(rep.lines) + "\n")

@@ -39,6 +39,13 @@ typedef enum asp_contact_law {
 } asp_contact_law;
 
 /* Solver options.  Defaults from asp_options_default(). */
+/* When Newton steps are solved by PCG instead of a new factorization. */
+typedef enum {
+    ASP_KRYLOV_OFF = 0,  /* factorize the tangent for every step */
+    ASP_KRYLOV_AUTO = 1, /* where a factorization costs many PCG iterations (3D) */
+    ASP_KRYLOV_ON = 2    /* always (tests, experiments) */
+} asp_krylov;
+
 typedef struct asp_options {
     asp_geom geom;           /* default ASP_GEOM_AUTO */
     asp_contact_law contact; /* default ASP_CONTACT_SLIP */
@@ -54,9 +61,18 @@ typedef struct asp_options {
     int max_newton;          /* Newton iterations per active set; default 30 */
     int newton_reuse;        /* reuse a factorization for up to k iterations
                                 (1 = full Newton); default 1 */
+    asp_krylov krylov;       /* Newton-Krylov: solve the Newton steps by PCG
+                                preconditioned with the last Cholesky factor;
+                                default ASP_KRYLOV_AUTO */
+    int krylov_max;          /* PCG iterations before refactorizing; default 30 */
     int max_active_set;      /* active-set passes per increment; default 40 */
     int max_cutbacks;        /* consecutive increment halvings; default 10 */
     int threads;             /* OpenMP threads for assembly, 0 = runtime default */
+    int surface_layers;      /* axisymmetric: the top element row is split into
+                                N + 1 rows halving towards the surface (h/2^N
+                                there; resolves a stuck-surface stress maximum),
+                                N in [0, 6]; -1 = automatic: 3 under stick, 0
+                                under slip (3D: no layers); default -1 */
 } asp_options;
 
 void asp_options_default(asp_options *o);
@@ -85,6 +101,7 @@ typedef struct asp_point {
     int cutbacks;           /* cumulative increment halvings */
     int newton_iterations;  /* cumulative */
     int factorizations;     /* cumulative */
+    int krylov_iterations;  /* cumulative PCG iterations (see krylov_max) */
     int assemblies;         /* cumulative element-loop evaluations (the main cost) */
     int active_set_passes;  /* cumulative contact active-set passes */
     double wall_s;          /* cumulative wall time in the solver, s */
@@ -130,6 +147,96 @@ void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);
  * plastic strain, layer id) to `prefix`.h5 and an XDMF index `prefix`.xmf
  * (ParaView).  `prefix` is borrowed. */
 stc_status asp_solver_write_fields(const asp_solver *s, const char *prefix);
+
+/* ---- tangential step: shear to sliding inception (issue 4) -------------
+ * After the normal step (asp_solver_load or asp_solver_load_to_P) the flat
+ * is held at δ and moved along +x by ux (3D half model only).  Contact
+ * stays closed (thesis §3.2.3.3); the interface follows the shear-limited
+ * stick law of Wu, Shi & Polycarpou (2012): a point sticks until its shear
+ * stress reaches τc, then slips at τc.  Design: docs/tangential-step.md. */
+
+typedef enum asp_shear_criterion {
+    ASP_SHEAR_CRIT_SHEAR = 0,    /* WSP 2012: whole contact at τc and Q stopped rising */
+    ASP_SHEAR_CRIT_STIFFNESS = 1 /* Brizmer, Kligerman & Etsion 2007: KT_i/KT_1 <= α */
+} asp_shear_criterion;
+
+/* Defaults from asp_shear_options_default(). */
+typedef struct asp_shear_options {
+    asp_shear_criterion criterion; /* default ASP_SHEAR_CRIT_SHEAR */
+    double alpha;        /* stiffness criterion ratio, in (0, 1); default 0.1 (BKE 2007) */
+    double tau_c;        /* critical shear stress, MPa; 0 = Y/√3 of the coating (of the
+                            sphere if uncoated); default 0 */
+    double kappa;        /* tangential penalty k_t = κ G / h; default 100 */
+    int max_increments;  /* accepted ramp increments before giving up; default 200 */
+    int keep_fields;     /* 1: keep snapshots for asp_solver_write_shear_fields
+                            (memory: ~2 copies of the state); default 0 */
+} asp_shear_options;
+
+void asp_shear_options_default(asp_shear_options *o);
+
+/* One accepted point of the ramp (full model: the half model's sums x 2). */
+typedef struct asp_shear_point {
+    double ux;         /* flat displacement along x, mm */
+    double Q;          /* tangential load on the flat, N (-2 Σ friction forces) */
+    double Q_base;     /* the same from the base reactions, N (equilibrium check) */
+    double P;          /* normal load, N (changes under shear) */
+    double A;          /* contact area (tributary areas of the contact nodes), mm² */
+    double A_stick;    /* area of the sticking nodes, mm² */
+    double slip_frac;  /* 1 - A_stick / A */
+    int n_contact;     /* contact nodes (half model) */
+    double x_lo, x_hi; /* contact extent along x on y = 0, mm (it shifts under shear) */
+} asp_shear_point;
+
+typedef struct asp_shear_result {
+    double Q_max;        /* N (stiffness criterion: Q where KT_i/KT_1 <= α) */
+    double ux_slide;     /* ux at inception, mm */
+    double P_slide;      /* P at inception, N */
+    double P0;           /* preload: P at the end of the normal step, N */
+    double mu_s;         /* Q_max / P_slide */
+    double mu_s_preload; /* Q_max / P0 */
+    double A_stick;      /* stick area at inception, mm² */
+    double slip_frac;    /* slipping area fraction at inception */
+    double tau_c;        /* τc used, MPa */
+    double a0;           /* contact radius after the normal step, mm */
+    asp_shear_criterion criterion;
+    int converged;       /* 1: inception found; 0: gave up or failed (see reason) */
+    int index;           /* ramp point of inception (0 = ux = 0) */
+    int increments;      /* accepted ramp increments */
+    int cutbacks;        /* ramp increment halvings */
+    int newton_iterations, factorizations; /* of the ramp */
+    double wall_s;       /* wall time of the ramp, s */
+    char reason[256];    /* in words */
+} asp_shear_result;
+
+/* Called once per accepted ramp point (first: ux = 0); a nonzero return
+ * stops the ramp (reason "stopped by the caller"). */
+typedef int (*asp_shear_fn)(void *ctx, const asp_shear_point *pt);
+
+/* Run the ramp from the current normal state (δ > 0 reached, 3D model)
+ * until sliding inception.  `o` NULL = defaults; cb nullable.  Returns
+ * STC_OK when inception was found (res->converged = 1); STC_ENOCONV with
+ * res->reason when the ramp gave up or Newton failed beyond the cut-back
+ * limit (res holds what was reached; Q_max is then not an answer);
+ * STC_EINVAL for bad options or an axisymmetric solver.  After a failure
+ * the solver is not reusable for another ramp. */
+stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear_fn cb,
+                            void *ctx, asp_shear_result *res);
+
+/* After asp_solver_shear with keep_fields: write the fields at Q = 0
+ * (which = 0), at the kept point nearest 0.8 Q_max (1) and at inception (2)
+ * like asp_solver_write_fields, plus root attributes ux_mm, Q_N,
+ * Q_over_Q_max, tau_c_MPa.  Q_max here is the largest Q of the ramp (the
+ * stiffness criterion: the last point).  *Q_over_Qmax (nullable) gets the
+ * point's Q / Q_max.  STC_EINVAL if that snapshot was not kept. */
+stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *prefix,
+                                         double *Q_over_Qmax);
+
+/* Load control: advance the flat to the δ at which P = P_target (N, within
+ * rel_tol, e.g. 1e-3) by the log-log secant of asp_find_delta, restoring a
+ * checkpoint when a step must go back.  Fills `out` like asp_solver_load.
+ * STC_ERANGE if P(delta_max of create) < P_target. */
+stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
+                                asp_point *out);
 
 #ifdef __cplusplus
 }

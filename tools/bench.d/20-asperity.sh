@@ -6,9 +6,13 @@
 # 0-1); the slip load curve to 60 wc (levels 0-2 and 3D level 0), raw and
 # sawtooth-free (P_smooth) load against the finest level; the issue-3 target
 # curve (1:60:12 wc, P_smooth within 0.5 % of level 3 in < 1 s) for levels
-# 0-2 and --elements-per-contact 8.
+# 0-2 and --elements-per-contact 8; then the Newton-Krylov table
+# (tools/bench-krylov.py).
 # Called as: 20-asperity.sh CLI RESULTS_DIR.
 set -eu
 CLI=$1
 OUT=$2
 python3 "$(dirname "$0")/../validate-asperity.py" bench "$CLI" | tee "$OUT/bench-asperity.txt"
+# Newton-Krylov vs a factorization per Newton step (3D level 0): factorizations,
+# PCG iterations, wall time, and the agreement of the answers.
+python3 "$(dirname "$0")/../bench-krylov.py" "$CLI" | tee "$OUT/bench-krylov.txt"

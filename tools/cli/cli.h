@@ -70,6 +70,31 @@ void cj_done(cli_json *j); /* final newline */
 int cli_formulas(const cli_cmd *cmd, int argc, char **argv);
 int cli_asperity(const cli_cmd *cmd, int argc, char **argv);
 
+/* --- asperity --shear (cli_asperity_shear.c) --- */
+#include "stiction/asperity.h"
+typedef struct cli_shear_args {
+    int on;                /* run the tangential step */
+    int alpha_set;         /* --alpha given */
+    double load;           /* --load X = P/Pc_su (> 0: load control), else 0 */
+    asp_shear_options so;  /* --criterion, --alpha, --tau-c */
+} cli_shear_args;
+void cli_shear_args_default(cli_shear_args *sa);
+/* --shear, --criterion, --alpha, --tau-c, --load; STC_EUNSUPPORTED for others. */
+stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value);
+/* Normal step to delta[0] (× omega_c_su unless in_mm) or to --load, then the
+ * ramp; prints, writes DIR/shear.csv and fields_Q0/Q080/Qmax; exit code. */
+int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
+                       const cli_shear_args *sa, const double *delta, int ndelta, int in_mm,
+                       int json, const char *out);
+#define CLI_SHEAR_OPTS                                                                        \
+    {"shear", NULL, "after the normal step, shear to sliding inception (3D; issue 4)"},        \
+        {"criterion", "shear|stiffness",                                                      \
+         "sliding inception: whole contact at tau_c and Q flat (default), or KT/KT1 <= alpha"}, \
+        {"alpha", "A", "stiffness criterion ratio KT_i/KT_1 in (0, 1) (default 0.1)"},         \
+        {"tau-c", "MPa", "critical shear stress (default Y/sqrt(3) of the coating, or of the " \
+                         "sphere if uncoated)"},                                               \
+        {"load", "X", "load control: normal load P = X Pc_su instead of --delta, then shear"}
+
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;
 int cli_surface(const cli_cmd *cmd, int argc, char **argv); /* synth|stats|predict */

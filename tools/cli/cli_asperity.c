@@ -17,7 +17,10 @@ static const char usage[] =
     "contact radius a and area A, first yield of coating (delta_c1) and substrate\n"
     "(delta_c2).  LIST is a,b,c or start:stop:count, increasing; several values\n"
     "give a load curve (one solver run).  --delta is in units of omega_c_su.\n"
-    "Small-strain model: delta <= 0.01 R.";
+    "Small-strain model: delta <= 0.01 R.\n"
+    "--shear (implied by --criterion, --alpha, --tau-c, --load): after the normal\n"
+    "step to one --delta (or to the load --load X = P/Pc_su) the flat moves along x\n"
+    "until the asperity slides: Q_max, mu_s = Q_max/P (3D model).";
 
 static const cli_opt opts[] = {
     {"delta", "LIST", "interference(s) / omega_c_su (> 0, increasing)"},
@@ -25,15 +28,23 @@ static const cli_opt opts[] = {
     {"contact", "slip|stick", "contact condition of the normal step (default slip)"},
     {"model", "axisym|3d|auto", "geometry (default auto = axisymmetric)"},
     {"mesh", "LEVEL", "coarse|default|fine or a level 0..6 (default: default = 1)"},
+    {"surface-layers", "N",
+     "axisymmetric: split the top element row into N+1 rows halving towards the surface "
+     "(N in [0, 6]; default auto = 3 under stick, 0 under slip)"},
     {"elements-per-contact", "N",
      "axisymmetric: elements across the largest contact radius, overrides --mesh "
      "(6 2^level); "
      "values between levels, e.g. 8 (in [3, 384])"},
     {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
+    {"krylov", "off|auto|on",
+     "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
+     "factorization costs many PCG iterations, i.e. 3D; default auto)"},
+    {"krylov-max", "N", "PCG iterations before refactorizing (default 30)"},
     {"no-separation", NULL, "a node in contact never opens"},
     {"threads", "N", "OpenMP threads for the element loop (default: runtime)"},
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
     {"json", NULL, "print JSON (one object, or an array for a curve)"},
+    CLI_SHEAR_OPTS,
     {NULL, NULL, NULL},
 };
 
@@ -42,6 +53,7 @@ typedef struct {
     int ndelta, in_mm, json;
     char *out;
     asp_options o;
+    cli_shear_args sh; /* --shear and its options (cli_asperity_shear.c) */
 } aopts;
 
 static stc_status bad(const char *key, const char *value, const char *what)
@@ -78,6 +90,12 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         else if (stc_parse_long(key, value, &l) == STC_OK && l >= 0 && l <= 6)
             a->o.mesh_level = (int)l;
         else return bad(key, value, "coarse, default, fine or a level in [0, 6]");
+    } else if (!strcmp(key, "surface-layers")) {
+        long l;
+        if (!strcmp(value, "auto")) a->o.surface_layers = -1;
+        else if (stc_parse_long(key, value, &l) == STC_OK && l >= 0 && l <= 6)
+            a->o.surface_layers = (int)l;
+        else return bad(key, value, "auto or an integer in [0, 6]");
     } else if (!strcmp(key, "elements-per-contact")) {
         double v;
         if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 3.0 && v <= 384.0))
@@ -88,6 +106,16 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 100)
             return bad(key, value, "an integer in [1, 100]");
         a->o.newton_reuse = (int)l;
+    } else if (!strcmp(key, "krylov")) {
+        if (!strcmp(value, "off")) a->o.krylov = ASP_KRYLOV_OFF;
+        else if (!strcmp(value, "auto")) a->o.krylov = ASP_KRYLOV_AUTO;
+        else if (!strcmp(value, "on")) a->o.krylov = ASP_KRYLOV_ON;
+        else return bad(key, value, "off, auto or on");
+    } else if (!strcmp(key, "krylov-max")) {
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 1000)
+            return bad(key, value, "an integer in [1, 1000]");
+        a->o.krylov_max = (int)l;
     } else if (!strcmp(key, "threads")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 256)
@@ -102,7 +130,7 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         a->out = strdup(value);
         if (!a->out) return stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
     } else {
-        return STC_EUNSUPPORTED;
+        return cli_shear_opt(&a->sh, key, value);
     }
     return STC_OK;
 }
@@ -176,6 +204,7 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
     cj_int(j, "increments", r->pt.increments);
     cj_int(j, "newton_iterations", r->pt.newton_iterations);
     cj_int(j, "factorizations", r->pt.factorizations);
+    cj_int(j, "krylov_iterations", r->pt.krylov_iterations);
     cj_int(j, "assemblies", r->pt.assemblies);
     cj_int(j, "active_set_passes", r->pt.active_set_passes);
     cj_num(j, "wall_s", r->pt.wall_s);
@@ -305,9 +334,13 @@ int cli_asperity(const cli_cmd *cmd, int argc, char **argv)
     int done;
     stc_params_default(&p);
     asp_options_default(&a.o);
+    cli_shear_args_default(&a.sh);
     int rc = cli_parse(cmd->name, usage, argc, argv, opts, &p, set_opt, &a, &done);
     if (rc == CLI_EXIT_OK && !done) {
-        if (!a.delta) {
+        if (a.sh.on) {
+            rc = cli_asperity_shear(cmd->name, &p, &a.o, &a.sh, a.delta, a.ndelta, a.in_mm,
+                                    a.json, a.out);
+        } else if (!a.delta) {
             fprintf(stderr, "stiction %s: --delta or --delta-mm is required\n", cmd->name);
             rc = CLI_EXIT_USAGE;
         } else {

@@ -1,0 +1,686 @@
+/* Tangential step of the asperity solver (issue 4): after the normal step
+ * the flat is held at δ and moved along +x by ux until the asperity slides.
+ * Design and its numbers: docs/tangential-step.md.
+ *
+ *   - contact nodes keep u_z prescribed (no separation, thesis §3.2.3.3);
+ *     their tangential DOFs are free and carry the shear-limited stick law
+ *     of Wu, Shi & Polycarpou (2012) as a penalty return map (friction.c),
+ *     assembled into each node's own 2x2 diagonal block of the fixed CSC
+ *     pattern, so CHOLMOD's analysis and the SPD LLᵀ stay valid;
+ *   - tributary areas from the sub-element contact radius of the normal step
+ *     (surfarea.c), so full slip carries exactly τc × contact area;
+ *   - ux is ramped by the inception detector / controller of slide.c, with
+ *     cut-back (halving) on a failed increment;
+ *   - load control (asp_solver_load_to_P) drives asp_find_delta with a
+ *     checkpoint of the largest δ whose load is below the target.
+ */
+#include <hdf5.h>
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+
+#include "solver_impl.h"
+#include "stc_check.h"
+#include "stiction/formulas.h"
+
+/* Kept field snapshots: Q = 0, candidates for 0.8 Q_max (three in a window
+ * of the full-slip estimate, and the last three points: the stiffness
+ * criterion may stop below that window), and Q_max. */
+enum { SNAP_Q0 = 0, SNAP_C0 = 1, SNAP_NC = 3, SNAP_QMAX = 4, SNAP_R0 = 5, SNAP_NR = 3,
+       ASP_SHEAR_NSNAP = 8 };
+
+/* Candidate window for the 0.8 Q_max snapshot, as a fraction of the
+ * full-slip estimate τc A (A: the current contact area). */
+#define SNAP_LO 0.6
+#define SNAP_HI 0.95
+
+typedef struct asp_shear_snap {
+    int kept;
+    double Q, P, delta, ux;
+    double *u, *sig;     /* [ndof], [nelem][nqp][6] */
+    asp_qp_state *st;    /* [nelem][nqp] */
+} asp_shear_snap;
+
+void asp_shear_options_default(asp_shear_options *o)
+{
+    o->criterion = ASP_SHEAR_CRIT_SHEAR;
+    o->alpha = 0.1; /* Brizmer, Kligerman & Etsion 2007 */
+    o->tau_c = 0.0;
+    o->kappa = ASP_FRIC_KAPPA_DEFAULT;
+    o->max_increments = 200;
+    o->keep_fields = 0;
+}
+
+/* ---- the stick-law springs (called from assemble) ------------------------ */
+
+/* The first assembly of an increment (fric_frozen) keeps the nodes that
+ * stuck at the converged state stuck (linear springs, no cap): otherwise
+ * the jump of the flat, seen from the unmoved body, puts every node past
+ * τc at once (k_t Δux >> τc already for Δux ~ 1e-3 ux_e), the tangent
+ * loses all its tangential stiffness and Newton oscillates between the
+ * two fully slipping states (measured: 30 iterations, no convergence, at
+ * Δux = 0.05 ux_e).  The stuck first iteration is the elastic (tangent)
+ * predictor of the increment; the return map takes over from the next
+ * assembly on, the usual treatment of frictional increments (Wriggers,
+ * Computational Contact Mechanics, 2006, §10.3: state of the last
+ * converged step in the first iteration). */
+void asp_shear_assemble(asp_solver *s, int want_K)
+{
+    double *Kx = s->K->x;
+    asp_fric_law stuck = s->fric;
+    stuck.tau_c = HUGE_VAL;
+    int frozen = s->fric_frozen;
+    s->fric_frozen = 0;
+    for (int k = 0; k < s->ncand; k++) {
+        double *f = s->cfric + 2 * k;
+        f[0] = f[1] = 0.0;
+        s->cfst[k] = s->cs[k];
+        if (s->cs[k] == ASP_CS_OPEN || !(s->carea[k] > 0.0)) continue;
+        int n = s->cand[k];
+        double g[2] = {s->u[3 * n] - s->ux, s->u[3 * n + 1]}, Kc[4];
+        const asp_fric_law *law = frozen && s->cs[k] == ASP_CS_STICK ? &stuck : &s->fric;
+        s->cfst[k] = (unsigned char)asp_fric_update(law, s->carea[k], g, s->cstick + 2 * k,
+                                                    s->cslip_new + 2 * k, f, Kc, NULL);
+        /* the node feels -f: residual fint + f = 0 */
+        s->fint[3 * n] += f[0];
+        s->fint[3 * n + 1] += f[1];
+        if (!want_K) continue;
+        Kx[s->cpos[3 * k]] += Kc[0];
+        Kx[s->cpos[3 * k + 1]] += Kc[1];
+        Kx[s->cpos[3 * k + 2]] += Kc[3];
+    }
+}
+
+static void snap_free(asp_shear_snap *p)
+{
+    free(p->u), free(p->sig), free(p->st);
+    memset(p, 0, sizeof *p);
+}
+
+void asp_shear_release(asp_solver *s)
+{
+    free(s->carea), free(s->carea_full), free(s->cslip_new), free(s->cfric), free(s->cfst);
+    free(s->cpos), free(s->cnew);
+    s->cnew = NULL;
+    s->carea = s->carea_full = s->cslip_new = s->cfric = NULL;
+    s->cfst = NULL, s->cpos = NULL;
+    if (s->snap)
+        for (int i = 0; i < ASP_SHEAR_NSNAP; i++) snap_free(&s->snap[i]);
+    free(s->snap);
+    s->snap = NULL;
+}
+
+/* ---- set-up ------------------------------------------------------------ */
+
+static int cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+/* Position of the upper-triangle entry (i, j), i <= j, in K->x. */
+static int kpos(const cholmod_sparse *K, int i, int j)
+{
+    const int *Kp = K->p, *Ki = K->i;
+    const int *f = bsearch(&i, Ki + Kp[j], (size_t)(Kp[j + 1] - Kp[j]), sizeof *Ki, cmp_int);
+    return f ? (int)(f - Ki) : -1;
+}
+
+static stc_status alloc_shear(asp_solver *s)
+{
+    size_t n = (size_t)s->ncand;
+    if (!s->carea) {
+        s->carea = calloc(n, sizeof *s->carea), s->carea_full = calloc(n, sizeof *s->carea);
+        s->cslip_new = calloc(2 * n, sizeof *s->carea), s->cfric = calloc(2 * n, sizeof *s->carea);
+        s->cfst = calloc(n, 1), s->cpos = calloc(3 * n, sizeof *s->cpos);
+        s->cnew = calloc(n, 1);
+        s->snap = calloc(ASP_SHEAR_NSNAP, sizeof *s->snap);
+    }
+    STC_CHECK(s->carea && s->carea_full && s->cslip_new && s->cfric && s->cfst && s->cpos &&
+                  s->cnew && s->snap,
+              STC_ENOMEM, "shear: out of memory");
+    for (int k = 0; k < s->ncand; k++) {
+        int n3 = 3 * s->cand[k];
+        s->cpos[3 * k] = kpos(s->K, n3, n3);
+        s->cpos[3 * k + 1] = kpos(s->K, n3, n3 + 1);
+        s->cpos[3 * k + 2] = kpos(s->K, n3 + 1, n3 + 1);
+        STC_CHECK(s->cpos[3 * k] >= 0 && s->cpos[3 * k + 1] >= 0 && s->cpos[3 * k + 2] >= 0,
+                  STC_ESOLVER, "shear: node %d's 2x2 block is not in the pattern", s->cand[k]);
+    }
+    return STC_OK;
+}
+
+/* Tributary areas (docs/tangential-step.md §3): contact nodes get the part
+ * of their hat function on the contact disc of radius a (the sub-element
+ * radius of the normal step), so Σ A_k is the cap area and not a
+ * ring-quantised node count; the disc area on still-open nodes goes to the
+ * edge ring of the contact (nodes only partly on the disc), scaled up.
+ * Open nodes that touch later: see new_node_areas. */
+static stc_status node_areas(asp_solver *s, double a)
+{
+    int nn = s->mesh->nnode;
+    double *Ad = malloc((size_t)nn * sizeof *Ad), *Af = malloc((size_t)nn * sizeof *Af);
+    stc_status st = STC_OK;
+    STC_CHECK_GOTO(Ad && Af, st, done, STC_ENOMEM, "shear: out of memory");
+    STC_CALL_GOTO(asp_surface_node_areas_disc(s->mesh, s->Rp, a, Ad), st, done);
+    STC_CALL_GOTO(asp_surface_node_areas(s->mesh, s->Rp, Af), st, done);
+    double lost = 0.0, edge = 0.0, all = 0.0;
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        s->carea_full[k] = Af[n];
+        s->cnew[k] = s->cs[k] == ASP_CS_OPEN;
+        if (s->cs[k] == ASP_CS_OPEN) {
+            lost += Ad[n];
+            s->carea[k] = 0.0; /* until it touches: new_node_areas */
+            continue;
+        }
+        s->carea[k] = Ad[n];
+        all += Ad[n];
+        if (Ad[n] < 0.999 * Af[n]) edge += Ad[n];
+    }
+    STC_CHECK_GOTO(all > 0.0, st, done, STC_EINVAL,
+                   "shear: contact radius a = %g mm covers no contact node", a);
+    /* no partly covered node: spread over the whole contact instead */
+    int whole = !(edge > 0.0);
+    double base = whole ? all : edge, scale = (base + lost) / base;
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        if (s->cs[k] != ASP_CS_OPEN && (whole || Ad[n] < 0.999 * Af[n])) s->carea[k] *= scale;
+    }
+done:
+    free(Ad), free(Af);
+    return st;
+}
+
+/* τc: the option, or Y/√3 of the contacting layer (von Mises shear yield;
+ * WSP 2012, thesis §3.1.2).  Also returns that layer's material. */
+static double tau_c_default(const asp_solver *s, double tau_opt, stc_material *layer)
+{
+    stc_material su, co;
+    stc_params_materials(&s->par, &su, &co);
+    *layer = s->par.t_over_R > 0.0 ? co : su;
+    return tau_opt > 0.0 ? tau_opt : layer->Y / sqrt(3.0);
+}
+
+/* Start the stick law with the force the normal step left at each contact
+ * node: after a stick step the tangential reaction r (= fint on the frozen
+ * DOFs) becomes the spring force, s = g + r/(A k_t); after a slip step the
+ * traction is zero, s = g (docs/tangential-step.md §3). */
+static void initial_slip(asp_solver *s)
+{
+    const asp_mesh *m = s->mesh;
+    int stick = s->opt.contact == ASP_CONTACT_STICK;
+    for (int k = 0; k < s->ncand; k++) {
+        if (s->cs[k] == ASP_CS_OPEN) continue;
+        int n = s->cand[k], sym = !!(m->flags[n] & ASP_NODE_SYM);
+        double ka = s->carea[k] * s->fric.kt;
+        for (int c = 0; c < 2; c++) {
+            double r = stick && ka > 0.0 && !(c == 1 && sym) ? s->fint[3 * n + c] / ka : 0.0;
+            s->cstick[2 * k + c] = s->u_conv[3 * n + c] + r;
+        }
+        s->cs[k] = ASP_CS_STICK;
+    }
+}
+
+/* ---- one ramp point ---------------------------------------------------- */
+
+/* Area of a node that touched during the ramp: the area over which the mean
+ * contact pressure of the normal step, p_m = P0 / A0, carries the node's
+ * normal force, capped at its full tributary area.  A node one element
+ * outside the contact edge that the tilting body presses into the flat
+ * carries a small force, and its full area (h², a whole ring segment)
+ * would add a contact strip an element wide: measured at mesh level 0,
+ * δ = 0.3 ωc, one such node ring raised τc A, i.e. the full-slip plateau,
+ * by 6.8 % although the contact edge had moved by a fraction of h.  The
+ * area is updated after each accepted increment (explicitly: within an
+ * increment it is fixed, so the Newton tangent stays consistent). */
+static void new_node_areas(asp_solver *s, double p_m)
+{
+    for (int k = 0; k < s->ncand; k++) {
+        if (!s->cnew[k] || s->cs[k] == ASP_CS_OPEN) continue;
+        double Fz = -s->fint[3 * s->cand[k] + 2];
+        s->carea[k] = fmin(s->carea_full[k], fmax(Fz, 0.0) / p_m);
+    }
+}
+
+static void commit_shear(asp_solver *s)
+{
+    size_t nq = (size_t)s->mesh->nelem * s->nqp;
+    for (int i = 0; i < s->ndof; i++) s->du_last[i] = s->u[i] - s->u_conv[i];
+    memcpy(s->u_conv, s->u, (size_t)s->ndof * sizeof *s->u);
+    memcpy(s->st_old, s->st_new, nq * sizeof *s->st_old);
+    for (int k = 0; k < s->ncand; k++) {
+        if (s->cs[k] == ASP_CS_OPEN || !(s->carea[k] > 0.0)) continue;
+        s->cstick[2 * k] = s->cslip_new[2 * k];
+        s->cstick[2 * k + 1] = s->cslip_new[2 * k + 1];
+        s->cs[k] = s->cfst[k];
+    }
+    s->ux_conv = s->ux;
+    asp_contact_results(s, &s->pt);
+}
+
+/* Q, P, areas at the committed state (half-model sums x 2). */
+static void measure(const asp_solver *s, asp_shear_point *pt)
+{
+    const asp_mesh *m = s->mesh;
+    double Q = 0.0, Qb = 0.0, A = 0.0, As = 0.0, xlo = INFINITY, xhi = -INFINITY;
+    int nc = 0;
+    for (int k = 0; k < s->ncand; k++) {
+        if (s->cs[k] == ASP_CS_OPEN) continue;
+        int n = s->cand[k];
+        nc++;
+        Q -= s->cfric[2 * k];
+        A += s->carea[k];
+        if (s->cs[k] == ASP_CS_STICK) As += s->carea[k];
+        if (m->x[3 * n + 1] == 0.0) {
+            double x = m->x[3 * n] + s->u_conv[3 * n];
+            xlo = fmin(xlo, x), xhi = fmax(xhi, x);
+        }
+    }
+    for (int n = 0; n < m->nnode; n++)
+        if (m->flags[n] & ASP_NODE_BASE) Qb -= s->fint[3 * n];
+    pt->ux = s->ux_conv;
+    pt->Q = 2.0 * Q;
+    pt->Q_base = 2.0 * Qb;
+    pt->P = s->pt.P;
+    pt->A = 2.0 * A;
+    pt->A_stick = 2.0 * As;
+    pt->slip_frac = A > 0.0 ? 1.0 - As / A : 0.0;
+    pt->n_contact = nc;
+    pt->x_lo = xlo, pt->x_hi = xhi;
+}
+
+/* ---- snapshots ------------------------------------------------------------ */
+
+static stc_status snap_take(asp_solver *s, asp_shear_snap *p, double Q)
+{
+    size_t nq = (size_t)s->mesh->nelem * s->nqp;
+    if (!p->u) {
+        p->u = malloc((size_t)s->ndof * sizeof *p->u);
+        p->sig = malloc(6 * nq * sizeof *p->sig);
+        p->st = malloc(nq * sizeof *p->st);
+    }
+    STC_CHECK(p->u && p->sig && p->st, STC_ENOMEM, "shear: out of memory for a field snapshot");
+    memcpy(p->u, s->u_conv, (size_t)s->ndof * sizeof *p->u);
+    memcpy(p->sig, s->sig, 6 * nq * sizeof *p->sig);
+    memcpy(p->st, s->st_old, nq * sizeof *p->st);
+    p->kept = 1, p->Q = Q, p->P = s->pt.P, p->delta = s->delta, p->ux = s->ux_conv;
+    return STC_OK;
+}
+
+/* Keep Q = 0, up to SNAP_NC candidates near 0.8 of the full-slip estimate
+ * (the one farthest from it is replaced), and the largest Q so far
+ * (stiffness criterion: the latest point, where the ramp stops). */
+static stc_status snap_update(asp_solver *s, const asp_shear_point *pt, double tau_c, int idx,
+                              int latest_is_max)
+{
+    asp_shear_snap *sn = s->snap;
+    if (idx == 0) return snap_take(s, &sn[SNAP_Q0], pt->Q);
+    if (latest_is_max || !sn[SNAP_QMAX].kept || pt->Q >= sn[SNAP_QMAX].Q)
+        STC_CALL(snap_take(s, &sn[SNAP_QMAX], pt->Q));
+    STC_CALL(snap_take(s, &sn[SNAP_R0 + idx % SNAP_NR], pt->Q));
+    double est = tau_c * pt->A, c = 0.8 * est;
+    if (!(pt->Q >= SNAP_LO * est && pt->Q <= SNAP_HI * est)) return STC_OK;
+    int worst = SNAP_C0;
+    for (int i = SNAP_C0; i < SNAP_C0 + SNAP_NC; i++) {
+        if (!sn[i].kept) return snap_take(s, &sn[i], pt->Q);
+        if (fabs(sn[i].Q - c) > fabs(sn[worst].Q - c)) worst = i;
+    }
+    if (fabs(pt->Q - c) < fabs(sn[worst].Q - c)) return snap_take(s, &sn[worst], pt->Q);
+    return STC_OK;
+}
+
+/* The ramp point of a field file as attributes of its HDF5 root group
+ * (beside the model parameters the writer stores). */
+static stc_status ramp_attrs(const asp_solver *s, const char *prefix, const asp_shear_snap *p,
+                             double Qmax)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s.h5", prefix);
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    STC_CHECK(f >= 0, STC_EIO, "fields: cannot reopen '%s'", path);
+    const char *name[5] = {"ux_mm", "Q_N", "Q_over_Q_max", "tau_c_MPa", "friction_kt_MPa_per_mm"};
+    double v[5] = {p->ux, p->Q, Qmax > 0.0 ? p->Q / Qmax : NAN, s->fric.tau_c, s->fric.kt};
+    int bad = 0;
+    for (int i = 0; i < 5; i++) {
+        hid_t sp = H5Screate(H5S_SCALAR);
+        hid_t a = H5Acreate2(f, name[i], H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
+        bad |= a < 0 || H5Awrite(a, H5T_NATIVE_DOUBLE, &v[i]) < 0;
+        if (a >= 0) H5Aclose(a);
+        H5Sclose(sp);
+    }
+    bad |= H5Fclose(f) < 0;
+    STC_CHECK(!bad, STC_EIO, "fields: cannot write the ramp attributes into '%s'", path);
+    return STC_OK;
+}
+
+stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *prefix,
+                                         double *Q_over_Qmax)
+{
+    STC_CHECK(which >= 0 && which <= 2, STC_EINVAL,
+              "which = %d: must be 0 (Q = 0), 1 (0.8 Qmax) or 2 (Qmax)", which);
+    STC_CHECK(s->snap && s->snap[SNAP_QMAX].kept, STC_EINVAL,
+              "shear fields: no ramp with keep_fields was run");
+    double Qmax = s->snap[SNAP_QMAX].Q;
+    asp_shear_snap *p = which == 0 ? &s->snap[SNAP_Q0] : &s->snap[SNAP_QMAX];
+    if (which == 1) {
+        p = NULL;
+        for (int i = SNAP_C0; i < ASP_SHEAR_NSNAP; i++)
+            if (i != SNAP_QMAX && s->snap[i].kept &&
+                (!p || fabs(s->snap[i].Q - 0.8 * Qmax) < fabs(p->Q - 0.8 * Qmax)))
+                p = &s->snap[i];
+        STC_CHECK(p, STC_EINVAL, "shear fields: no ramp point kept for 0.8 Q_max");
+    }
+    STC_CHECK(p->kept, STC_EINVAL, "shear fields: snapshot %d not kept", which);
+    if (Q_over_Qmax) *Q_over_Qmax = Qmax > 0.0 ? p->Q / Qmax : NAN;
+    /* the writer reads the converged state: lend it the snapshot */
+    double *u = s->u_conv, *sig = s->sig, P = s->pt.P, d = s->delta;
+    asp_qp_state *st = s->st_old;
+    s->u_conv = p->u, s->sig = p->sig, s->st_old = p->st, s->pt.P = p->P, s->delta = p->delta;
+    stc_status r = asp_solver_write_fields(s, prefix);
+    s->u_conv = u, s->sig = sig, s->st_old = st, s->pt.P = P, s->delta = d;
+    if (r == STC_OK) r = ramp_attrs(s, prefix, p, Qmax);
+    return r;
+}
+
+/* ---- the ramp ------------------------------------------------------------ */
+
+static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
+{
+    STC_CHECK(o->criterion == ASP_SHEAR_CRIT_SHEAR || o->criterion == ASP_SHEAR_CRIT_STIFFNESS,
+              STC_EINVAL, "criterion = %d: must be shear or stiffness", (int)o->criterion);
+    STC_CHECK(o->alpha > 0.0 && o->alpha < 1.0, STC_EINVAL,
+              "alpha = %g: stiffness ratio must be in (0, 1) (BKE: 0.1)", o->alpha);
+    STC_CHECK(o->tau_c >= 0.0 && isfinite(o->tau_c), STC_EINVAL,
+              "tau-c = %g MPa: must be > 0 (or 0 = Y/sqrt(3) of the contacting layer)", o->tau_c);
+    STC_CHECK(o->kappa > 0.0 && isfinite(o->kappa), STC_EINVAL,
+              "kappa = %g: penalty factor must be > 0 (default %g)", o->kappa,
+              ASP_FRIC_KAPPA_DEFAULT);
+    STC_CHECK(o->max_increments >= 3 && o->max_increments <= 100000, STC_EINVAL,
+              "max-increments = %d: must be in [3, 100000]", o->max_increments);
+    STC_CHECK(s->dim == 3, STC_EINVAL,
+              "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
+    STC_CHECK(!s->shear, STC_EINVAL, "shear: a ramp was already run on this solver");
+    STC_CHECK(s->delta > 0.0 && s->pt.n_contact > 0, STC_EINVAL,
+              "shear: delta = %g mm: load the flat (asp_solver_load) before the ramp", s->delta);
+    return STC_OK;
+}
+
+typedef struct ramp {
+    asp_shear_result *res;
+    unsigned char *cs0;
+    double *cst0;
+    asp_shear_point *pts; /* [cap] accepted points */
+    int npt, cap;
+    double p_m;           /* mean contact pressure after the normal step, MPa */
+} ramp;
+
+/* One increment to ux; on failure the converged state is restored. */
+static stc_status try_ux(asp_solver *s, ramp *r, double ux)
+{
+    memcpy(r->cs0, s->cs, (size_t)s->ncand);
+    memcpy(r->cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *r->cst0);
+    s->ux = ux;
+    s->fric_frozen = 1;
+    int passes = 0;
+    stc_status st = asp_solver_increment_here(s, &r->res->newton_iterations,
+                                              &r->res->factorizations, &passes);
+    s->pt.active_set_passes += passes;
+    if (st == STC_OK) return STC_OK;
+    memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
+    memcpy(s->cs, r->cs0, (size_t)s->ncand);
+    memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
+    s->ux = s->ux_conv;
+    s->k_fresh = 0;
+    return st;
+}
+
+/* Accept the increment: commit, measure, feed the detector and the caller. */
+static stc_status accept(asp_solver *s, const asp_shear_options *o, asp_slide *det,
+                         asp_shear_fn cb, void *ctx, ramp *r, int *stop)
+{
+    asp_shear_point pt;
+    int idx = r->npt;
+    commit_shear(s);
+    measure(s, &pt);
+    if (idx == 0) r->p_m = pt.P / pt.A;
+    new_node_areas(s, r->p_m); /* for the next increment */
+    if (r->npt == r->cap) {
+        int cap = r->cap ? 2 * r->cap : 64;
+        asp_shear_point *p = realloc(r->pts, (size_t)cap * sizeof *p);
+        STC_CHECK(p, STC_ENOMEM, "shear: out of memory");
+        r->pts = p, r->cap = cap;
+    }
+    r->pts[r->npt++] = pt;
+    if (det) asp_slide_push(det, pt.ux, pt.Q, pt.P, pt.slip_frac, pt.n_contact);
+    if (o->keep_fields)
+        STC_CALL(snap_update(s, &pt, s->fric.tau_c, idx,
+                             o->criterion == ASP_SHEAR_CRIT_STIFFNESS));
+    if (cb && cb(ctx, &pt)) *stop = 1;
+    return STC_OK;
+}
+
+static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shear_result *res,
+                             asp_slide **det)
+{
+    stc_material lay;
+    double tau_c = tau_c_default(s, o->tau_c, &lay);
+    res->tau_c = tau_c;
+    res->a0 = s->pt.a;
+    res->P0 = s->pt.P;
+    STC_CALL(alloc_shear(s));
+    STC_CALL(asp_fric_law_init(&s->fric, tau_c, lay.E, lay.nu, s->h, o->kappa));
+    STC_CALL(node_areas(s, s->pt.a));
+    initial_slip(s);
+    s->shear = 1;
+    s->opt.no_separation = 1; /* thesis §3.2.3.3: the contact stays closed */
+    s->ux = s->ux_conv = 0.0;
+    s->k_fresh = 0;
+    asp_slide_params sp;
+    asp_slide_params_default(&sp);
+    sp.criterion = o->criterion == ASP_SHEAR_CRIT_STIFFNESS ? ASP_SLIDE_STIFFNESS : ASP_SLIDE_SHEAR;
+    sp.alpha = o->alpha;
+    sp.max_increments = o->max_increments;
+    asp_slide_setup su = {lay.E / (2.0 * (1.0 + lay.nu)), lay.nu, s->pt.a, tau_c, s->pt.P};
+    return asp_slide_create(&sp, &su, det);
+}
+
+static void fill_result(const ramp *r, asp_slide *det, asp_shear_result *res)
+{
+    asp_slide_result sr;
+    asp_slide_get(det, &sr);
+    res->Q_max = sr.Q_max;
+    res->ux_slide = sr.ux;
+    res->P_slide = sr.P;
+    res->mu_s = sr.mu_s;
+    res->mu_s_preload = sr.mu_s_preload;
+    res->slip_frac = sr.slip_frac;
+    res->index = sr.index;
+    res->increments = sr.increments;
+    res->converged = sr.state == ASP_SLIDE_INCEPTION;
+    snprintf(res->reason, sizeof res->reason, "%s", sr.reason);
+    int i = sr.index >= 0 && sr.index < r->npt ? sr.index : r->npt - 1;
+    res->A_stick = i >= 0 ? r->pts[i].A_stick : NAN;
+}
+
+stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear_fn cb,
+                            void *ctx, asp_shear_result *res)
+{
+    asp_shear_options def;
+    if (!o) asp_shear_options_default(&def), o = &def;
+    memset(res, 0, sizeof *res);
+    res->criterion = o->criterion;
+    snprintf(res->reason, sizeof res->reason, "not started");
+    STC_CALL(check_shear(s, o));
+    double t0 = omp_get_wtime();
+    asp_slide *det = NULL;
+    ramp r = {res, malloc((size_t)s->ncand), malloc((size_t)s->ncand * 2 * sizeof(double)),
+              NULL, 0, 0, 0.0};
+    stc_status st = STC_OK;
+    int stop = 0;
+    STC_CHECK_GOTO(r.cs0 && r.cst0, st, done, STC_ENOMEM, "shear: out of memory");
+    STC_CALL_GOTO(setup_ramp(s, o, res, &det), st, done);
+    /* ux = 0: release the tangential constraints of a stick step, clip the
+     * nodes whose reaction exceeds τc A, re-equilibrate */
+    STC_CALL_GOTO(try_ux(s, &r, 0.0), st, done);
+    STC_CALL_GOTO(accept(s, o, det, cb, ctx, &r, &stop), st, done);
+    int cuts = 0;
+    double du = asp_slide_next(det);
+    while (du > 0.0 && !stop) {
+        stc_status t = try_ux(s, &r, s->ux_conv + du);
+        if (t == STC_OK) {
+            STC_CALL_GOTO(accept(s, o, det, cb, ctx, &r, &stop), st, done);
+            du = asp_slide_next(det);
+            cuts = 0;
+            continue;
+        }
+        res->cutbacks++;
+        if (++cuts > s->opt.max_cutbacks) {
+            char why[512];
+            snprintf(why, sizeof why, "%s", stc_errmsg());
+            st = STC_FAIL(STC_ENOCONV, "shear: cut-back limit (%d halvings) reached at ux = %g "
+                                       "mm: %s", s->opt.max_cutbacks, s->ux_conv, why);
+            goto done;
+        }
+        du *= 0.5;
+    }
+    fill_result(&r, det, res);
+    if (stop)
+        st = STC_FAIL(STC_ENOCONV, "shear: stopped by the caller at ux = %g mm", s->ux_conv);
+    else if (!res->converged)
+        st = STC_FAIL(STC_ENOCONV, "shear: %s", res->reason);
+done:
+    if (st != STC_OK) { /* what was reached stays in res; the reason says why */
+        if (det && r.npt > 0 && !res->increments) fill_result(&r, det, res);
+        res->converged = 0;
+        snprintf(res->reason, sizeof res->reason, "%s", stc_errmsg());
+    }
+    res->wall_s = omp_get_wtime() - t0;
+    asp_slide_destroy(&det);
+    free(r.cs0), free(r.cst0), free(r.pts);
+    return st;
+}
+
+/* ---- load control ---------------------------------------------------------- */
+
+/* A copy of the converged normal-step state (the solver loads forward only). */
+typedef struct ckpt {
+    int valid;
+    double delta, dlast, step;
+    asp_point pt;
+    asp_ytrack yt[2];
+    int nh;
+    double *u, *du, *cst;
+    asp_qp_state *st;
+    unsigned char *cs;
+} ckpt;
+
+static stc_status ck_save(asp_solver *s, ckpt *c)
+{
+    size_t nq = (size_t)s->mesh->nelem * s->nqp, nd = (size_t)s->ndof, nc = (size_t)s->ncand;
+    if (!c->u) {
+        c->u = malloc(nd * sizeof *c->u), c->du = malloc(nd * sizeof *c->u);
+        c->cst = malloc(2 * nc * sizeof *c->u), c->st = malloc(nq * sizeof *c->st);
+        c->cs = malloc(nc);
+    }
+    STC_CHECK(c->u && c->du && c->cst && c->st && c->cs, STC_ENOMEM,
+              "load control: out of memory for a checkpoint");
+    memcpy(c->u, s->u_conv, nd * sizeof *c->u);
+    memcpy(c->du, s->du_last, nd * sizeof *c->u);
+    memcpy(c->cst, s->cstick, 2 * nc * sizeof *c->u);
+    memcpy(c->st, s->st_old, nq * sizeof *c->st);
+    memcpy(c->cs, s->cs, nc);
+    c->delta = s->delta, c->dlast = s->dlast, c->step = s->step;
+    c->pt = s->pt, c->nh = s->nh;
+    memcpy(c->yt, s->yt, sizeof c->yt);
+    c->valid = 1;
+    return STC_OK;
+}
+
+/* Back to the checkpoint; the cumulative counters keep the work done since. */
+static void ck_restore(asp_solver *s, const ckpt *c)
+{
+    size_t nq = (size_t)s->mesh->nelem * s->nqp, nd = (size_t)s->ndof, nc = (size_t)s->ncand;
+    memcpy(s->u_conv, c->u, nd * sizeof *c->u);
+    memcpy(s->u, c->u, nd * sizeof *c->u);
+    memcpy(s->du_last, c->du, nd * sizeof *c->u);
+    memcpy(s->cstick, c->cst, 2 * nc * sizeof *c->u);
+    memcpy(s->st_old, c->st, nq * sizeof *c->st);
+    memcpy(s->cs, c->cs, nc);
+    asp_point keep = s->pt;
+    s->delta = c->delta, s->dlast = c->dlast, s->step = c->step;
+    s->pt = c->pt, s->nh = c->nh;
+    memcpy(s->yt, c->yt, sizeof s->yt);
+    s->pt.increments = keep.increments, s->pt.cutbacks = keep.cutbacks;
+    s->pt.newton_iterations = keep.newton_iterations;
+    s->pt.factorizations = keep.factorizations;
+    s->pt.active_set_passes = keep.active_set_passes, s->pt.wall_s = keep.wall_s;
+    s->k_fresh = 0;
+}
+
+static void ck_free(ckpt *c)
+{
+    free(c->u), free(c->du), free(c->cst), free(c->st), free(c->cs);
+    memset(c, 0, sizeof *c);
+}
+
+typedef struct lctx {
+    asp_solver *s;
+    ckpt lo;       /* largest δ evaluated with P below the target */
+    double target; /* N */
+    int backward;
+} lctx;
+
+/* Go to δ (restoring the checkpoint if δ is behind the solver), return P. */
+static stc_status load_at(lctx *c, double delta)
+{
+    asp_solver *s = c->s;
+    if (delta < s->delta) {
+        STC_CHECK(c->lo.valid && c->lo.delta <= delta, STC_ENOCONV,
+                  "load control: delta = %g mm is below the checkpoint (%g mm)", delta,
+                  c->lo.valid ? c->lo.delta : 0.0);
+        ck_restore(s, &c->lo);
+        c->backward++;
+    }
+    STC_CALL(asp_solver_load(s, delta, NULL));
+    if (s->pt.P < c->target && s->delta > c->lo.delta) STC_CALL(ck_save(s, &c->lo));
+    return STC_OK;
+}
+
+static stc_status load_cb(void *ctx, double delta, double *P)
+{
+    lctx *c = ctx;
+    STC_CALL(load_at(c, delta));
+    *P = c->s->pt.P;
+    return STC_OK;
+}
+
+stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol, asp_point *out)
+{
+    STC_CHECK(P_target > 0.0 && isfinite(P_target), STC_EINVAL,
+              "load = %g N: target normal load must be > 0", P_target);
+    STC_CHECK(rel_tol > 0.0 && rel_tol < 0.1, STC_EINVAL,
+              "load tolerance = %g: must be in (0, 0.1)", rel_tol);
+    STC_CHECK(!s->shear, STC_EINVAL, "load control: not after a tangential ramp");
+    STC_CHECK(s->pt.P < P_target, STC_EINVAL,
+              "load = %g N: the solver is already at P = %g N (it loads forward only)",
+              P_target, s->pt.P);
+    stc_material su;
+    stc_params_materials(&s->par, &su, NULL);
+    lctx c = {s, {0}, P_target, 0};
+    asp_find_delta_opts fo;
+    asp_find_delta_opts_default(&fo);
+    fo.tol = rel_tol;
+    fo.delta_max = s->delta_max;
+    asp_find_delta_result fr;
+    stc_status st = ck_save(s, &c.lo);
+    double guess = fmin(asp_hertz_delta_guess(P_target, su.E, su.nu, s->Rp), s->delta_max);
+    if (st == STC_OK) st = asp_find_delta(load_cb, &c, P_target, guess, &fo, &fr);
+    /* the last evaluation need not be the answer's */
+    if (st == STC_OK && s->delta != fr.delta) st = load_at(&c, fr.delta);
+    ck_free(&c.lo);
+    if (out) *out = s->pt;
+    return st;
+}

@@ -1,0 +1,340 @@
+/* Tangential step of the asperity solver (issue 4), coarse versions of the
+ * acceptance checks; the full-size ones are tools/validate-shear.py.
+ *
+ * One shared run (group setup): the homogeneous Wu-Shi-Polycarpou sphere
+ * (E 74 GPa, ν 0.33, Y 325 MPa, R' 10.5 mm), slip normal step to
+ * ω = 0.5 ωc — still elastic, so Cattaneo-Mindlin applies — then the ramp
+ * with the shear criterion, 3D mesh level 0.  Checked on it: the initial
+ * tangential stiffness against Mindlin, the full-slip plateau against
+ * τc × contact area, μs against the WSP fit, and Q from the friction forces
+ * against Q from the base reactions at every point.  Then option errors
+ * and the CLI (errors, JSON keys, output files). */
+#include <limits.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include "cli_util.h"
+#include "stiction/asperity.h"
+#include "stiction/formulas.h"
+
+enum { MAXPT = 256 };
+
+typedef struct shared {
+    stc_params p;
+    stc_material m;
+    stc_critical c;
+    asp_point pt;               /* end of the normal step */
+    asp_shear_result res;
+    asp_shear_point pts[MAXPT]; /* the ramp */
+    int n;
+    stc_status st;
+} shared;
+
+static shared R;
+
+static void wsp_params(stc_params *p)
+{
+    stc_params_default(p);
+    p->R = 10.5, p->E_su = 74000.0, p->nu = 0.33, p->Y_su = p->Y_co = 325.0;
+}
+
+/* Hertz δ for load P on a rigid flat (Johnson 1985 §4.2). */
+static double hertz_delta(double P, double E, double nu, double R)
+{
+    double Es = E / (1.0 - nu * nu);
+    return pow(3.0 * P / (4.0 * Es * sqrt(R)), 2.0 / 3.0);
+}
+
+static int keep(void *ctx, const asp_shear_point *pt)
+{
+    shared *r = ctx;
+    if (r->n < MAXPT) r->pts[r->n++] = *pt;
+    return 0;
+}
+
+static int run_shared(void **state)
+{
+    (void)state;
+    asp_options o;
+    asp_solver *s = NULL;
+    wsp_params(&R.p);
+    stc_params_materials(&R.p, &R.m, NULL);
+    if (stc_critical_eval(&R.m, R.p.R, &R.c) != STC_OK) return -1;
+    asp_options_default(&o);
+    o.geom = ASP_GEOM_3D, o.mesh_level = 0;
+    o.threads = 1; /* the test runner shares the machine */
+    double delta = 0.5 * R.c.omega_c;
+    if (asp_solver_create(&R.p, &o, delta, &s) != STC_OK) return -1;
+    if (asp_solver_load(s, delta, &R.pt) != STC_OK) return asp_solver_destroy(&s), -1;
+    R.st = asp_solver_shear(s, NULL, keep, &R, &R.res);
+    printf("# WSP 0.5 wc, level 0: %d ramp points, %d Newton iterations, %d factorizations, "
+           "%.1f s (%s)\n", R.n, R.res.newton_iterations, R.res.factorizations, R.res.wall_s,
+           R.res.reason);
+    asp_solver_destroy(&s);
+    return 0;
+}
+
+static void test_ramp_converged(void **state)
+{
+    (void)state;
+    assert_int_equal(R.st, STC_OK);
+    assert_true(R.res.converged);
+    assert_true(R.n >= 4 && R.n < MAXPT);
+    assert_true(R.pts[0].ux == 0.0 && fabs(R.pts[0].Q) < 1e-9 * R.res.Q_max);
+    assert_true(R.res.tau_c == R.m.Y / sqrt(3.0)); /* default: Y/√3 of the sphere */
+    assert_true(R.res.ux_slide > 0.0 && R.res.Q_max > 0.0);
+}
+
+/* Cattaneo-Mindlin: initial tangential stiffness of an elastic sphere on a
+ * rigid flat, K_T0 = 8 G a / (2 - ν) (Mindlin 1949; Johnson 1985 §7.2),
+ * with a from the FE normal step.  The first increment (5 % of the
+ * elastic slide distance) is fully stuck.  Measured: -3.2 % at level 0
+ * (-0.7 % for a/R = 0.0013 with E/Y = 1000): the penalty springs in series
+ * (≈ 8h/(πκ(2-ν)a) = 0.3 %), the compliance of the finite sphere above the
+ * fixed base (≈ 8a/((2-ν)πR) = 1.1 % here, a/R = 0.0072) and the coarse
+ * mesh (5.5 elements across a).  Tolerance 5 %. */
+static void test_mindlin_stiffness(void **state)
+{
+    (void)state;
+    double G = R.m.E / (2.0 * (1.0 + R.m.nu));
+    double K0 = 8.0 * G * R.res.a0 / (2.0 - R.m.nu);
+    double K1 = R.pts[1].Q / R.pts[1].ux;
+    printf("# K_T1 / K_T0(Mindlin) - 1 = %+.2f %% (slip fraction %.3g)\n", 100 * (K1 / K0 - 1),
+           R.pts[1].slip_frac);
+    assert_true(R.pts[1].slip_frac == 0.0);
+    assert_true(fabs(K1 / K0 - 1.0) < 0.05);
+}
+
+/* Full slip: every contact node at τc, so Q = τc × contact area; the areas
+ * are the disc-clipped tributary areas of the normal step's contact
+ * (Σ = π a0² to 3e-4) plus nodes that touch during the ramp.  Measured:
+ * last point Q / (τc A) - 1 = -0.04 % (the newest node areas are updated
+ * after the increment), Q_max / (τc π a0²) - 1 = +0.8 % (contact growth
+ * under shear). */
+static void test_full_slip_plateau(void **state)
+{
+    (void)state;
+    const asp_shear_point *l = &R.pts[R.n - 1];
+    double tc = R.res.tau_c;
+    printf("# full slip: Q/(tau_c A) - 1 = %+.3f %%, Q_max/(tau_c pi a0^2) - 1 = %+.2f %%\n",
+           100 * (l->Q / (tc * l->A) - 1), 100 * (R.res.Q_max / (tc * M_PI * R.res.a0 * R.res.a0) - 1));
+    assert_true(l->slip_frac >= 0.999);
+    assert_true(fabs(l->Q / (tc * l->A) - 1.0) < 5e-3);
+    assert_true(fabs(R.res.Q_max / (tc * M_PI * R.res.a0 * R.res.a0) - 1.0) < 0.03);
+    /* the plateau is flat: the last increment changed Q by < 1 % */
+    assert_true(fabs(l->Q - R.pts[R.n - 2].Q) < 0.01 * R.res.Q_max);
+}
+
+/* μs = Q_max / P against the WSP fit (issue 4 acceptance 1: 5 %).
+ * Measured at level 0: +1.35 %. */
+static void test_wsp_mu(void **state)
+{
+    (void)state;
+    double fit = stc_wsp_mu(0.5, NULL);
+    printf("# mu_s = %.4f, WSP fit %.4f: %+.2f %%; mu_s(preload) %.4f\n", R.res.mu_s, fit,
+           100 * (R.res.mu_s / fit - 1), R.res.mu_s_preload);
+    assert_true(fabs(R.res.mu_s / fit - 1.0) < 0.05);
+    assert_true(fabs(R.res.mu_s - R.res.Q_max / R.res.P_slide) < 1e-12);
+    assert_true(fabs(R.res.mu_s_preload - R.res.Q_max / R.pt.P) < 1e-12);
+    assert_true(fabs(R.res.P0 / R.pt.P - 1.0) < 1e-12);
+}
+
+/* Q from the friction forces = -2 Σ base reactions_x (global equilibrium in
+ * x of the half model) at every ramp point. */
+static void test_equilibrium(void **state)
+{
+    (void)state;
+    double worst = 0.0;
+    for (int i = 1; i < R.n; i++)
+        worst = fmax(worst, fabs(R.pts[i].Q - R.pts[i].Q_base) / R.res.Q_max);
+    printf("# max |Q - Q_base| / Q_max = %.2e\n", worst);
+    assert_true(worst < 1e-6);
+}
+
+/* ---- errors ------------------------------------------------------------- */
+
+static void test_errors(void **state)
+{
+    (void)state;
+    stc_params p;
+    asp_options o;
+    asp_shear_options so;
+    asp_shear_result r;
+    asp_solver *s = NULL;
+    wsp_params(&p);
+    asp_options_default(&o);
+    o.mesh_level = 0, o.threads = 1;
+    /* axisymmetric: refused, naming the geometry */
+    assert_int_equal(asp_solver_create(&p, &o, 1e-3, &s), STC_OK);
+    assert_int_equal(asp_solver_shear(s, NULL, NULL, NULL, &r), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "3D"));
+    assert_int_equal(r.converged, 0);
+    asp_solver_destroy(&s);
+    /* 3D, bad options name the parameter; not loaded yet */
+    o.geom = ASP_GEOM_3D;
+    assert_int_equal(asp_solver_create(&p, &o, 1e-3, &s), STC_OK);
+    asp_shear_options_default(&so);
+    so.alpha = 1.5;
+    assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "alpha = 1.5"));
+    asp_shear_options_default(&so);
+    so.tau_c = -2.0;
+    assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "tau-c = -2"));
+    asp_shear_options_default(&so);
+    assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "before the ramp"));
+    asp_solver_destroy(&s);
+}
+
+/* ---- load control ---------------------------------------------------------- */
+
+/* asp_solver_load_to_P on the (cheap) axisymmetric model: an elastic Hertz
+ * target and one well past yield (P = 20 Pc, slip), each reached within the
+ * tolerance; the plastic P(δ) lies below Hertz, so δ exceeds the Hertz δ. */
+static void test_load_control(void **state)
+{
+    (void)state;
+    stc_params p;
+    stc_material m;
+    stc_critical c;
+    asp_options o;
+    asp_point pt;
+    wsp_params(&p);
+    stc_params_materials(&p, &m, NULL);
+    assert_int_equal(stc_critical_eval(&m, p.R, &c), STC_OK);
+    asp_options_default(&o);
+    o.mesh_level = 0, o.threads = 1;
+    const double X[2] = {0.5, 20.0};
+    for (int i = 0; i < 2; i++) {
+        asp_solver *s = NULL;
+        double P = X[i] * c.P_c, dh = hertz_delta(P, m.E, m.nu, p.R);
+        assert_int_equal(asp_solver_create(&p, &o, fmin(2.0 * dh, 0.01 * p.R), &s), STC_OK);
+        stc_status st = asp_solver_load_to_P(s, P, 1e-3, &pt);
+        if (st) fail_msg("load control to %g Pc: %s", X[i], stc_errmsg());
+        printf("# load control P = %g Pc: P/target - 1 = %+.2e, delta/delta_Hertz = %.4f, "
+               "%d increments\n", X[i], pt.P / P - 1, pt.delta / dh, pt.increments);
+        assert_true(fabs(pt.P / P - 1.0) <= 1e-3);
+        assert_true(i == 0 ? fabs(pt.delta / dh - 1.0) < 0.02 : pt.delta > dh);
+        /* forward only: a second target below the current load is refused */
+        assert_int_equal(asp_solver_load_to_P(s, 0.5 * P, 1e-3, &pt), STC_EINVAL);
+        asp_solver_destroy(&s);
+    }
+}
+
+/* ---- CLI ------------------------------------------------------------------- */
+
+static char cli[PATH_MAX];
+
+static int cli_run(const char *args, char *buf, size_t n, int want_stderr)
+{
+    char cmd[PATH_MAX + 2048];
+    snprintf(cmd, sizeof cmd, "'%s' asperity %s %s", cli, args,
+             want_stderr ? "2>&1 >/dev/null" : "2>/dev/null");
+    FILE *f = popen(cmd, "r");
+    assert_non_null(f);
+    size_t got = fread(buf, 1, n - 1, f);
+    buf[got] = '\0';
+    int st = pclose(f);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}
+
+static void test_cli_errors(void **state)
+{
+    (void)state;
+    char buf[4096], dir[128];
+    assert_int_equal(cli_locate(cli, sizeof cli), 0);
+    snprintf(dir, sizeof dir, "/tmp/stiction-test-shear-%ld", (long)getpid());
+    struct {
+        const char *args, *msg;
+    } bad[] = {
+        {"--delta 0.5 --shear --model axisym", "model = 'axisym'"},
+        {"--delta 0.5 --criterion sideways", "criterion = 'sideways'"},
+        {"--delta 0.5 --tau-c -3", "tau-c = '-3'"},
+        {"--delta 0.5 --shear --alpha 2", "alpha = '2'"},
+        {"--delta 0.5,1 --shear", "one interference"},
+        {"--delta 0.5 --load 2", "--load conflicts"},
+        {"--load -1", "load = '-1'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char args[512];
+        snprintf(args, sizeof args, "%s --out %s", bad[i].args, dir);
+        int rc = cli_run(args, buf, sizeof buf, 1);
+        if (rc == 0 || !strstr(buf, bad[i].msg))
+            fail_msg("'%s': exit %d, stderr '%s' (expected '%s')", args, rc, buf, bad[i].msg);
+        struct stat sb;
+        assert_true(stat(dir, &sb) != 0); /* no output at all */
+    }
+}
+
+/* A short valid run: the stiffness criterion with α = 0.9 stops after a few
+ * increments; every JSON key of the issue is there and the files exist. */
+static void test_cli_json(void **state)
+{
+    (void)state;
+    static char buf[1 << 16];
+    char dir[128], args[512], path[256];
+    assert_int_equal(cli_locate(cli, sizeof cli), 0);
+    snprintf(dir, sizeof dir, "/tmp/stiction-test-shear-out-%ld", (long)getpid());
+    snprintf(args, sizeof args,
+             "--R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --Y-co 325 --delta 0.5 --mesh 0 "
+             "--threads 1 --criterion stiffness --alpha 0.9 --json --out %s", dir);
+    int rc = cli_run(args, buf, sizeof buf, 0);
+    if (rc != 0) fail_msg("exit %d: %s", rc, buf);
+    assert_json(buf);
+    const char *keys[] = {"\"Q_max_N\"", "\"Q_max_over_P_c\"", "\"mu_s\"", "\"mu_s_preload\"",
+                          "\"ux_at_slide_mm\"", "\"ux_at_slide_over_omega_c\"",
+                          "\"P_at_slide_N\"", "\"P_preload_N\"", "\"criterion\": \"stiffness\"",
+                          "\"tau_c_MPa\"", "\"stick_radius_mm\"", "\"shear_increments\"",
+                          "\"factorizations\"", "\"converged\": true", "\"reason\"",
+                          "\"delta_mm\"", "\"P_N\""};
+    for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
+        if (!strstr(buf, keys[i])) fail_msg("JSON lacks %s: %.2000s", keys[i], buf);
+    const char *files[] = {"shear.csv", "fields_Q0.h5", "fields_Q0.xmf", "fields_Q080.h5",
+                           "fields_Qmax.h5", "fields_Qmax.xmf"};
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+        if (access(path, R_OK) != 0) fail_msg("missing %s", path);
+    }
+    snprintf(path, sizeof path, "%s/shear.csv", dir);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[512];
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_string_equal(line, "ux_mm,ux_over_omega_c,Q_N,Q_over_P_c,P_N,A_mm2,stick_area_mm2,"
+                              "slip_fraction,n_contact\n");
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_true(!strncmp(line, "0,0,", 4)); /* first row: ux = 0 */
+    fclose(f);
+    char rm[300];
+    snprintf(rm, sizeof rm, "rm -rf '%s'", dir);
+    assert_int_equal(system(rm), 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest ramp[] = {
+        cmocka_unit_test(test_ramp_converged),
+        cmocka_unit_test(test_mindlin_stiffness),
+        cmocka_unit_test(test_full_slip_plateau),
+        cmocka_unit_test(test_wsp_mu),
+        cmocka_unit_test(test_equilibrium),
+    };
+    const struct CMUnitTest other[] = {
+        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_load_control),
+        cmocka_unit_test(test_cli_errors),
+        cmocka_unit_test(test_cli_json),
+    };
+    int f = cmocka_run_group_tests_name("shear ramp (WSP 0.5 wc, level 0)", ramp, run_shared, NULL);
+    return f + cmocka_run_group_tests_name("shear errors and CLI", other, NULL, NULL);
+}

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""make bench, combined loading (issue 4 item 4): work-precision of mu_s.
+
+bench-shear.py CLI [LEVELS]     (LEVELS default "0,1": 3D mesh levels)
+
+For the homogeneous WSP sphere at omega/omega_c = 3 and 12 and for one coated
+case (delta = 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step):
+mu_s, its error against the finest level run, wall time, DOFs, Newton
+iterations and factorizations of the whole run (normal step + ramp), ramp
+increments and peak resident memory (getrusage of the child).  Prints one
+table; the runs are independent processes, one at a time, so the times are
+those of one run on the machine as loaded.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
+       "--Y-su", "325", "--contact", "slip"]
+CASES = [
+    ("WSP omega = 3 omega_c", WSP + ["--delta", "3"]),
+    ("WSP omega = 12 omega_c", WSP + ["--delta", "12"]),
+    ("t/R .025 Eco/Esu 2 delta 10 stick",
+     ["--R", "10", "--E-su", "200000", "--E-over-Y", "1000", "--nu", "0.32",
+      "--t-over-R", "0.025", "--E-ratio", "2", "--contact", "stick", "--delta", "10"]),
+]
+
+
+def run(cli, args):
+    """(json, wall s, peak MB) of one CLI run, or (None, wall s, reason)."""
+    with tempfile.TemporaryFile("w+") as fo, tempfile.TemporaryFile("w+") as fe:
+        t0 = time.monotonic()
+        p = subprocess.Popen([cli, "asperity", "--shear", "--model", "3d", "--json"] + args,
+                             stdout=fo, stderr=fe, text=True)
+        _, status, ru = os.wait4(p.pid, 0)  # the child's own peak memory
+        wall = time.monotonic() - t0
+        p.returncode = os.waitstatus_to_exitcode(status)
+        fo.seek(0), fe.seek(0)
+        out, err = fo.read(), fe.read().strip()
+    if p.returncode != 0:
+        return None, wall, err.splitlines()[-1] if err else "exit %d" % p.returncode
+    j = json.loads(out)
+    return (j[-1] if isinstance(j, list) else j), wall, ru.ru_maxrss / 1024.0
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit("usage: bench-shear.py CLI [LEVELS]")
+    cli = sys.argv[1]
+    levels = [int(x) for x in (sys.argv[2] if len(sys.argv) > 2 else "0,1").split(",")]
+    print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
+    print("%-34s %5s %8s %9s %9s %8s %7s %7s %6s %8s" % (
+        "case", "level", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
+        "peak MB"))
+    for name, args in CASES:
+        rows = []
+        for lev in levels:
+            j, wall, extra = run(cli, args + ["--mesh", str(lev)])
+            rows.append((lev, j, wall, extra))
+        fin = next((j["mu_s"] for lev, j, w, e in reversed(rows) if j), None)
+        for lev, j, wall, extra in rows:
+            if j is None:
+                print("%-34s %5d   failed after %.1f s: %s" % (name, lev, wall, extra))
+                continue
+            err = 100 * (j["mu_s"] / fin - 1) if fin else math.nan
+            print("%-34s %5d %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f" % (
+                name, lev, j.get("dofs", -1), j["mu_s"], err, wall,
+                j.get("newton_iterations", "-"), j.get("factorizations", "-"),
+                j.get("shear_increments", "-"), extra))
+    print("(wall s: the whole process: mesh, normal step and ramp)")
+
+
+if __name__ == "__main__":
+    main()

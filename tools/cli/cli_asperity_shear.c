@@ -1,0 +1,292 @@
+/* stiction asperity --shear: normal step (to δ, or to a load with --load)
+ * then the tangential ramp to sliding inception (issue 4).  A thin layer
+ * over asp_solver_shear / asp_solver_load_to_P (include/stiction/asperity.h);
+ * the option table and parser live here, cli_asperity.c dispatches. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "stiction/asperity.h"
+#include "stiction/formulas.h"
+#include "tangential.h"
+
+static stc_status bad(const char *key, const char *value, const char *what)
+{
+    return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s", key, value, what);
+}
+
+void cli_shear_args_default(cli_shear_args *sa)
+{
+    memset(sa, 0, sizeof *sa);
+    asp_shear_options_default(&sa->so);
+}
+
+stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
+{
+    double v;
+    if (!strcmp(key, "shear")) {
+        int f;
+        stc_status s = cli_parse_flag(key, value, &f);
+        if (s) return s;
+        sa->on = f;
+    } else if (!strcmp(key, "criterion")) {
+        if (!strcmp(value, "shear")) sa->so.criterion = ASP_SHEAR_CRIT_SHEAR;
+        else if (!strcmp(value, "stiffness")) sa->so.criterion = ASP_SHEAR_CRIT_STIFFNESS;
+        else return bad(key, value, "shear or stiffness");
+        sa->on = 1;
+    } else if (!strcmp(key, "alpha")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
+            return bad(key, value, "a number in (0, 1) (stiffness ratio KT_i/KT_1; BKE: 0.1)");
+        sa->so.alpha = v;
+        sa->alpha_set = sa->on = 1;
+    } else if (!strcmp(key, "tau-c")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0) || !isfinite(v))
+            return bad(key, value, "a critical shear stress > 0 MPa");
+        sa->so.tau_c = v;
+        sa->on = 1;
+    } else if (!strcmp(key, "load")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v <= 1e4))
+            return bad(key, value, "P/Pc_su in (0, 1e4]");
+        sa->load = v;
+        sa->on = 1;
+    } else {
+        return STC_EUNSUPPORTED;
+    }
+    return STC_OK;
+}
+
+/* ---- the ramp's points, collected for the CSV -------------------------- */
+
+typedef struct {
+    asp_shear_point *p;
+    int n, cap;
+    int oom;
+} ptlist;
+
+static int collect(void *ctx, const asp_shear_point *pt)
+{
+    ptlist *l = ctx;
+    if (l->n == l->cap) {
+        int cap = l->cap ? 2 * l->cap : 64;
+        asp_shear_point *q = realloc(l->p, (size_t)cap * sizeof *q);
+        if (!q) return l->oom = 1; /* stops the ramp */
+        l->p = q, l->cap = cap;
+    }
+    l->p[l->n++] = *pt;
+    return 0;
+}
+
+static int write_csv(const char *dir, const ptlist *l, const stc_critical *c)
+{
+    char path[4096], tmp[4200];
+    snprintf(path, sizeof path, "%s/shear.csv", dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) return -1;
+    fprintf(f, "ux_mm,ux_over_omega_c,Q_N,Q_over_P_c,P_N,A_mm2,stick_area_mm2,slip_fraction,"
+               "n_contact\n");
+    for (int i = 0; i < l->n; i++) {
+        const asp_shear_point *p = &l->p[i];
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d\n", p->ux, p->ux / c->omega_c,
+                p->Q, p->Q / c->P_c, p->P, p->A, p->A_stick, p->slip_frac, p->n_contact);
+    }
+    if (fclose(f) != 0 || rename(tmp, path) != 0) return remove(tmp), -1;
+    return 0;
+}
+
+/* fields_Q0, fields_Q080 (the kept point nearest 0.8 Q_max: its Q/Q_max in
+ * *q08), fields_Qmax */
+static int write_fields(const char *cmd, asp_solver *sv, const char *dir, double *q08)
+{
+    static const char *name[3] = {"fields_Q0", "fields_Q080", "fields_Qmax"};
+    for (int w = 0; w < 3; w++) {
+        char prefix[4096];
+        snprintf(prefix, sizeof prefix, "%s/%s", dir, name[w]);
+        stc_status s = asp_solver_write_shear_fields(sv, w, prefix, w == 1 ? q08 : NULL);
+        if (s) {
+            fprintf(stderr, "stiction %s: %s: %s\n", cmd, name[w], stc_errmsg());
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* ---- output ------------------------------------------------------------ */
+
+static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_result *r,
+                       const stc_critical *c, const ptlist *l, stc_status st, double load,
+                       double q08)
+{
+    cli_json j;
+    cj_init(&j, stdout);
+    cj_obj(&j, NULL);
+    cj_num(&j, "delta_mm", pt->delta);
+    cj_num(&j, "delta_over_omega_c_su", pt->delta / c->omega_c);
+    if (load > 0.0) cj_num(&j, "load_P_over_P_c", load);
+    else cj_null(&j, "load_P_over_P_c");
+    cj_num(&j, "P_N", pt->P);
+    cj_num(&j, "P_over_P_c", pt->P / c->P_c);
+    cj_num(&j, "A_mm2", pt->A);
+    cj_num(&j, "A_over_A_c", pt->A / c->A_c);
+    cj_num(&j, "a_mm", pt->a);
+    cj_int(&j, "nodes_in_contact", pt->n_contact);
+    cj_num(&j, "vm_over_Y_substrate", pt->vm_over_Y[0]);
+    cj_num(&j, "vm_over_Y_coating", pt->vm_over_Y[1]);
+    cj_int(&j, "dofs", in->dofs);
+    cj_int(&j, "elements", in->elements);
+    cj_int(&j, "increments", pt->increments);
+    cj_int(&j, "newton_iterations", pt->newton_iterations + r->newton_iterations); /* both steps */
+    cj_num(&j, "wall_s", pt->wall_s);
+    int ok = st == STC_OK && r->converged;
+    /* a failed ramp gives its reason, never a number */
+    if (ok) {
+        cj_num(&j, "Q_max_N", r->Q_max);
+        cj_num(&j, "Q_max_over_P_c", r->Q_max / c->P_c);
+        cj_num(&j, "mu_s", r->mu_s);
+        cj_num(&j, "mu_s_preload", r->mu_s_preload);
+        cj_num(&j, "ux_at_slide_mm", r->ux_slide);
+        cj_num(&j, "ux_at_slide_over_omega_c", r->ux_slide / c->omega_c);
+        cj_num(&j, "P_at_slide_N", r->P_slide);
+        cj_num(&j, "stick_radius_mm", sqrt(r->A_stick / M_PI));
+        cj_num(&j, "slip_fraction_at_slide", r->slip_frac);
+    } else {
+        const char *k[] = {"Q_max_N", "Q_max_over_P_c", "mu_s", "mu_s_preload", "ux_at_slide_mm",
+                           "ux_at_slide_over_omega_c", "P_at_slide_N", "stick_radius_mm",
+                           "slip_fraction_at_slide"};
+        for (size_t i = 0; i < sizeof k / sizeof *k; i++) cj_null(&j, k[i]);
+    }
+    cj_num(&j, "P_preload_N", r->P0);
+    cj_str(&j, "criterion", r->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear");
+    cj_num(&j, "tau_c_MPa", r->tau_c);
+    cj_int(&j, "shear_increments", r->increments);
+    cj_int(&j, "shear_points", l->n);
+    cj_int(&j, "shear_cutbacks", r->cutbacks);
+    cj_int(&j, "shear_newton_iterations", r->newton_iterations);
+    cj_int(&j, "factorizations", pt->factorizations + r->factorizations);
+    cj_num(&j, "shear_wall_s", r->wall_s);
+    cj_num(&j, "fields_Q080_Q_over_Q_max", q08); /* null without --out */
+    cj_bool(&j, "converged", ok);
+    cj_str(&j, "reason", r->reason);
+    cj_end_obj(&j);
+    cj_done(&j);
+}
+
+static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_result *r,
+                       const stc_critical *c, const ptlist *l, stc_status st)
+{
+    printf("mesh: %d elements, %d DOFs (3D half model), h = %.3g mm at the contact\n",
+           in->elements, in->dofs, in->h_contact);
+    printf("normal step: delta/wc = %.5g, P = %.6g N (P/Pc = %.5g), a = %.5g mm, %d increments, "
+           "%.2f s\n\n", pt->delta / c->omega_c, pt->P, pt->P / c->P_c, pt->a, pt->increments,
+           pt->wall_s);
+    printf("%12s %10s %12s %9s %12s %8s %6s\n", "ux mm", "ux/wc", "Q N", "Q/Pc", "P N", "slip",
+           "nodes");
+    for (int i = 0; i < l->n; i++) {
+        const asp_shear_point *p = &l->p[i];
+        printf("%12.5g %10.5g %12.6g %9.5g %12.6g %8.4f %6d\n", p->ux, p->ux / c->omega_c, p->Q,
+               p->Q / c->P_c, p->P, p->slip_frac, p->n_contact);
+    }
+    printf("\ncriterion %s, tau_c = %.5g MPa: %s\n",
+           r->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear", r->tau_c,
+           r->reason);
+    if (st == STC_OK && r->converged)
+        printf("Q_max = %.6g N (Q/Pc = %.5g) at ux = %.5g mm: mu_s = %.5g (P at slide %.6g N), "
+               "mu_s(preload) = %.5g; %d increments, %d factorizations, %.2f s\n",
+               r->Q_max, r->Q_max / c->P_c, r->ux_slide, r->mu_s, r->P_slide, r->mu_s_preload,
+               r->increments, r->factorizations, r->wall_s);
+    else printf("NOT CONVERGED: no static friction coefficient\n");
+}
+
+/* ---- run ----------------------------------------------------------------- */
+
+static int check_args(const char *cmd, const stc_params *p, asp_options *o,
+                      const cli_shear_args *sa, int ndelta, double delta_mm)
+{
+    if (o->geom == ASP_GEOM_AXISYM) {
+        fprintf(stderr, "stiction %s: model = 'axisym': the tangential step (--shear, "
+                        "--criterion, --tau-c, --load) needs --model 3d (or auto)\n", cmd);
+        return CLI_EXIT_USAGE;
+    }
+    o->geom = ASP_GEOM_3D;
+    if (sa->alpha_set && sa->so.criterion != ASP_SHEAR_CRIT_STIFFNESS) {
+        fprintf(stderr, "stiction %s: alpha = %g: only used by --criterion stiffness\n", cmd,
+                sa->so.alpha);
+        return CLI_EXIT_USAGE;
+    }
+    if (sa->load > 0.0 && ndelta > 0) {
+        fprintf(stderr, "stiction %s: --load conflicts with --delta/--delta-mm: give one\n", cmd);
+        return CLI_EXIT_USAGE;
+    }
+    if (sa->load <= 0.0 && ndelta != 1) {
+        fprintf(stderr, "stiction %s: delta: --shear needs one interference (--delta X or "
+                        "--delta-mm X) or --load X, got %d values\n", cmd, ndelta);
+        return CLI_EXIT_USAGE;
+    }
+    if (delta_mm > 0.01 * p->R) {
+        fprintf(stderr, "stiction %s: delta = %g mm: must be <= 0.01 R = %g mm (small strain)\n",
+                cmd, delta_mm, 0.01 * p->R);
+        return CLI_EXIT_USAGE;
+    }
+    return CLI_EXIT_OK;
+}
+
+int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
+                       const cli_shear_args *sa, const double *delta, int ndelta, int in_mm,
+                       int json, const char *out)
+{
+    stc_material su;
+    stc_critical c;
+    stc_params_materials(p, &su, NULL);
+    stc_status s = stc_params_validate(p);
+    if (!s) s = stc_critical_eval(&su, p->R, &c);
+    if (s) return cli_fail(cmd, s);
+    double dmm = ndelta > 0 ? delta[0] * (in_mm ? 1.0 : c.omega_c) : 0.0;
+    int rc = check_args(cmd, p, o, sa, ndelta, dmm);
+    if (rc) return rc;
+    double Pt = sa->load * c.P_c, dmax = dmm;
+    if (sa->load > 0.0) {
+        /* elastic-plastic P(δ) lies below Hertz, so δ(P) above its guess:
+         * mesh for twice the guess (capped at the small-strain limit) */
+        dmax = fmin(2.0 * asp_hertz_delta_guess(Pt, su.E, su.nu, p->R), 0.01 * p->R);
+    }
+    if (out && mkdir(out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "stiction %s: out = '%s': cannot create directory\n", cmd, out);
+        return CLI_EXIT_FAIL;
+    }
+    asp_solver *sv;
+    if ((s = asp_solver_create(p, o, dmax, &sv))) return cli_fail(cmd, s);
+    asp_info in;
+    asp_solver_info(sv, &in);
+    asp_point pt;
+    s = sa->load > 0.0 ? asp_solver_load_to_P(sv, Pt, 1e-3, &pt) : asp_solver_load(sv, dmm, &pt);
+    if (s) {
+        rc = cli_fail(cmd, s);
+        asp_solver_destroy(&sv);
+        return rc;
+    }
+    asp_shear_options so = sa->so;
+    so.keep_fields = out != NULL;
+    asp_shear_result r;
+    ptlist l = {0};
+    stc_status st = asp_solver_shear(sv, &so, collect, &l, &r);
+    if (l.oom) fprintf(stderr, "stiction %s: out of memory for the ramp points\n", cmd);
+    int ok = st == STC_OK && r.converged;
+    double q08 = NAN;
+    rc = CLI_EXIT_OK;
+    if (ok && out && write_fields(cmd, sv, out, &q08) != 0) rc = CLI_EXIT_FAIL;
+    if (json) print_json(&pt, &in, &r, &c, &l, st, sa->load, q08);
+    else print_text(&pt, &in, &r, &c, &l, st);
+    if (!ok) {
+        fprintf(stderr, "stiction %s: %s\n", cmd, r.reason);
+        rc = CLI_EXIT_FAIL;
+    } else if (out && (rc != CLI_EXIT_OK || write_csv(out, &l, &c) != 0)) {
+        fprintf(stderr, "stiction %s: cannot write the results into '%s'\n", cmd, out);
+        rc = CLI_EXIT_FAIL;
+    }
+    free(l.p);
+    asp_solver_destroy(&sv);
+    return rc;
+}
