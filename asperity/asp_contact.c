@@ -241,7 +241,13 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
  * through the same points agreed to 0.5 % across the three levels.  So the
  * converged load is estimated by a local linear regression (LOESS,
  * tricube weights; Cleveland, J. Am. Stat. Assoc. 74 (1979) 829) of ln P
- * on ln δ over all converged increments within a factor ASP_SMOOTH_W of δ. */
+ * on ln δ over all converged increments within a factor ASP_SMOOTH_W of δ,
+ * each weighted by its share of the ln δ axis (dx_weight).  Measured on the
+ * axisymmetric curve 1:60:12 ωc against level 3, n = 6..12 elements per
+ * contact: the mean error at 22-38 ωc spreads over -0.11 .. -0.87 %
+ * between the n with equal weights, over -0.53 .. -0.75 % with the δ-share
+ * weights; worst n 1.72 -> 1.44 %; a window factor of 1.5 or 3 was worse
+ * (end noise up to 3.2 %; curvature bias -0.8 %) (curve3d helper). */
 #define ASP_SMOOTH_W 2.0
 enum { ASP_SMOOTH_MIN = 5 };
 
@@ -261,6 +267,17 @@ void asp_history_push(asp_solver *s, double delta, double P)
     s->nh++;
 }
 
+/* Quadrature weight of increment i: half the ln δ span to its neighbours
+ * (trapezoid rule), so the fit averages P over δ, not over increments:
+ * increments crowd where Newton is slow and at the requested δ, at one
+ * phase of the sawtooth. */
+static double dx_weight(const asp_solver *s, int i)
+{
+    double lo = i > 0 && s->hd[i - 1] > 0.0 ? log(s->hd[i - 1]) : log(s->hd[i]);
+    double hi = i + 1 < s->nh ? log(s->hd[i + 1]) : log(s->hd[i]);
+    return 0.5 * (hi - lo);
+}
+
 int asp_solver_P_smooth(const asp_solver *s, double delta, double *P)
 {
     double x0 = log(delta), hw = log(ASP_SMOOTH_W);
@@ -274,7 +291,7 @@ int asp_solver_P_smooth(const asp_solver *s, double delta, double *P)
             if (!(s->hd[i] > 0.0 && s->hP[i] > 0.0)) continue;
             double x = log(s->hd[i]) - x0, u = fabs(x) / hw;
             if (u >= 1.0) continue;
-            double w = pow(1.0 - u * u * u, 3.0), y = log(s->hP[i]);
+            double w = pow(1.0 - u * u * u, 3.0) * dx_weight(s, i), y = log(s->hP[i]);
             S += w, Sx += w * x, Sxx += w * x * x, Sy += w * y, Sxy += w * x * y;
             n++, left += x < 0.0;
         }

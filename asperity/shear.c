@@ -10,7 +10,11 @@
  *   - tributary areas from the sub-element contact radius of the normal step
  *     (surfarea.c), so full slip carries exactly τc × contact area;
  *   - ux is ramped by the inception detector / controller of slide.c, with
- *     cut-back (halving) on a failed increment;
+ *     cut-back (halving) on a failed increment; the shear criterion's
+ *     fraction counts nodes that slip or whose traction has saturated
+ *     (mark_saturated);
+ *   - the first Newton iteration of each increment keeps stuck nodes stuck
+ *     (asp_shear_assemble), the elastic predictor of the increment;
  *   - load control (asp_solver_load_to_P) drives asp_find_delta with a
  *     checkpoint of the largest δ whose load is below the target.
  */
@@ -102,8 +106,9 @@ static void snap_free(asp_shear_snap *p)
 void asp_shear_release(asp_solver *s)
 {
     free(s->carea), free(s->carea_full), free(s->cslip_new), free(s->cfric), free(s->cfst);
-    free(s->cpos), free(s->cnew);
-    s->cnew = NULL;
+    free(s->cpos), free(s->cnew), free(s->ctrac), free(s->cyield);
+    s->cnew = s->cyield = NULL;
+    s->ctrac = NULL;
     s->carea = s->carea_full = s->cslip_new = s->cfric = NULL;
     s->cfst = NULL, s->cpos = NULL;
     if (s->snap)
@@ -135,11 +140,12 @@ static stc_status alloc_shear(asp_solver *s)
         s->carea = calloc(n, sizeof *s->carea), s->carea_full = calloc(n, sizeof *s->carea);
         s->cslip_new = calloc(2 * n, sizeof *s->carea), s->cfric = calloc(2 * n, sizeof *s->carea);
         s->cfst = calloc(n, 1), s->cpos = calloc(3 * n, sizeof *s->cpos);
-        s->cnew = calloc(n, 1);
+        s->cnew = calloc(n, 1), s->cyield = calloc(n, 1);
+        s->ctrac = calloc(n, sizeof *s->ctrac);
         s->snap = calloc(ASP_SHEAR_NSNAP, sizeof *s->snap);
     }
     STC_CHECK(s->carea && s->carea_full && s->cslip_new && s->cfric && s->cfst && s->cpos &&
-                  s->cnew && s->snap,
+                  s->cnew && s->cyield && s->ctrac && s->snap,
               STC_ENOMEM, "shear: out of memory");
     for (int k = 0; k < s->ncand; k++) {
         int n3 = 3 * s->cand[k];
@@ -245,9 +251,35 @@ static void new_node_areas(asp_solver *s, double p_m)
     }
 }
 
+/* Stuck contact nodes whose traction stopped rising (d|t|/dux below
+ * rate_sat, a tenth of the mean elastic rate τc/ux_e; the Mindlin centre
+ * traction rises at half that mean): the material under them carries no
+ * more shear, so the junction shears in the body, not at the interface.
+ * With τc = Y/√3 the surface material yields before the interface traction
+ * reaches τc wherever the contact pressure adds a deviatoric stress: past
+ * ~3 ωc the centre of the contact never slips (measured at 6 ωc, level 0:
+ * 20 % of the area stuck while Q kept rising as P relaxed and the contact
+ * grew; μ = Q/P went on growing to +30 % above the WSP fit before Q was
+ * flat).  Counting them as at their shear limit is the thesis's criterion
+ * (§4.1.3, Fig. 4.9: Q_max when the whole contact is at its limit).
+ * Counting nodes on yielding material instead fires at once past ~6 ωc,
+ * where the normal step already left the whole contact surface plastic. */
+static void mark_saturated(asp_solver *s)
+{
+    double dux = s->ux - s->ux_conv;
+    for (int k = 0; k < s->ncand; k++) {
+        double A = s->carea[k];
+        double t = A > 0.0 ? hypot(s->cfric[2 * k], s->cfric[2 * k + 1]) / A : 0.0;
+        s->cyield[k] = s->cs[k] != ASP_CS_OPEN && A > 0.0 && dux > 0.0 &&
+                       (t - s->ctrac[k]) / dux <= s->rate_sat;
+        s->ctrac[k] = t;
+    }
+}
+
 static void commit_shear(asp_solver *s)
 {
     size_t nq = (size_t)s->mesh->nelem * s->nqp;
+    mark_saturated(s);
     for (int i = 0; i < s->ndof; i++) s->du_last[i] = s->u[i] - s->u_conv[i];
     memcpy(s->u_conv, s->u, (size_t)s->ndof * sizeof *s->u);
     memcpy(s->st_old, s->st_new, nq * sizeof *s->st_old);
@@ -265,7 +297,7 @@ static void commit_shear(asp_solver *s)
 static void measure(const asp_solver *s, asp_shear_point *pt)
 {
     const asp_mesh *m = s->mesh;
-    double Q = 0.0, Qb = 0.0, A = 0.0, As = 0.0, xlo = INFINITY, xhi = -INFINITY;
+    double Q = 0.0, Qb = 0.0, A = 0.0, As = 0.0, Al = 0.0, xlo = INFINITY, xhi = -INFINITY;
     int nc = 0;
     for (int k = 0; k < s->ncand; k++) {
         if (s->cs[k] == ASP_CS_OPEN) continue;
@@ -274,6 +306,7 @@ static void measure(const asp_solver *s, asp_shear_point *pt)
         Q -= s->cfric[2 * k];
         A += s->carea[k];
         if (s->cs[k] == ASP_CS_STICK) As += s->carea[k];
+        if (s->cs[k] == ASP_CS_STICK && !s->cyield[k]) Al += s->carea[k];
         if (m->x[3 * n + 1] == 0.0) {
             double x = m->x[3 * n] + s->u_conv[3 * n];
             xlo = fmin(xlo, x), xhi = fmax(xhi, x);
@@ -288,6 +321,7 @@ static void measure(const asp_solver *s, asp_shear_point *pt)
     pt->A = 2.0 * A;
     pt->A_stick = 2.0 * As;
     pt->slip_frac = A > 0.0 ? 1.0 - As / A : 0.0;
+    pt->limit_frac = A > 0.0 ? 1.0 - Al / A : 0.0;
     pt->n_contact = nc;
     pt->x_lo = xlo, pt->x_hi = xhi;
 }
@@ -454,7 +488,7 @@ static stc_status accept(asp_solver *s, const asp_shear_options *o, asp_slide *d
         r->pts = p, r->cap = cap;
     }
     r->pts[r->npt++] = pt;
-    if (det) asp_slide_push(det, pt.ux, pt.Q, pt.P, pt.slip_frac, pt.n_contact);
+    if (det) asp_slide_push(det, pt.ux, pt.Q, pt.P, pt.limit_frac, pt.n_contact);
     if (o->keep_fields)
         STC_CALL(snap_update(s, &pt, s->fric.tau_c, idx,
                              o->criterion == ASP_SHEAR_CRIT_STIFFNESS));
@@ -483,7 +517,16 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     sp.criterion = o->criterion == ASP_SHEAR_CRIT_STIFFNESS ? ASP_SLIDE_STIFFNESS : ASP_SLIDE_SHEAR;
     sp.alpha = o->alpha;
     sp.max_increments = o->max_increments;
+    /* shear criterion: inception when the whole contact is at its shear
+     * limit (slipping, or stuck and saturated: mark_saturated) and stays there
+     * over the confirmation increments while the tangential stiffness is
+     * below half the initial one; Q_max is the largest Q up to that point
+     * (thesis §4.1.3: "the related force at this moment").  Requiring Q to
+     * be flat (full_tol 0.01) never ends the ramp past ~3 ωc, where Q keeps
+     * rising at KT/KT_1 ≈ 0.05-0.1 as P relaxes and the contact grows. */
+    sp.full_tol = 0.5;
     asp_slide_setup su = {lay.E / (2.0 * (1.0 + lay.nu)), lay.nu, s->pt.a, tau_c, s->pt.P};
+    s->rate_sat = 0.1 * tau_c / asp_slide_ux_elastic(&su);
     return asp_slide_create(&sp, &su, det);
 }
 

@@ -39,6 +39,7 @@ void asp_slide_params_default(asp_slide_params *p)
     p->alpha = 0.1;         /* BKE 2007 */
     p->slip_tol = 1e-3;
     p->flat_tol = 0.01;
+    p->full_tol = 0.01;
     p->n_flat = 2;
     p->bend = 0.08;
     p->first_frac = 0.05;
@@ -80,6 +81,8 @@ static stc_status check_params(const asp_slide_params *p)
               "slip-tol = %g: must be in [0, 0.5)", p->slip_tol);
     STC_CHECK(p->flat_tol > 0.0 && p->flat_tol < 0.5, STC_EINVAL,
               "flat-tol = %g: must be in (0, 0.5)", p->flat_tol);
+    STC_CHECK(p->full_tol > 0.0 && p->full_tol <= 0.5, STC_EINVAL,
+              "full-tol = %g: must be in (0, 0.5]", p->full_tol);
     STC_CHECK(p->n_flat >= 1 && p->n_flat <= 10, STC_EINVAL,
               "n-flat = %d: must be in [1, 10]", p->n_flat);
     STC_CHECK(p->bend > 0.0 && p->bend <= 0.5, STC_EINVAL, "bend = %g: must be in (0, 0.5]",
@@ -172,6 +175,8 @@ static asp_slide_state finish(asp_slide *d, asp_slide_state st, int i, const cha
     r->Q_max = d->Q[peak_index(d, d->n - 1)];
     if (st == ASP_SLIDE_INCEPTION && d->par.criterion == ASP_SLIDE_STIFFNESS)
         r->Q_max = d->Q[i]; /* BKE: the force where the stiffness dropped */
+    if (st == ASP_SLIDE_INCEPTION && d->frac[i] >= 1.0 - d->par.slip_tol)
+        r->Q_max = d->Q[peak_index(d, i)]; /* full slip: not the confirmation steps */
     r->ux = d->ux[i];
     r->P = d->P[i];
     r->mu_s = r->P > 0.0 ? r->Q_max / r->P : NAN;
@@ -202,7 +207,7 @@ static int shear_inception(const asp_slide *d)
         if (d->frac[i] < 1.0 - p->slip_tol) continue;
         int flat = 1;
         for (int j = i + 1; j <= i + p->n_flat; j++)
-            flat &= fabs(KT(d, j)) <= p->flat_tol * d->KT1;
+            flat &= fabs(KT(d, j)) <= p->full_tol * d->KT1;
         if (flat) return i;
     }
     return -1;
@@ -233,8 +238,8 @@ static asp_slide_state evaluate(asp_slide *d)
         int i = shear_inception(d);
         if (i >= 0)
             return finish(d, ASP_SLIDE_INCEPTION, i,
-                          "shear criterion: whole contact at tau_c (slip fraction >= 1 - %g) "
-                          "and Q stopped rising (WSP 2012)", p->slip_tol);
+                          "shear criterion: whole contact at its shear limit (fraction >= "
+                          "1 - %g) and Q stopped rising (WSP 2012)", p->slip_tol);
         if ((i = plastic_plateau(d)) >= 0)
             return finish(d, ASP_SLIDE_INCEPTION, i,
                           "Q stopped rising (plastic plateau) with only %.3f of the contact "

@@ -37,12 +37,27 @@
  * increments) measured max 0.48 % vs level 3 (0.43 % vs level 2) at 1.5x
  * the CPU time of level 0 (0.88 % vs level 3); n = 7 and 9 were worse
  * (1.72 %, 0.76 %): the P_smooth error is set by how the node-entry
- * sawtooth is sampled, not monotone in n.
+ * sawtooth is sampled, not monotone in n.  With P_smooth averaging over δ
+ * (trapezoid weights, asp_contact.c) two errors are left (curve3d helper,
+ * vs level 3, harness runs, n = 6..12): a mid-curve (22-38 ωc) bias that
+ * is the sampling of each tooth, the same for every n and ~1/steps per
+ * node (-1.1 | -0.55 | -0.35 | -0.2 % at 2 | 4 | 6 | 8), and the end
+ * point (one-sided window), -0.8 .. +1.9 % at 60 ωc whatever the steps
+ * (n = 7: +1.4 .. +1.9 %).  Max error n = 6..12 at 4 steps: 0.84 1.44
+ * 0.72 0.67 0.75 0.60 0.59 %.  Tried and not robust either: windows 1.5x
+ * and 3x, loading 15 % past the end (0.37-0.86 %), dithered steps
+ * (0.52-1.37 %).  0.5 % for every n near 8 in < 1 s is not met.
  * 3D (speed3d): a factorization costs ~50 triangular solves there, so the
  * Newton steps are solved by PCG preconditioned with the last factor
  * (Newton-Krylov, see linear_step); level-0 slip curve to 60 ωc: the same
  * 160 Newton iterations and answers, 160 -> 15 factorizations + 1334 PCG
- * iterations, 91 -> 38 s on the shared machine (CPU 96 -> 37 s).
+ * iterations, 91 -> 38 s on the shared machine (CPU 96 -> 37 s).  With 2
+ * increments per node entry in 3D (steps_per_node): 31 increments, 126
+ * Newton, 15 factorizations, 1113 PCG, 157 element loops, 33 s wall, 32 s
+ * CPU (OMP_WAIT_POLICY=passive: 29-31 s, the idle thread stops spinning
+ * during the serial PCG).  The level-0 3D curve is 1.2-6 % below the
+ * converged one (4 elements across the final contact, no small-δ grading;
+ * 1 contact node at 1 ωc: -33 %).
  */
 #include <math.h>
 #include <omp.h>
@@ -59,12 +74,16 @@
 void openblas_set_num_threads(int num_threads);
 int openblas_get_num_threads(void);
 
-/* Increments per surface node entering the contact past yield (step_limit).
- * Stick: 1 (P at 10 ωc, t/R 0.025, Eco/Esu 2, level 1 moved 0.27 % from 1
- * to 4 per node, at 1.8x the cost). */
-#ifndef ASP_STEPS_PER_NODE /* -D override for work-precision experiments only */
+/* Increments per surface node entering the contact past yield (step_limit;
+ * asp_options.steps_per_node overrides).  Stick: 1 (P at 10 ωc, t/R 0.025,
+ * Eco/Esu 2, level 1 moved 0.27 % from 1 to 4 per node, at 1.8x the cost).
+ * Slip, 3D: 2.  Level-0 curve 1:60:12 ωc against the axisymmetric level-3
+ * P_smooth, steps/node 4 | 2 | 1.5: 49 | 31 | 20 increments, 37 | 31 | 21 s
+ * CPU on the shared 2-core machine; max |P_smooth| shift from 4 to 2 is
+ * 0.55 % (6 ωc; 0.3-0.4 % elsewhere), to 1.5 2.1 %, against a level-0
+ * discretization error of -1.2 % (60 ωc) to -6 % (6 ωc) (curve3d helper). */
 #define ASP_STEPS_PER_NODE 4.0
-#endif
+#define ASP_STEPS_PER_NODE_3D 2.0
 #define ASP_STEPS_PER_NODE_STICK 1.0
 
 /* Below this size an axisymmetric model runs on one thread (see create). */
@@ -84,6 +103,7 @@ void asp_options_default(asp_options *o)
     o->newton_reuse = 1;
     o->krylov = ASP_KRYLOV_AUTO;
     o->krylov_max = 30;
+    o->steps_per_node = 0.0;
     o->max_active_set = 40;
     o->max_cutbacks = 10;
     o->threads = 0;
@@ -108,6 +128,10 @@ static stc_status check_options(const asp_options *o)
               "surface layers = %d: axisymmetric model only (3D: -1 or 0)", o->surface_layers);
     STC_CHECK(o->a_safety == 0.0 || (o->a_safety >= 1.0 && o->a_safety <= 5.0), STC_EINVAL,
               "a-safety = %g: must be 0 (auto) or in [1, 5]", o->a_safety);
+    STC_CHECK(o->steps_per_node == 0.0 ||
+                  (o->steps_per_node >= 0.5 && o->steps_per_node <= 16.0),
+              STC_EINVAL, "steps per node = %g: must be 0 (automatic) or in [0.5, 16]",
+              o->steps_per_node);
     STC_CHECK(o->rtol > 0.0 && o->rtol < 1e-2, STC_EINVAL, "rtol = %g: must be in (0, 1e-2)",
               o->rtol);
     STC_CHECK(o->utol > 0.0 && o->utol < 1e-2, STC_EINVAL, "utol = %g: must be in (0, 1e-2)",
@@ -898,6 +922,13 @@ static double yield_aim(const asp_solver *s, int k)
  * predicted yield (yield_aim).  Otherwise the contact may grow by about one
  * surface element per increment under stick (a node's stick position is
  * taken when it touches) and three under slip. */
+static double steps_per_node(const asp_solver *s)
+{
+    if (s->opt.steps_per_node > 0.0) return s->opt.steps_per_node;
+    if (s->opt.contact == ASP_CONTACT_STICK) return ASP_STEPS_PER_NODE_STICK;
+    return s->dim == 3 ? ASP_STEPS_PER_NODE_3D : ASP_STEPS_PER_NODE;
+}
+
 static double step_limit(const asp_solver *s, int *aimed)
 {
     int elastic = s->pt.plastic_points == 0;
@@ -911,13 +942,13 @@ static double step_limit(const asp_solver *s, int *aimed)
     }
     /* past yield: P(δ) is a sawtooth with one tooth per surface node that
      * enters (asp_contact.c); a node enters every Δδ ≈ a h / R' (a² ∝ R' δ).
-     * ASP_STEPS_PER_NODE increments per tooth sample it evenly for
+     * steps_per_node() increments per tooth sample it evenly for
      * asp_solver_P_smooth (fewer, landing just after the entries where
      * Newton is slow, biased it by -1.5 % on mesh level 0; with 4: within
      * 0.4 % of the finest mesh at level 1) */
     double a = fmin(fmax(s->pt.a, 0.0), sqrt(2.0 * s->Rp * s->delta));
     double hc = a < s->a_min ? s->h0 : s->h;
-    double spn = s->opt.contact == ASP_CONTACT_STICK ? ASP_STEPS_PER_NODE_STICK : ASP_STEPS_PER_NODE;
+    double spn = steps_per_node(s);
     if (!elastic) lim = fmin(lim, a * hc / (spn * s->Rp));
     /* stick: the contact grows by at most about one surface element */
     if (s->opt.contact == ASP_CONTACT_STICK) {

@@ -78,6 +78,10 @@ struct asp_solver {
     double *carea;                /* [ncand] tributary area, mm² */
     double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
     unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
+    double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
+    double rate_sat;              /* d|t|/dux below which a stuck node is saturated, MPa/mm */
+    unsigned char *cyield;        /* [ncand] 1: stuck but saturated in the last increment
+                                     (the junction shears in the body; shear.c) */
     double *cslip_new;            /* [ncand][2] trial slip; cstick holds the converged one */
     double *cfric;                /* [ncand][2] friction force on the flat at u, N */
     unsigned char *cfst;          /* [ncand] trial ASP_CS_STICK / ASP_CS_SLIP */

@@ -102,6 +102,12 @@ typedef struct asp_slide_params {
     double slip_tol;   /* shear: slipping area fraction >= 1 - slip_tol; default 1e-3 */
     double flat_tol;   /* shear: |KT_i| / KT_1 <= flat_tol means Q stopped rising;
                           default 0.01 (Qmax error ~ flat_tol/2 on a tanh-like knee) */
+    double full_tol;   /* shear: after full slip, |KT_i| / KT_1 <= full_tol over the
+                          n_flat confirmation increments confirms inception (Q_max is
+                          then the largest Q up to the full-slip point); default 0.01
+                          (= flat_tol).  Past ~3 ωc Q keeps rising slowly after the
+                          whole contact is at its limit (junction growth, P relaxing):
+                          the solver uses 0.5 there, see shear.c */
     int n_flat;        /* increments over which Q must stay flat; default 2 */
     double bend;       /* target change of KT/KT_1 per increment (step control);
                           default 0.08 */

@@ -65,6 +65,12 @@ typedef struct asp_options {
                                 preconditioned with the last Cholesky factor;
                                 default ASP_KRYLOV_AUTO */
     int krylov_max;          /* PCG iterations before refactorizing; default 30 */
+    double steps_per_node;   /* load increments per surface node entering the
+                                contact past first yield (samples the P(δ)
+                                sawtooth for asp_solver_P_smooth), in
+                                [0.5, 16]; 0 = automatic: 4 slip axisymmetric,
+                                2 slip 3D, 1 stick (solver.c: step_limit);
+                                default 0 */
     int max_active_set;      /* active-set passes per increment; default 40 */
     int max_cutbacks;        /* consecutive increment halvings; default 10 */
     int threads;             /* OpenMP threads for assembly, 0 = runtime default */
@@ -133,7 +139,8 @@ void asp_solver_info(const asp_solver *s, asp_info *info);
 /* Load at interference `delta` (mm) with the node-entry sawtooth removed:
  * past first yield P(δ) of a node-to-flat contact jumps each time a surface
  * node touches (about ±2 % rms at mesh level 1); this is a local linear
- * fit of ln P against ln δ (tricube weights, window δ/2 .. 2 δ, widened
+ * fit of ln P against ln δ (tricube weights times each increment's share
+ * of the ln δ axis, i.e. an average over δ; window δ/2 .. 2 δ, widened
  * up to 3.4x if fewer than 5 increments fall in it) through ALL converged
  * increments so far, so it is best called after the whole curve is solved.
  * Writes *P (N; NaN if not enough increments) and returns the number of
@@ -183,6 +190,9 @@ typedef struct asp_shear_point {
     double A;          /* contact area (tributary areas of the contact nodes), mm² */
     double A_stick;    /* area of the sticking nodes, mm² */
     double slip_frac;  /* 1 - A_stick / A */
+    double limit_frac; /* area fraction at its shear limit: slipping, or stuck on
+                          material that yielded in the increment (the shear
+                          criterion's fraction; thesis §4.1.3, Fig. 4.9) */
     int n_contact;     /* contact nodes (half model) */
     double x_lo, x_hi; /* contact extent along x on y = 0, mm (it shifts under shear) */
 } asp_shear_point;
@@ -195,7 +205,7 @@ typedef struct asp_shear_result {
     double mu_s;         /* Q_max / P_slide */
     double mu_s_preload; /* Q_max / P0 */
     double A_stick;      /* stick area at inception, mm² */
-    double slip_frac;    /* slipping area fraction at inception */
+    double slip_frac;    /* at inception: area fraction at its shear limit (limit_frac) */
     double tau_c;        /* τc used, MPa */
     double a0;           /* contact radius after the normal step, mm */
     asp_shear_criterion criterion;

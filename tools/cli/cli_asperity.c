@@ -40,6 +40,9 @@ static const cli_opt opts[] = {
      "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
      "factorization costs many PCG iterations, i.e. 3D; default auto)"},
     {"krylov-max", "N", "PCG iterations before refactorizing (default 30)"},
+    {"steps-per-node", "X",
+     "load increments per surface node entering the contact past yield, in [0.5, 16] "
+     "(default auto: 4 slip, 2 slip 3D, 1 stick)"},
     {"no-separation", NULL, "a node in contact never opens"},
     {"threads", "N", "OpenMP threads for the element loop (default: runtime)"},
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
@@ -116,6 +119,12 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 1000)
             return bad(key, value, "an integer in [1, 1000]");
         a->o.krylov_max = (int)l;
+    } else if (!strcmp(key, "steps-per-node")) {
+        double v;
+        if (!strcmp(value, "auto")) a->o.steps_per_node = 0.0;
+        else if (stc_parse_double(key, value, &v) == STC_OK && v >= 0.5 && v <= 16.0)
+            a->o.steps_per_node = v;
+        else return bad(key, value, "auto or a number in [0.5, 16]");
     } else if (!strcmp(key, "threads")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 256)
