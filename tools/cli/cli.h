@@ -87,7 +87,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
                        const cli_shear_args *sa, const double *delta, int ndelta, int in_mm,
                        int json, const char *out);
 #define CLI_SHEAR_OPTS                                                                        \
-    {"shear", NULL, "after the normal step, shear to sliding inception (3D; issue 4)"},        \
+    {"shear", NULL, "after the normal step, shear to sliding inception (3D model)"},        \
         {"criterion", "shear|stiffness",                                                      \
          "sliding inception: whole contact at tau_c and Q flat (default), or KT/KT1 <= alpha"}, \
         {"alpha", "A", "stiffness criterion ratio KT_i/KT_1 in (0, 1) (default 0.1)"},         \
