@@ -4,10 +4,10 @@
 reproduce-shear.py CLI OUTDIR [--jobs N] [--mesh LEVEL] [--only fig4_8,fig4_10,...]
 
 Every FE run is one `stiction asperity --shear` call whose JSON and Q-ux CSV
-are kept in OUTDIR/runs/NAME/ (written to NAME.tmp and renamed when the run
+are kept in OUTDIR/runs[-meshL]/NAME/ (written to NAME.tmp and renamed when the run
 has finished), so an interrupted reproduce resumes where it stopped and never
 redoes a finished run.  A run that fails is recorded with its reason in
-OUTDIR/runs/NAME.failed and left out of the figures (never plotted as a
+OUTDIR/runs[-meshL]/NAME.failed and left out of the figures (never plotted as a
 number); the script then exits with status 1 after writing everything else.
 
 Figures (gnuplot 'png' terminal) and the CSV behind each:
@@ -44,6 +44,7 @@ GRID_TR = (0.005, 0.025, 0.05)
 GRID_ER = (1, 2, 4)
 GRID_DELTA = (1, 10, 30, 60)
 LOADS = (2, 10, 30, 60, 100)
+MESH_NOTE = [""]  # appended to every figure title: the 3D mesh level used
 
 
 def wsp_mu(w):
@@ -58,7 +59,9 @@ def grid_args(tr, er):
 
 class Runner:
     def __init__(self, cli, out, mesh):
-        self.cli, self.dir, self.mesh = cli, os.path.join(out, "runs"), mesh
+        # one cache per mesh: a finished run is only reused for the same mesh
+        sub = "runs" if mesh is None else "runs-mesh%s" % mesh
+        self.cli, self.dir, self.mesh = cli, os.path.join(out, sub), mesh
         os.makedirs(self.dir, exist_ok=True)
 
     def path(self, name):
@@ -137,7 +140,7 @@ def panel_plot(png, title, panels, xlabel, ylabel, key="left top"):
     rows = (n + cols - 1) // cols
     s = ["set terminal png noenhanced size %d,%d" % (560 * cols, 430 * rows),
          "set output '%s'" % png, "set datafile separator ','",
-         "set multiplot layout %d,%d title '%s'" % (rows, cols, title),
+         "set multiplot layout %d,%d title '%s%s'" % (rows, cols, title, MESH_NOTE[0]),
          "set xlabel '%s'" % xlabel, "set ylabel '%s'" % ylabel, "set key %s" % key]
     for sub, lines, extra in panels:
         items = ["'%s' u %s:%s w l lw 2 t '%s'" % (c, x, y, lab) for c, x, y, lab in lines] + extra
@@ -287,6 +290,7 @@ def main():
         figs.add(ALIASES.get(f, f))
     os.makedirs(a.out, exist_ok=True)
     rn = Runner(a.cli, a.out, a.mesh)
+    MESH_NOTE[0] = " (3D mesh %s)" % (a.mesh if a.mesh is not None else "default")
     jobs = jobs_for(figs)
     failed = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
