@@ -281,6 +281,7 @@ static void commit_shear(asp_solver *s)
     size_t nq = (size_t)s->mesh->nelem * s->nqp;
     mark_saturated(s);
     for (int i = 0; i < s->ndof; i++) s->du_last[i] = s->u[i] - s->u_conv[i];
+    s->ux_dlast = s->ux - s->ux_conv;
     memcpy(s->u_conv, s->u, (size_t)s->ndof * sizeof *s->u);
     memcpy(s->st_old, s->st_new, nq * sizeof *s->st_old);
     for (int k = 0; k < s->ncand; k++) {
@@ -458,6 +459,17 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux)
     memcpy(r->cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *r->cst0);
     s->ux = ux;
     s->fric_frozen = 1;
+    /* predictor: the last accepted increment scaled to this Δux
+     * (docs/tangential-step.md §5).  Without it the increment starts from
+     * u_conv, whose trial state at every plastic Gauss point lies on the
+     * yield surface (elastic tangent there) and whose stuck nodes are
+     * frozen: the first iterate is an elastic predictor, PCG on the last
+     * (plastic) factor fails and the next iterate releases too many
+     * nodes at once, which then re-stick one per iteration.  Measured on
+     * the WSP sphere, level 0: 6 ωc 651 -> 88 Newton iterations,
+     * 249 -> 19 factorizations, 8 -> 0 cut-backs; 24 ωc 864 -> 101 and
+     * 367 -> 29; 12 ωc 237 -> 78 and 67 -> 21 (μs within 1.4 %). */
+    s->shear_pred = s->ux_dlast > 0.0 ? (ux - s->ux_conv) / s->ux_dlast : 0.0;
     int passes = 0;
     stc_status st = asp_solver_increment_here(s, &r->res->newton_iterations,
                                               &r->res->factorizations, &passes);

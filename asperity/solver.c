@@ -698,6 +698,7 @@ static stc_status increment(asp_solver *s, double delta, nstat *ns)
     STC_CHECK_GOTO(du && u0 && b, st, done, STC_ENOMEM, "solver: out of memory");
     /* predictor: scale the last increment */
     double f = s->dlast > 0.0 ? (delta - s->delta) / s->dlast : 0.0;
+    if (s->shear) f = s->shear_pred; /* tangential ramp: Δδ = 0, scale by Δux (shear.c) */
     for (int i = 0; i < n; i++) s->u[i] = s->u_conv[i] + f * s->du_last[i];
     /* nodes the predicted surface pushes through the flat touch now, all at
      * once (a pass each would cost a Newton solve each); from the unloaded

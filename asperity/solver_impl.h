@@ -74,6 +74,8 @@ struct asp_solver {
     int shear;                    /* 1 during the ramp: contact nodes keep u_z only,
                                      their tangential DOFs carry the stick law */
     double ux, ux_conv;           /* flat displacement along x: trial, converged, mm */
+    double ux_dlast;              /* last accepted ux increment, mm (0: none yet) */
+    double shear_pred;            /* ramp predictor: u = u_conv + shear_pred du_last */
     asp_fric_law fric;            /* τc and penalty k_t */
     double *carea;                /* [ncand] tributary area, mm² */
     double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
