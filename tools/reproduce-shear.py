@@ -52,6 +52,11 @@ def wsp_mu(w):
     return 0.3 / math.tanh(0.57 * w ** 0.41)
 
 
+def total_wall(r):
+    """Solver wall time of a run: normal step + ramp, s."""
+    return r.get("wall_s", float("nan")) + r.get("shear_wall_s", 0.0)
+
+
 def grid_args(tr, er):
     return ["--R", "10", "--E-su", "200000", "--E-over-Y", "1000", "--nu", "0.32",
             "--t-over-R", "%g" % tr, "--E-ratio", "%g" % er, "--contact", "stick"]
@@ -181,7 +186,7 @@ def fig410(rn, out):
     for w in WSP_OMEGAS:
         r = rn.result("wsp_w%g" % w)
         if r:
-            rows.append((w, r["mu_s"], wsp_mu(w), r.get("wall_s", float("nan"))))
+            rows.append((w, r["mu_s"], wsp_mu(w), total_wall(r)))
     with open(fn, "w") as f:
         f.write("omega_over_omega_c,mu_s_FE,mu_s_WSP,rel_err,wall_s\n")
         for w, m, fit, t in rows:
@@ -238,7 +243,7 @@ def fig416(rn, out):
                         continue
                     f.write("%g,%g,%g,%.6g,%.6g,%.6g,%.6g,%.3g\n" % (
                         tr, er, d, r["P_over_P_c"], r["Q_max_over_P_c"], r["mu_s"],
-                        r["ux_at_slide_over_omega_c"], r.get("wall_s", float("nan"))))
+                        r["ux_at_slide_over_omega_c"], total_wall(r)))
                     line.append("%8.3f (%.3f)" % (r["Q_max_over_P_c"], r["mu_s"]))
                 print("  t/R %-5g Eco/Esu %g: %s" % (tr, er, "  ".join(line)))
 
@@ -260,7 +265,7 @@ def fig421(rn, out):
                             g.write("%.6g,%.6g\n" % (r["P_over_P_c"], r["mu_s"]))
                             f.write("%g,%g,%g,%.6g,%.6g,%.6g,%.3g\n" % (
                                 tr, er, x, r["P_over_P_c"], r["mu_s"], r["mu_s_preload"],
-                                r.get("wall_s", float("nan"))))
+                                total_wall(r)))
                 items.append("'%s' u 1:2 every ::0 w lp pt 7 t 'Eco/Esu = %g'" % (sub, er))
             panels.append(("t/R = %g" % tr, [], items))
     panel_plot(os.path.join(out, "fig4_21.png"),
