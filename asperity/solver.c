@@ -687,19 +687,18 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
     }
 }
 
-/* One increment to `delta`, iterating the active set.  On failure the
- * caller restores the converged state. */
-static stc_status increment(asp_solver *s, double delta, nstat *ns)
+/* One increment to `delta`, iterating the active set, started from the
+ * predictor u_conv + pred du_last (pred: this increment over the last
+ * accepted one, in the caller's load parameter).  On failure the caller
+ * restores the converged state. */
+static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
 {
     int n = s->ndof;
     double *du = malloc((size_t)n * sizeof *du), *u0 = malloc((size_t)n * sizeof *u0);
     cholmod_dense *b = cholmod_allocate_dense((size_t)n, 1, (size_t)n, CHOLMOD_REAL, &s->cc);
     stc_status st = STC_OK;
     STC_CHECK_GOTO(du && u0 && b, st, done, STC_ENOMEM, "solver: out of memory");
-    /* predictor: scale the last increment */
-    double f = s->dlast > 0.0 ? (delta - s->delta) / s->dlast : 0.0;
-    if (s->shear) f = s->shear_pred; /* tangential ramp: Δδ = 0, scale by Δux (shear.c) */
-    for (int i = 0; i < n; i++) s->u[i] = s->u_conv[i] + f * s->du_last[i];
+    for (int i = 0; i < n; i++) s->u[i] = s->u_conv[i] + pred * s->du_last[i];
     /* nodes the predicted surface pushes through the flat touch now, all at
      * once (a pass each would cost a Newton solve each); from the unloaded
      * state the geometric overlap r < sqrt(2 R' δ) is twice the Hertz
@@ -1001,7 +1000,8 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
         nstat ns = {0, 0, 0};
         memcpy(cs0, s->cs, (size_t)s->ncand);
         memcpy(cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *cst0);
-        st = increment(s, dnew, &ns);
+        /* predictor: the last increment scaled to this Δδ */
+        st = increment(s, dnew, s->dlast > 0.0 ? (dnew - s->delta) / s->dlast : 0.0, &ns);
         if (st == STC_OK) {
             commit(s, dnew, &ns);
             /* a step shortened to bracket a yield does not shrink the next */
@@ -1037,10 +1037,11 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
 
 /* ---- entry points for shear.c ---- */
 
-stc_status asp_solver_increment_here(asp_solver *s, int *iters, int *facts, int *passes)
+stc_status asp_solver_increment_here(asp_solver *s, double pred, int *iters, int *facts,
+                                     int *passes)
 {
     nstat ns = {0, 0, 0};
-    stc_status st = increment(s, s->delta, &ns); /* Δδ = 0: starts from u_conv */
+    stc_status st = increment(s, s->delta, pred, &ns); /* Δδ = 0 */
     *iters += ns.iters, *facts += ns.facts, *passes += ns.passes;
     return st;
 }

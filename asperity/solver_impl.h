@@ -75,7 +75,6 @@ struct asp_solver {
                                      their tangential DOFs carry the stick law */
     double ux, ux_conv;           /* flat displacement along x: trial, converged, mm */
     double ux_dlast;              /* last accepted ux increment, mm (0: none yet) */
-    double shear_pred;            /* ramp predictor: u = u_conv + shear_pred du_last */
     asp_fric_law fric;            /* τc and penalty k_t */
     double *carea;                /* [ncand] tributary area, mm² */
     double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
@@ -115,9 +114,10 @@ void asp_shear_assemble(asp_solver *s, int want_K);
 void asp_shear_release(asp_solver *s);
 
 /* solver.c entry points for shear.c: one increment at the current δ and
- * the trial s->ux, started from u_conv (active set iterated), with its
- * Newton iterations, factorizations and active-set passes added to the
- * counters.  On failure the caller restores the state. */
-stc_status asp_solver_increment_here(asp_solver *s, int *iters, int *facts, int *passes);
+ * the trial s->ux, started from u_conv + pred du_last (active set
+ * iterated), with its Newton iterations, factorizations and active-set
+ * passes added to the counters.  On failure the caller restores the state. */
+stc_status asp_solver_increment_here(asp_solver *s, double pred, int *iters, int *facts,
+                                     int *passes);
 
 #endif
