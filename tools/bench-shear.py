@@ -19,8 +19,7 @@ import sys
 import tempfile
 import time
 
-WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
-       "--Y-su", "325", "--contact", "slip"]
+from wsp_case import WSP
 CASES = [
     ("WSP omega = 3 omega_c", WSP + ["--delta", "3"]),
     ("WSP omega = 12 omega_c", WSP + ["--delta", "12"]),

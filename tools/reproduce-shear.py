@@ -28,14 +28,12 @@ Figures (gnuplot 'png' terminal) and the CSV behind each:
 import argparse
 import concurrent.futures
 import json
-import math
 import os
 import shutil
 import subprocess
 import sys
 
-WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
-       "--Y-su", "325", "--contact", "slip"]
+from wsp_case import WSP, wsp_mu
 WSP_OMEGAS = (0.5, 1, 3, 6, 12, 24, 48, 72)
 FIG48_OMEGAS = (0.5, 3, 12, 72)
 # thesis Fig. 4.8: plateaus of the Wu et al. (2012) curves, read off the plot
@@ -45,11 +43,6 @@ GRID_ER = (1, 2, 4)
 GRID_DELTA = (1, 10, 30, 60)
 LOADS = (2, 10, 30, 60, 100)
 MESH_NOTE = [""]  # appended to every figure title: the 3D mesh level used
-
-
-def wsp_mu(w):
-    """Wu, Shi & Polycarpou (2012) fit, thesis eq. 4.1."""
-    return 0.3 / math.tanh(0.57 * w ** 0.41)
 
 
 def total_wall(r):

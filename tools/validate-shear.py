@@ -16,18 +16,12 @@ Exit status 1 if any run failed or missed the 5 % band.
 import argparse
 import csv
 import json
-import math
 import subprocess
 import sys
 import time
 
-WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
-       "--Y-su", "325", "--Y-co", "325", "--contact", "slip"]
+from wsp_case import WSP, wsp_mu as wsp_fit
 TOL = 0.05  # issue 4, acceptance 1
-
-
-def wsp_fit(w):
-    return 0.3 / math.tanh(0.57 * w ** 0.41)
 
 
 def run(cli, level, omega):
