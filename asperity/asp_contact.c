@@ -135,6 +135,28 @@ static void layer_maxima(asp_solver *s, asp_point *pt)
     }
 }
 
+#ifdef ASP_CAREA_DUMP /* study hook (tools/carea-study.py), never in normal builds */
+#include <stdio.h>
+static void carea_dump(const asp_solver *s)
+{
+    const char *path = getenv("ASP_CAREA_DUMP");
+    FILE *f = path ? fopen(path, "a") : NULL;
+    if (!f) return;
+    const asp_mesh *m = s->mesh;
+    int d = s->dim;
+    fprintf(f, "{\"dim\": %d, \"delta\": %.12g, \"Rp\": %.12g, \"nodes\": [", d, s->delta, s->Rp);
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        fprintf(f, "%s[", k ? ", " : "");
+        for (int i = 0; i < d; i++) fprintf(f, "%.12g, ", m->x[d * n + i]);
+        for (int i = 0; i < d; i++) fprintf(f, "%.12g, ", s->u[d * n + i]);
+        fprintf(f, "%.12g, %d]", s->fint[d * n + d - 1], s->cs[k]);
+    }
+    fprintf(f, "]}\n");
+    fclose(f);
+}
+#endif
+
 /* 3D half model: the radius is read along the symmetry line y = 0, x >= 0,
  * where on the uniform contact grid the nodal forces are line integrals of
  * p(x, 0) times the y-hat (no 2πr weight). */
@@ -172,6 +194,9 @@ void asp_contact_results(asp_solver *s, asp_point *pt)
     pt->a = contact_radius(r, F, L, nr, d == 2);
     pt->A = M_PI * pt->a * pt->a;
     layer_maxima(s, pt);
+#ifdef ASP_CAREA_DUMP
+    carea_dump(s);
+#endif
 }
 
 /* First yield per layer.  While a layer is elastic its peak von Mises

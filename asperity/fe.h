@@ -45,6 +45,8 @@ typedef struct asp_mesh_spec {
     double t;       /* coating thickness, mm (0 = uncoated) */
     double a_max;   /* largest expected contact radius, mm: sets the fine zone */
     int level;      /* resolution: 0 coarse, 1 default, 2 fine, 3+ finer */
+    double n;       /* 3D: elements across a_max, overrides level (an equivalent
+                       level log2(n / 6) also scales the shells); 0 = 6 2^level */
 } asp_mesh_spec;
 
 stc_status asp_mesh_axisym(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */

@@ -170,10 +170,12 @@ static stc_status plan_make(const asp_mesh_spec *spec, m3_plan *p)
     memset(p, 0, sizeof *p);
     p->Rp = spec->R + spec->t;
     p->a = spec->a_max;
-    double n = M3_N0 * pow(2.0, spec->level), h = spec->a_max / n;
-    double q = 1.0 + 0.3 / pow(sqrt(2.0), spec->level); /* core row growth */
-    double qs = M3_SHELL_Q / pow(sqrt(2.0), spec->level); /* q_s - 1 at the core */
-    double hmax = 0.15 * p->Rp / pow(sqrt(2.0), spec->level);
+    /* a fractional level between the integer ones scales every size alike */
+    double lv = spec->n > 0.0 ? log2(spec->n / M3_N0) : spec->level;
+    double n = M3_N0 * pow(2.0, lv), h = spec->a_max / n, sl = pow(sqrt(2.0), lv);
+    double q = 1.0 + 0.3 / sl;                             /* core row growth */
+    double qs = M3_SHELL_Q / sl;                           /* q_s - 1 at the core */
+    double hmax = 0.15 * p->Rp / sl;
     double to_ref = 1.0 / (2.0 * p->Rp); /* lengths near P scale by 2 R' */
     p->m = (int)ceil(M3_FINE_LAT * n - 1e-9);
     p->c = p->m * h * to_ref;
@@ -565,6 +567,9 @@ static stc_status check_spec(const asp_mesh_spec *s)
               "mesh3d: a_max = %g: must be in (0, R = %g)", s->a_max, s->R);
     STC_CHECK(s->level >= 0 && s->level <= 6, STC_EINVAL,
               "mesh3d: level = %d: must be in [0, 6]", s->level);
+    STC_CHECK(s->n == 0.0 || (s->n >= 3.0 && s->n <= 384.0), STC_EINVAL,
+              "mesh3d: n = %g elements across a_max: must be 0 (from the level) or in [3, 384]",
+              s->n);
     return STC_OK;
 }
 

@@ -118,9 +118,6 @@ static stc_status check_options(const asp_options *o)
                   (o->elements_per_contact >= 3.0 && o->elements_per_contact <= 384.0),
               STC_EINVAL, "elements per contact = %g: must be 0 (from the level) or in [3, 384]",
               o->elements_per_contact);
-    STC_CHECK(o->elements_per_contact == 0.0 || o->geom != ASP_GEOM_3D, STC_EINVAL,
-              "elements per contact = %g: axisymmetric model only (3D: use the mesh level)",
-              o->elements_per_contact);
     STC_CHECK(o->surface_layers >= -1 && o->surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS,
               STC_EINVAL, "surface layers = %d: must be -1 (auto) or in [0, %d]",
               o->surface_layers, ASP_MESH_MAX_SURFACE_LAYERS);
@@ -792,7 +789,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     s->omega_est = fmin(c.omega_c, t > 0.0 ? cc.omega_c : c.omega_c);
     double dres = 0.8 * s->omega_est;
     s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
-    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->opt.mesh_level};
+    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->opt.mesh_level, s->opt.elements_per_contact};
     double n = s->opt.elements_per_contact > 0.0 ? s->opt.elements_per_contact
                                                  : 6.0 * (1 << s->opt.mesh_level);
     if (s->opt.geom == ASP_GEOM_3D) {

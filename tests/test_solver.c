@@ -298,7 +298,8 @@ static void test_smooth_load(void **state)
  * measured P - P(level 2) = +0.25 % (level 0), +0.41 % (n = 8), +0.13 %
  * (level 1); the contact edge sits at 5.5, 7.3 and 10.9 element sizes, and
  * P depends on where it falls between two nodes (the node-entry sawtooth),
- * so there is no "closer than level 0" check.  Bad values are rejected. */
+ * so there is no "closer than level 0" check.  Bad values are rejected.
+ * The 3D mesh takes the same knob (DOFs only: its solves are slow). */
 static void test_elements_per_contact(void **state)
 {
     (void)state;
@@ -330,9 +331,26 @@ static void test_elements_per_contact(void **state)
     o.elements_per_contact = 2.0;
     assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "elements per contact = 2"));
-    o.elements_per_contact = 8.0, o.geom = ASP_GEOM_3D;
-    assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_EINVAL);
-    assert_null(s);
+    /* 3D: n = 6 is level 0; n = 8 lies between levels 0 and 1 */
+    int d3[3];
+    for (int k = 0; k < 3; k++) {
+        asp_options_default(&o);
+        o.geom = ASP_GEOM_3D, o.threads = 1;
+        o.mesh_level = k == 2 ? 1 : 0, o.elements_per_contact = k == 1 ? 8.0 : 0.0;
+        if (k == 0) o.elements_per_contact = 6.0;
+        assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+        asp_solver_info(s, &in);
+        d3[k] = in.dofs;
+        asp_solver_destroy(&s);
+    }
+    asp_options_default(&o);
+    o.geom = ASP_GEOM_3D, o.mesh_level = 0;
+    assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+    asp_solver_info(s, &in);
+    asp_solver_destroy(&s);
+    printf("# 3D DOFs: level 0 %d, n = 6 %d, n = 8 %d, level 1 %d\n", in.dofs, d3[0], d3[1], d3[2]);
+    assert_int_equal(d3[0], in.dofs);
+    assert_true(d3[1] > d3[0] && d3[1] < d3[2]);
 }
 
 /* 3D half model against the axisymmetric model, Hertz a/R = 0.01, coarsest

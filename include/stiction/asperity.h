@@ -51,9 +51,10 @@ typedef struct asp_options {
     asp_contact_law contact; /* default ASP_CONTACT_SLIP */
     int no_separation;       /* 1: a node in contact never opens; default 0 */
     int mesh_level;          /* 0 coarse, 1 default, 2 fine, 3+ finer; default 1 */
-    double elements_per_contact; /* axisymmetric: elements across a_max, overrides
-                                    6 2^mesh_level when > 0 (values between levels,
-                                    e.g. 8); 0 = from mesh_level; default 0 */
+    double elements_per_contact; /* elements across a_max, overrides 6 2^mesh_level
+                                    when > 0 (values between levels, e.g. 8; in 3D
+                                    the shells follow the level log2(n / 6));
+                                    0 = from mesh_level; default 0 */
     double a_safety;         /* a_max = a_safety sqrt(R' δmax) sizes the fine zone;
                                 0 = automatic (1.1 elastic, 1.45 plastic); default 0 */
     double rtol;             /* Newton: residual / reaction norm; default 1e-8 */

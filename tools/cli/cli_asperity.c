@@ -32,9 +32,8 @@ static const cli_opt opts[] = {
      "axisymmetric: split the top element row into N+1 rows halving towards the surface "
      "(N in [0, 6]; default auto = 3 under stick, 0 under slip)"},
     {"elements-per-contact", "N",
-     "axisymmetric: elements across the largest contact radius, overrides --mesh "
-     "(6 2^level); "
-     "values between levels, e.g. 8 (in [3, 384])"},
+     "elements across the largest contact radius, overrides --mesh (6 2^level); "
+     "values between levels, e.g. 8 (in [3, 384]; 3D: the shells follow the level log2(N/6))"},
     {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
     {"krylov", "off|auto|on",
      "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
