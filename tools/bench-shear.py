@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """make bench, combined loading (issue 4 item 4): work-precision of mu_s.
 
-bench-shear.py CLI [LEVELS]     (LEVELS default "0,1": 3D mesh levels)
+bench-shear.py CLI [MESHES]     (MESHES default "0,1": 3D mesh levels, or nX
+                                 for X elements across a_max, e.g. "0,n8.5,1")
 
 For the homogeneous WSP sphere at omega/omega_c = 3 and 12 and for one coated
 case (delta = 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step):
@@ -46,27 +47,34 @@ def run(cli, args):
     return (j[-1] if isinstance(j, list) else j), wall, ru.ru_maxrss / 1024.0
 
 
+def mesh_args(m):
+    """CLI arguments of one mesh spec: a level, or nX = X elements across a_max."""
+    if m.startswith("n"):
+        return ["--elements-per-contact", m[1:]]
+    return ["--mesh", m]
+
+
 def main():
     if len(sys.argv) < 2:
-        sys.exit("usage: bench-shear.py CLI [LEVELS]")
+        sys.exit("usage: bench-shear.py CLI [MESHES]")
     cli = sys.argv[1]
-    levels = [int(x) for x in (sys.argv[2] if len(sys.argv) > 2 else "0,1").split(",")]
+    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,1").split(",")
     print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
     print("%-34s %5s %8s %9s %9s %8s %7s %7s %6s %8s" % (
-        "case", "level", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
+        "case", "mesh", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
         "peak MB"))
     for name, args in CASES:
         rows = []
         for lev in levels:
-            j, wall, extra = run(cli, args + ["--mesh", str(lev)])
+            j, wall, extra = run(cli, args + mesh_args(lev))
             rows.append((lev, j, wall, extra))
         fin = next((j["mu_s"] for lev, j, w, e in reversed(rows) if j), None)
         for lev, j, wall, extra in rows:
             if j is None:
-                print("%-34s %5d   failed after %.1f s: %s" % (name, lev, wall, extra))
+                print("%-34s %5s   failed after %.1f s: %s" % (name, lev, wall, extra))
                 continue
             err = 100 * (j["mu_s"] / fin - 1) if fin else math.nan
-            print("%-34s %5d %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f" % (
+            print("%-34s %5s %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f" % (
                 name, lev, j.get("dofs", -1), j["mu_s"], err, wall,
                 j.get("newton_iterations", "-"), j.get("factorizations", "-"),
                 j.get("shear_increments", "-"), extra))
