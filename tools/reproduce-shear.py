@@ -28,6 +28,7 @@ Figures (gnuplot 'png' terminal) and the CSV behind each:
 import argparse
 import concurrent.futures
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -239,6 +240,41 @@ def fig416(rn, out):
                         r["ux_at_slide_over_omega_c"], total_wall(r)))
                     line.append("%8.3f (%.3f)" % (r["Q_max_over_P_c"], r["mu_s"]))
                 print("  t/R %-5g Eco/Esu %g: %s" % (tr, er, "  ".join(line)))
+    spec6_checks(rn)
+
+
+def initial_slope(csv):
+    """d(Q/Pc)/d(ux/omega_c) over the first ramp increment of a shear.csv."""
+    with open(csv) as f:
+        rows = [l.split(",") for l in f.read().split("\n")[1:] if l.strip()]
+    for r in rows:
+        if float(r[1]) > 0.0:
+            return float(r[3]) / float(r[1])
+    return math.nan
+
+
+def spec6_checks(rn):
+    """What SPEC section 6 says the grid shows, measured on our runs: the same
+    initial tangent for every Eco/Esu, a higher Qmax for a stiffer coating,
+    and mu_s ordered by Eco/Esu with a spread growing with t/R."""
+    print("SPEC 6 checks (ratios to Eco/Esu = 1 at the same t/R and delta):")
+    for tr in GRID_TR:
+        for d in GRID_DELTA:
+            base = rn.result("grid_t%g_E1_d%g" % (tr, d))
+            cb = rn.curve("grid_t%g_E1_d%g" % (tr, d))
+            if not base or not cb:
+                continue
+            k1, parts = initial_slope(cb), []
+            for er in GRID_ER[1:]:
+                r, c = rn.result("grid_t%g_E%g_d%g" % (tr, er, d)), \
+                    rn.curve("grid_t%g_E%g_d%g" % (tr, er, d))
+                if not r or not c:
+                    parts.append("Eco/Esu %g failed" % er)
+                    continue
+                parts.append("Eco/Esu %g: slope %.3f Qmax %.3f mu_s %.3f" % (
+                    er, initial_slope(c) / k1, r["Q_max_over_P_c"] / base["Q_max_over_P_c"],
+                    r["mu_s"] / base["mu_s"]))
+            print("  t/R %-5g delta %2g: %s" % (tr, d, "; ".join(parts)))
 
 
 def fig421(rn, out):
