@@ -292,6 +292,7 @@ static stc_status assemble(asp_solver *s, int want_K)
 {
     const asp_mesh *m = s->mesh;
     int bad = -1, nthr = s->nthr;
+    double t0 = omp_get_wtime();
     s->n_asm++;
     memset(s->fint, 0, (size_t)s->ndof * sizeof *s->fint);
     s->k_fresh = 0;
@@ -306,6 +307,7 @@ static stc_status assemble(asp_solver *s, int want_K)
         }
         scatter(s, e, want_K, fe, Ke, nthr > 1);
     }
+    s->t_asm += omp_get_wtime() - t0;
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
     if (s->shear) asp_shear_assemble(s, want_K); /* stick-law springs (shear.c) */
     s->k_fresh = want_K;
@@ -431,7 +433,9 @@ static stc_status factorize(asp_solver *s, nstat *ns)
      * OpenBLAS threads only spin; max-active-levels 0 serializes them */
     int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
     if (s->serial_factor) omp_set_max_active_levels(0), openblas_set_num_threads(1);
+    double t0 = omp_get_wtime();
     cholmod_factorize(s->K, s->L, &s->cc);
+    s->t_fact += omp_get_wtime() - t0;
     if (s->serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
     ns->facts++;
     s->have_factor = s->cc.status == CHOLMOD_OK;
@@ -617,7 +621,9 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
          * per solve threaded, 13.5 ms serial) */
         int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
         omp_set_max_active_levels(0), openblas_set_num_threads(1);
+        double t0 = omp_get_wtime();
         int k = pcg(s, b->x, du, tol, s->opt.krylov_max);
+        s->t_pcg += omp_get_wtime() - t0;
         omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
         s->k_last = k;
         s->n_kits += k >= 0 ? k : s->opt.krylov_max;
@@ -890,6 +896,9 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->mesh_quality = s->quality;
     info->h_contact = s->h;
     info->a_max = s->a_max;
+    info->time_assembly_s = s->t_asm;
+    info->time_factorize_s = s->t_fact;
+    info->time_pcg_s = s->t_pcg;
 }
 
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y)

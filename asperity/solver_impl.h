@@ -43,6 +43,7 @@ struct asp_solver {
     double *kv;           /* [4][ndof] PCG vectors r, z, p, q (lazily allocated) */
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
+    double t_asm, t_fact, t_pcg; /* cumulative wall time: element loop, factorizations, PCG, s */
 
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
     double *fint;                 /* [ndof] internal force at u */

@@ -167,6 +167,9 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_int(&j, "shear_newton_iterations", r->newton_iterations);
     cj_int(&j, "factorizations", pt->factorizations + r->factorizations);
     cj_num(&j, "shear_wall_s", r->wall_s);
+    cj_num(&j, "time_assembly_s", in->time_assembly_s); /* normal step + ramp */
+    cj_num(&j, "time_factorize_s", in->time_factorize_s);
+    cj_num(&j, "time_pcg_s", in->time_pcg_s);
     cj_num(&j, "fields_Q080_Q_over_Q_max", q08); /* null without --out */
     cj_bool(&j, "converged", ok);
     cj_str(&j, "reason", r->reason);
@@ -275,6 +278,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     if (l.oom) fprintf(stderr, "stiction %s: out of memory for the ramp points\n", cmd);
     int ok = st == STC_OK && r.converged;
     double q08 = NAN;
+    asp_solver_info(sv, &in); /* the time split of the whole run */
     rc = CLI_EXIT_OK;
     if (ok && out && write_fields(cmd, sv, out, &q08) != 0) rc = CLI_EXIT_FAIL;
     if (json) print_json(&pt, &in, &r, &c, &l, st, sa->load, q08);
