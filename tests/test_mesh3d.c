@@ -59,7 +59,7 @@ static double hex_volume(const double X[24])
 
 static asp_mesh *make(double t, double a, int level)
 {
-    asp_mesh_spec s = {R, t, a, level};
+    asp_mesh_spec s = {R, t, a, level, 0.0};
     asp_mesh *M = NULL;
     stc_status st = asp_mesh_half3d(&s, &M);
     if (st != STC_OK) fail_msg("asp_mesh_half3d: %s", stc_errmsg());
@@ -287,7 +287,7 @@ static void write_vtk(const asp_mesh *M, const char *path)
 static void test_speed_and_dump(void **state)
 {
     (void)state;
-    asp_mesh_spec s = {R, 0.05, 0.1, 1};
+    asp_mesh_spec s = {R, 0.05, 0.1, 1, 0.0};
     asp_mesh *M = NULL;
     double t0 = now();
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_OK);
@@ -302,7 +302,7 @@ static void test_speed_and_dump(void **state)
 
 static void expect_bad(double Rr, double t, double a, int level, const char *needle)
 {
-    asp_mesh_spec s = {Rr, t, a, level};
+    asp_mesh_spec s = {Rr, t, a, level, 0.0};
     asp_mesh *M = (asp_mesh *)&s; /* must be reset to NULL on failure */
     stc_error_clear();
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_EINVAL);
