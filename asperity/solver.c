@@ -94,7 +94,7 @@ void asp_options_default(asp_options *o)
     o->geom = ASP_GEOM_AUTO;
     o->contact = ASP_CONTACT_SLIP;
     o->no_separation = 0;
-    o->mesh_level = 1;
+    o->mesh_level = ASP_MESH_DEFAULT;
     o->elements_per_contact = 0.0;
     o->a_safety = 0.0;
     o->rtol = 1e-8;
@@ -112,8 +112,9 @@ void asp_options_default(asp_options *o)
 
 static stc_status check_options(const asp_options *o)
 {
-    STC_CHECK(o->mesh_level >= 0 && o->mesh_level <= 6, STC_EINVAL,
-              "mesh level = %d: must be in [0, 6]", o->mesh_level);
+    STC_CHECK(o->mesh_level >= ASP_MESH_FINE && o->mesh_level <= 6, STC_EINVAL,
+              "mesh level = %d: must be in [0, 6], or %d (default) / %d (fine) for the "
+              "model's own levels", o->mesh_level, ASP_MESH_DEFAULT, ASP_MESH_FINE);
     STC_CHECK(o->elements_per_contact == 0.0 ||
                   (o->elements_per_contact >= 3.0 && o->elements_per_contact <= 384.0),
               STC_EINVAL, "elements per contact = %g: must be 0 (from the level) or in [3, 384]",
@@ -800,9 +801,17 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     s->omega_est = fmin(c.omega_c, t > 0.0 ? cc.omega_c : c.omega_c);
     double dres = 0.8 * s->omega_est;
     s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
-    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->opt.mesh_level, s->opt.elements_per_contact};
+    /* default level: 1 axisymmetric, 0 in 3D.  A 3D level costs ~10x the
+     * one below (3D Hertz point level 0: <= 0.2 %, issue 3), and the μs of a
+     * combined-loading run moved by <= 1 % from 6 to 8.5 elements across
+     * a_max (WSP 3 and 6 ωc; t/R 0.025, Eco/Esu 2, δ = 1 and 30 ωc_su,
+     * docs/tangential-step.md §10) while level 1 takes 10+ minutes */
+    int base = s->opt.geom == ASP_GEOM_3D ? 0 : 1;
+    s->level = s->opt.mesh_level >= 0 ? s->opt.mesh_level
+                                      : base + (ASP_MESH_DEFAULT - s->opt.mesh_level);
+    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->level, s->opt.elements_per_contact};
     double n = s->opt.elements_per_contact > 0.0 ? s->opt.elements_per_contact
-                                                 : 6.0 * (1 << s->opt.mesh_level);
+                                                 : 6.0 * (1 << s->level);
     if (s->opt.geom == ASP_GEOM_3D) {
         s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
         STC_CALL(asp_mesh_half3d(&spec, &s->mesh));

@@ -44,6 +44,7 @@ struct asp_solver {
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
     double t_asm, t_fact, t_pcg; /* cumulative wall time: element loop, factorizations, PCG, s */
+    int level;            /* mesh level in use (opt.mesh_level resolved) */
 
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
     double *fint;                 /* [ndof] internal force at u */

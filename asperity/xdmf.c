@@ -49,7 +49,7 @@ static int write_params(hid_t f, const asp_solver *s)
            write_attr(f, "delta_mm", s->delta) | write_attr(f, "P_N", s->pt.P) |
            write_attr(f, "contact_stick", s->opt.contact == ASP_CONTACT_STICK) |
            write_attr(f, "no_separation", s->opt.no_separation) |
-           write_attr(f, "mesh_level", s->opt.mesh_level) | write_attr(f, "a_max_mm", s->a_max) |
+           write_attr(f, "mesh_level", s->level) | write_attr(f, "a_max_mm", s->a_max) |
            write_attr(f, "rtol", s->opt.rtol) | write_attr(f, "utol", s->opt.utol);
 }
 

@@ -46,11 +46,17 @@ typedef enum {
     ASP_KRYLOV_ON = 2    /* always (tests, experiments) */
 } asp_krylov;
 
+/* asp_options.mesh_level relative to the model's default level */
+enum { ASP_MESH_DEFAULT = -1, ASP_MESH_FINE = -2 };
+
 typedef struct asp_options {
     asp_geom geom;           /* default ASP_GEOM_AUTO */
     asp_contact_law contact; /* default ASP_CONTACT_SLIP */
     int no_separation;       /* 1: a node in contact never opens; default 0 */
-    int mesh_level;          /* 0 coarse, 1 default, 2 fine, 3+ finer; default 1 */
+    int mesh_level;          /* 0 coarse, 1, 2 fine, 3+ finer, or ASP_MESH_DEFAULT /
+                                ASP_MESH_FINE: the model's default level (1
+                                axisymmetric, 0 3D) / one finer; default
+                                ASP_MESH_DEFAULT */
     double elements_per_contact; /* elements across a_max, overrides 6 2^mesh_level
                                     when > 0 (values between levels, e.g. 8; in 3D
                                     the shells follow the level log2(n / 6));

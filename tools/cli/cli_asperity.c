@@ -27,7 +27,9 @@ static const cli_opt opts[] = {
     {"delta-mm", "LIST", "interference(s) in mm (> 0, increasing)"},
     {"contact", "slip|stick", "contact condition of the normal step (default slip)"},
     {"model", "axisym|3d|auto", "geometry (default auto = axisymmetric)"},
-    {"mesh", "LEVEL", "coarse|default|fine or a level 0..6 (default: default = 1)"},
+    {"mesh", "LEVEL",
+     "coarse (0)|default|fine or a level 0..6; default = level 1 axisymmetric, 0 in 3D; "
+     "fine = one level finer (default: default)"},
     {"surface-layers", "N",
      "axisymmetric: split the top element row into N+1 rows halving towards the surface "
      "(N in [0, 6]; default auto = 3 under stick, 0 under slip)"},
@@ -87,8 +89,8 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
     } else if (!strcmp(key, "mesh")) {
         long l;
         if (!strcmp(value, "coarse")) a->o.mesh_level = 0;
-        else if (!strcmp(value, "default")) a->o.mesh_level = 1;
-        else if (!strcmp(value, "fine")) a->o.mesh_level = 2;
+        else if (!strcmp(value, "default")) a->o.mesh_level = ASP_MESH_DEFAULT;
+        else if (!strcmp(value, "fine")) a->o.mesh_level = ASP_MESH_FINE;
         else if (stc_parse_long(key, value, &l) == STC_OK && l >= 0 && l <= 6)
             a->o.mesh_level = (int)l;
         else return bad(key, value, "coarse, default, fine or a level in [0, 6]");
