@@ -801,11 +801,12 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     s->omega_est = fmin(c.omega_c, t > 0.0 ? cc.omega_c : c.omega_c);
     double dres = 0.8 * s->omega_est;
     s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
-    /* default level: 1 axisymmetric, 0 in 3D.  A 3D level costs ~10x the
-     * one below (3D Hertz point level 0: <= 0.2 %, issue 3), and the μs of a
+    /* default level: 1 axisymmetric, 0 in 3D.  A 3D level costs ~5-10x the
+     * one below (3D Hertz point level 0: <= 0.2 %, issue 3); the μs of a
      * combined-loading run moved by <= 1 % from 6 to 8.5 elements across
-     * a_max (WSP 3 and 6 ωc; t/R 0.025, Eco/Esu 2, δ = 1 and 30 ωc_su,
-     * docs/tangential-step.md §10) while level 1 takes 10+ minutes */
+     * a_max (WSP 3 and 6 ωc; t/R 0.025, Eco/Esu 2, δ = 1 and 30 ωc_su) and
+     * by +3.3 % / +0.6 % to level 1 (WSP 3 / 6 ωc, 12-14 min a point);
+     * docs/tangential-step.md §10 */
     int base = s->opt.geom == ASP_GEOM_3D ? 0 : 1;
     s->level = s->opt.mesh_level >= 0 ? s->opt.mesh_level
                                       : base + (ASP_MESH_DEFAULT - s->opt.mesh_level);
