@@ -805,7 +805,8 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
      * one below (3D Hertz point level 0: <= 0.2 %, issue 3); the μs of a
      * combined-loading run moved by <= 1 % from 6 to 8.5 elements across
      * a_max (WSP 3 and 6 ωc; t/R 0.025, Eco/Esu 2, δ = 1 and 30 ωc_su) and
-     * by +3.3 % / +0.6 % to level 1 (WSP 3 / 6 ωc, 12-14 min a point);
+     * by +3.3 % / +0.6 % / +3.0 % to level 1 (WSP 3 / 6 ωc, coated δ = 30;
+     * 12-36 min a point);
      * docs/tangential-step.md §10 */
     int base = s->opt.geom == ASP_GEOM_3D ? 0 : 1;
     s->level = s->opt.mesh_level >= 0 ? s->opt.mesh_level
