@@ -351,6 +351,19 @@ static void test_elements_per_contact(void **state)
     printf("# 3D DOFs: level 0 %d, n = 6 %d, n = 8 %d, level 1 %d\n", in.dofs, d3[0], d3[1], d3[2]);
     assert_int_equal(d3[0], in.dofs);
     assert_true(d3[1] > d3[0] && d3[1] < d3[2]);
+    /* the default level is the model's own: 0 in 3D, "fine" one above */
+    int dd[2];
+    for (int k = 0; k < 2; k++) {
+        asp_options_default(&o);
+        o.geom = ASP_GEOM_3D, o.threads = 1;
+        if (k) o.mesh_level = ASP_MESH_FINE;
+        assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+        asp_solver_info(s, &in);
+        dd[k] = in.dofs;
+        asp_solver_destroy(&s);
+    }
+    assert_int_equal(dd[0], d3[0]);
+    assert_int_equal(dd[1], d3[2]);
 }
 
 /* 3D half model against the axisymmetric model, Hertz a/R = 0.01, coarsest
