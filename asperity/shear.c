@@ -119,20 +119,6 @@ void asp_shear_release(asp_solver *s)
 
 /* ---- set-up ------------------------------------------------------------ */
 
-static int cmp_int(const void *a, const void *b)
-{
-    int x = *(const int *)a, y = *(const int *)b;
-    return (x > y) - (x < y);
-}
-
-/* Position of the upper-triangle entry (i, j), i <= j, in K->x. */
-static int kpos(const cholmod_sparse *K, int i, int j)
-{
-    const int *Kp = K->p, *Ki = K->i;
-    const int *f = bsearch(&i, Ki + Kp[j], (size_t)(Kp[j + 1] - Kp[j]), sizeof *Ki, cmp_int);
-    return f ? (int)(f - Ki) : -1;
-}
-
 static stc_status alloc_shear(asp_solver *s)
 {
     size_t n = (size_t)s->ncand;
@@ -149,9 +135,9 @@ static stc_status alloc_shear(asp_solver *s)
               STC_ENOMEM, "shear: out of memory");
     for (int k = 0; k < s->ncand; k++) {
         int n3 = 3 * s->cand[k];
-        s->cpos[3 * k] = kpos(s->K, n3, n3);
-        s->cpos[3 * k + 1] = kpos(s->K, n3, n3 + 1);
-        s->cpos[3 * k + 2] = kpos(s->K, n3 + 1, n3 + 1);
+        s->cpos[3 * k] = asp_kpos(s->K, n3, n3);
+        s->cpos[3 * k + 1] = asp_kpos(s->K, n3, n3 + 1);
+        s->cpos[3 * k + 2] = asp_kpos(s->K, n3 + 1, n3 + 1);
         STC_CHECK(s->cpos[3 * k] >= 0 && s->cpos[3 * k + 1] >= 0 && s->cpos[3 * k + 2] >= 0,
                   STC_ESOLVER, "shear: node %d's 2x2 block is not in the pattern", s->cand[k]);
     }

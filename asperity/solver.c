@@ -188,6 +188,13 @@ static stc_status node_graph(const asp_mesh *m, int **ptr_out, int **nb_out)
     return STC_OK;
 }
 
+int asp_kpos(const cholmod_sparse *K, int i, int j)
+{
+    const int *Kp = K->p, *Ki = K->i;
+    const int *f = bsearch(&i, Ki + Kp[j], (size_t)(Kp[j + 1] - Kp[j]), sizeof *Ki, cmp_int);
+    return f ? (int)(f - Ki) : -1;
+}
+
 /* Upper-triangular CSC pattern of K and the element scatter map. */
 static stc_status build_pattern(asp_solver *s)
 {
@@ -225,13 +232,8 @@ static stc_status build_pattern(asp_solver *s)
             for (int b = 0; b < s->nde; b++) {
                 int I = m->conn[s->nen * e + a / d] * d + a % d;
                 int J = m->conn[s->nen * e + b / d] * d + b % d;
-                int pos = -1;
-                if (I <= J) {
-                    const int *lo = Ki + Kp[J], *hi = Ki + Kp[J + 1];
-                    const int *f = bsearch(&I, lo, (size_t)(hi - lo), sizeof *lo, cmp_int);
-                    pos = (int)(f - Ki);
-                }
-                s->emap[((size_t)e * s->nde + a) * s->nde + b] = pos;
+                size_t at = ((size_t)e * s->nde + a) * s->nde + b;
+                s->emap[at] = I <= J ? asp_kpos(s->K, I, J) : -1;
             }
     return STC_OK;
 }
@@ -488,13 +490,13 @@ static void newton_rhs(const asp_solver *s, cholmod_dense *b, const double *c, d
     }
 }
 
-/* du = A^-1 b with the current factor. */
+/* du = A^-1 b with the current factor (cholmod_solve2 reuses the solution
+ * and workspace of earlier solves: no allocation per Newton step). */
 static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
 {
-    cholmod_dense *x = cholmod_solve(CHOLMOD_A, s->L, b, &s->cc);
-    STC_CHECK(x, STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
-    memcpy(du, x->x, (size_t)s->ndof * sizeof *du);
-    cholmod_free_dense(&x, &s->cc);
+    STC_CHECK(cholmod_solve2(CHOLMOD_A, s->L, b, NULL, &s->kx, NULL, &s->ky, &s->ke, &s->cc),
+              STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
+    memcpy(du, s->kx->x, (size_t)s->ndof * sizeof *du);
     return STC_OK;
 }
 
@@ -703,10 +705,9 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
 static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
 {
     int n = s->ndof;
-    double *du = malloc((size_t)n * sizeof *du), *u0 = malloc((size_t)n * sizeof *u0);
-    cholmod_dense *b = cholmod_allocate_dense((size_t)n, 1, (size_t)n, CHOLMOD_REAL, &s->cc);
+    double *du = s->du_scr, *u0 = s->u0_scr;
+    cholmod_dense *b = s->b_scr;
     stc_status st = STC_OK;
-    STC_CHECK_GOTO(du && u0 && b, st, done, STC_ENOMEM, "solver: out of memory");
     for (int i = 0; i < n; i++) s->u[i] = s->u_conv[i] + pred * s->du_last[i];
     /* nodes the predicted surface pushes through the flat touch now, all at
      * once (a pass each would cost a Newton solve each); from the unloaded
@@ -734,8 +735,6 @@ static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
         if (ch == 0) break;
     }
 done:
-    free(du), free(u0);
-    cholmod_free_dense(&b, &s->cc);
     return st;
 }
 
@@ -773,8 +772,10 @@ static stc_status alloc_state(asp_solver *s)
     s->st_old = calloc(nq, sizeof *s->st_old), s->st_new = calloc(nq, sizeof *s->st_new);
     s->fixed = calloc(n, 1);
     s->ubc = calloc(n, sizeof *s->u), s->cvec = calloc(n, sizeof *s->u);
+    s->du_scr = malloc(n * sizeof *s->u), s->u0_scr = malloc(n * sizeof *s->u);
+    s->b_scr = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
     STC_CHECK(s->u && s->u_conv && s->du_last && s->fint && s->sig && s->st_old && s->st_new &&
-                  s->fixed && s->ubc && s->cvec,
+                  s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->b_scr,
               STC_ENOMEM, "solver: out of memory for %zu DOFs", n);
     return STC_OK;
 }
@@ -887,6 +888,7 @@ void asp_solver_destroy(asp_solver **sp)
     if (s->L) cholmod_free_factor(&s->L, &s->cc);
     if (s->K) cholmod_free_sparse(&s->K, &s->cc);
     free(s->kv), cholmod_free_dense(&s->kb, &s->cc), cholmod_free_dense(&s->kx, &s->cc);
+    free(s->du_scr), free(s->u0_scr), cholmod_free_dense(&s->b_scr, &s->cc);
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);

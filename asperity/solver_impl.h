@@ -47,6 +47,8 @@ struct asp_solver {
     int level;            /* mesh level in use (opt.mesh_level resolved) */
 
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
+    double *du_scr, *u0_scr;      /* [ndof] scratch of increment(): step, line-search base */
+    cholmod_dense *b_scr;         /* [ndof] scratch of increment(): Newton right-hand side */
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
@@ -106,6 +108,9 @@ stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
 int asp_surface_layers(const asp_options *o);
 
 /* asp_contact.c: results at the converged state. */
+/* Position of the upper-triangle entry (i, j), i <= j, in K->x; -1 if not
+ * in the pattern (solver.c). */
+int asp_kpos(const cholmod_sparse *K, int i, int j);
 void asp_contact_results(asp_solver *s, asp_point *pt);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
 void asp_history_push(asp_solver *s, double delta, double P);
