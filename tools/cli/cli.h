@@ -39,6 +39,17 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
 /* Print "stiction <cmd>: <stc_errmsg()>" (or the status name) to stderr. */
 int cli_fail(const char *cmdname, stc_status s);
 
+/* An output file written under a temporary name and renamed on success, so
+ * a failed run leaves no partial file: cli_out_open(&o, dir, name) opens
+ * dir/name.tmp (NULL on failure); cli_out_close(&o) closes it and renames it
+ * to dir/name, or removes it; 0 on success, -1 otherwise. */
+typedef struct cli_out {
+    FILE *f;
+    char path[4096], tmp[4200];
+} cli_out;
+FILE *cli_out_open(cli_out *o, const char *dir, const char *name);
+int cli_out_close(cli_out *o);
+
 /* Print the common options' help. */
 void cli_common_help(FILE *f);
 

@@ -253,10 +253,8 @@ static void print_table(const arow *rows, int n, const stc_critical *c, const as
 
 static int write_csv(const char *dir, const arow *rows, int n, const stc_critical *c)
 {
-    char path[4096], tmp[4200];
-    snprintf(path, sizeof path, "%s/curve.csv", dir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
+    cli_out o;
+    FILE *f = cli_out_open(&o, dir, "curve.csv");
     if (!f) return -1;
     fprintf(f, "delta_mm,delta_over_omega_c_su,P_N,P_over_P_c,P_smooth_N,a_mm,A_mm2,A_over_A_c,"
                "vm_over_Y_su,vm_over_Y_co,newton_iterations,wall_s\n");
@@ -267,8 +265,7 @@ static int write_csv(const char *dir, const arow *rows, int n, const stc_critica
                 p->A / c->A_c,
                 p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->wall_s);
     }
-    if (fclose(f) != 0 || rename(tmp, path) != 0) return remove(tmp), -1;
-    return 0;
+    return cli_out_close(&o);
 }
 
 static int run(const char *cmd, const stc_params *p, aopts *a)

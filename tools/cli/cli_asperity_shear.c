@@ -81,10 +81,8 @@ static int collect(void *ctx, const asp_shear_point *pt)
 
 static int write_csv(const char *dir, const ptlist *l, const stc_critical *c)
 {
-    char path[4096], tmp[4200];
-    snprintf(path, sizeof path, "%s/shear.csv", dir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
+    cli_out o;
+    FILE *f = cli_out_open(&o, dir, "shear.csv");
     if (!f) return -1;
     fprintf(f, "ux_mm,ux_over_omega_c,Q_N,Q_over_P_c,P_N,A_mm2,stick_area_mm2,slip_fraction,"
                "n_contact\n");
@@ -93,8 +91,7 @@ static int write_csv(const char *dir, const ptlist *l, const stc_critical *c)
         fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d\n", p->ux, p->ux / c->omega_c,
                 p->Q, p->Q / c->P_c, p->P, p->A, p->A_stick, p->slip_frac, p->n_contact);
     }
-    if (fclose(f) != 0 || rename(tmp, path) != 0) return remove(tmp), -1;
-    return 0;
+    return cli_out_close(&o);
 }
 
 /* fields_Q0, fields_Q080 (the kept point nearest 0.8 Q_max: its Q/Q_max in

@@ -79,6 +79,20 @@ static void print_help(const char *cmdname, const char *usage, const cli_opt *op
     if (has_params) cli_common_help(stdout);
 }
 
+FILE *cli_out_open(cli_out *o, const char *dir, const char *name)
+{
+    snprintf(o->path, sizeof o->path, "%s/%s", dir, name);
+    snprintf(o->tmp, sizeof o->tmp, "%s.tmp", o->path);
+    return o->f = fopen(o->tmp, "w");
+}
+
+int cli_out_close(cli_out *o)
+{
+    int bad = ferror(o->f);
+    if (fclose(o->f) != 0 || bad || rename(o->tmp, o->path) != 0) return remove(o->tmp), -1;
+    return 0;
+}
+
 int cli_fail(const char *cmdname, stc_status s)
 {
     const char *m = stc_errmsg();
