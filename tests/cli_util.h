@@ -6,6 +6,7 @@
 
 #include <limits.h>
 #include <stdio.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <math.h>
@@ -30,6 +31,21 @@ static int cli_locate(char *cli, size_t n)
     *slash = '\0';
     snprintf(cli, n, "%.*s/../bin/stiction", PATH_MAX - 32, self);
     return 0;
+}
+
+/* Run the shell command `cmd`; `which` = 1 captures its stdout, 2 its
+ * stderr, into out (NUL-terminated).  Returns the exit status (128 +
+ * signal if killed). */
+static int cli_capture(const char *cmd, int which, char *out, size_t n)
+{
+    char full[PATH_MAX + 4096];
+    snprintf(full, sizeof full, "%s %s", cmd, which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");
+    FILE *p = popen(full, "r");
+    assert_non_null(p);
+    size_t got = fread(out, 1, n - 1, p);
+    out[got] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
 }
 
 static const char *ws(const char *s)

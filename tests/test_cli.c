@@ -46,14 +46,8 @@ static int cleanup(void **state)
 static int run(const char *args, int which, char *buf, size_t n)
 {
     char cmd[PATH_MAX + 1024];
-    snprintf(cmd, sizeof cmd, "'%s' %s %s", cli, args,
-             which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t got = fread(buf, 1, n - 1, p);
-    buf[got] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    snprintf(cmd, sizeof cmd, "'%s' %s", cli, args);
+    return cli_capture(cmd, which, buf, n);
 }
 
 static void write_ini(const char *text)

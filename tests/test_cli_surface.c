@@ -55,14 +55,8 @@ static void write_file(const char *name, const char *text)
 static int run(const char *args, int which, char *out, size_t n)
 {
     char cmd[PATH_MAX + 2048];
-    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s %s", dir, cli, args,
-             which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t got = fread(out, 1, n - 1, p);
-    out[got] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s", dir, cli, args);
+    return cli_capture(cmd, which, out, n);
 }
 
 /* No entry named out* (outputs and their temporaries) in the scratch dir. */

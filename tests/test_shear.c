@@ -238,14 +238,8 @@ static char cli[PATH_MAX];
 static int cli_run(const char *args, char *buf, size_t n, int want_stderr)
 {
     char cmd[PATH_MAX + 2048];
-    snprintf(cmd, sizeof cmd, "'%s' asperity %s %s", cli, args,
-             want_stderr ? "2>&1 >/dev/null" : "2>/dev/null");
-    FILE *f = popen(cmd, "r");
-    assert_non_null(f);
-    size_t got = fread(buf, 1, n - 1, f);
-    buf[got] = '\0';
-    int st = pclose(f);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    snprintf(cmd, sizeof cmd, "'%s' asperity %s", cli, args);
+    return cli_capture(cmd, want_stderr ? 2 : 1, buf, n);
 }
 
 static void test_cli_errors(void **state)
