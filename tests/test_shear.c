@@ -293,6 +293,17 @@ static void test_cli_json(void **state)
                           "\"delta_mm\"", "\"P_N\""};
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
         if (!strstr(buf, keys[i])) fail_msg("JSON lacks %s: %.2000s", keys[i], buf);
+    /* the time split: each part positive, together within the run's wall time */
+    const char *tk[] = {"\"time_assembly_s\": ", "\"time_factorize_s\": ", "\"time_pcg_s\": ",
+                        "\"wall_s\": ", "\"shear_wall_s\": "};
+    double tv[5];
+    for (int i = 0; i < 5; i++) {
+        const char *at = strstr(buf, tk[i]);
+        if (!at) fail_msg("JSON lacks %s", tk[i]);
+        tv[i] = strtod(at + strlen(tk[i]), NULL);
+    }
+    assert_true(tv[0] > 0.0 && tv[1] > 0.0 && tv[2] >= 0.0);
+    assert_true(tv[0] + tv[1] + tv[2] <= tv[3] + tv[4]);
     const char *files[] = {"shear.csv", "fields_Q0.h5", "fields_Q0.xmf", "fields_Q080.h5",
                            "fields_Qmax.h5", "fields_Qmax.xmf"};
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
