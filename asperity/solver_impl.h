@@ -21,6 +21,15 @@ typedef struct asp_ytrack {
     asp_yield y;
 } asp_ytrack;
 
+/* Surface nodes on one line from the axis (shear.c's contact footprint):
+ * candidate index, distance from the axis (ascending), gap when the ramp
+ * started. */
+typedef struct asp_foot_line {
+    int n;
+    int *k;
+    double *r, *g0;
+} asp_foot_line;
+
 struct asp_solver {
     stc_params par;
     asp_options opt;
@@ -83,6 +92,9 @@ struct asp_solver {
     double *carea;                /* [ncand] tributary area, mm² */
     double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
     unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
+    double foot[3];               /* contact extent +x, -x, +y during the ramp, mm */
+    double pt0_a;                 /* contact radius at the start of the ramp, mm */
+    asp_foot_line fline[3];       /* nodes on the lines +x, -x, +y (asp_contact_footprint) */
     double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
     double rate_sat;              /* d|t|/dux below which a stuck node is saturated, MPa/mm */
     unsigned char *cyield;        /* [ncand] 1: stuck but saturated in the last increment
@@ -107,11 +119,17 @@ stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
 /* mesh.c: asp_options.surface_layers with -1 (automatic) resolved. */
 int asp_surface_layers(const asp_options *o);
 
-/* asp_contact.c: results at the converged state. */
 /* Position of the upper-triangle entry (i, j), i <= j, in K->x; -1 if not
  * in the pattern (solver.c). */
 int asp_kpos(const cholmod_sparse *K, int i, int j);
+
+/* asp_contact.c: results at the converged state; the contact footprint of
+ * the tangential step (shear.c). */
 void asp_contact_results(asp_solver *s, asp_point *pt);
+stc_status asp_contact_foot_init(asp_solver *s);     /* the lines' nodes and gaps at ux = 0 */
+void asp_contact_foot_free(asp_solver *s);
+/* contact extent along +x, -x, +y from a0 and the gaps ahead of the edges, mm */
+stc_status asp_contact_footprint(const asp_solver *s, double a0, double ext[3]);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
 void asp_history_push(asp_solver *s, double delta, double P);
 

@@ -85,10 +85,21 @@ static int areas_axisym(const asp_mesh *m, double R, double rc, double *area)
 static const int HEX_FACE[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
-/* ∫ N_a |x_ξ × x_η| dξ dη over the part of the bilinear face X [4][3] with
- * lateral distance sqrt(x² + y²) < rc, on nsub x nsub sub-cells of 3x3
- * Gauss points each (nsub = 1 for an uncut face).  w: [4], written. */
-static void quad_face(const double *X, double rc, int nsub, double *w)
+/* Contact footprint in the plane: two half-ellipses with the semi-axes ap
+ * (x >= 0), am (x < 0) along x and ay along y (a disc: all three equal).
+ * Its gauge ρ (< 1 inside) is convex: the union of the halves is convex
+ * (same width ay and vertical tangents where they meet). */
+typedef struct foot { double ap, am, ay; } foot;
+
+static double gauge(const foot *f, double x, double y)
+{
+    return hypot(x / (x >= 0.0 ? f->ap : f->am), y / f->ay);
+}
+
+/* ∫ N_a |x_ξ × x_η| dξ dη over the part of the bilinear face X [4][3]
+ * inside the footprint, on nsub x nsub sub-cells of 3x3 Gauss points each
+ * (nsub = 1 for an uncut face).  w: [4], written. */
+static void quad_face(const double *X, const foot *fp, int nsub, double *w)
 {
     static const double G[3] = {-0.774596669241483377, 0.0, 0.774596669241483377};
     static const double W[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
@@ -111,7 +122,7 @@ static void quad_face(const double *X, double rc, int nsub, double *w)
                             t1[i] += dxi * X[3 * a + i], t2[i] += deta * X[3 * a + i];
                         }
                     }
-                    if (hypot(x[0], x[1]) >= rc) continue;
+                    if (gauge(fp, x[0], x[1]) >= 1.0) continue;
                     double n[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2],
                                    t1[0] * t2[1] - t1[1] * t2[0]};
                     double J = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * W[p] * W[q] *
@@ -120,25 +131,25 @@ static void quad_face(const double *X, double rc, int nsub, double *w)
                 }
 }
 
-/* Is the face cut by the circle r = rc?  r is convex, so its maximum over
- * the face is at a corner; the minimum is bounded below by the smallest
- * corner value minus the face diameter. */
-static int face_cut(const double *X, double rc, int *outside)
+/* Is the face cut by the footprint's edge?  The gauge is convex, so its
+ * maximum over the face is at a corner; the minimum is bounded below by the
+ * smallest corner value minus the face diameter over the smallest axis. */
+static int face_cut(const double *X, const foot *fp, int *outside)
 {
     double rmin = INFINITY, rmax = 0.0, diam = 0.0;
     for (int a = 0; a < 4; a++) {
-        double r = hypot(X[3 * a], X[3 * a + 1]);
+        double r = gauge(fp, X[3 * a], X[3 * a + 1]);
         rmin = fmin(rmin, r), rmax = fmax(rmax, r);
         for (int b = 0; b < a; b++)
             diam = fmax(diam, hypot(hypot(X[3 * a] - X[3 * b], X[3 * a + 1] - X[3 * b + 1]),
                                     X[3 * a + 2] - X[3 * b + 2]));
     }
-    *outside = rmin - diam >= rc;
-    return !(rmax < rc) && !*outside;
+    *outside = rmin - diam / fmin(fmin(fp->ap, fp->am), fp->ay) >= 1.0;
+    return !(rmax < 1.0) && !*outside;
 }
 
 /* 3D: every hex face whose four corners lie on the sphere. */
-static int areas_half3d(const asp_mesh *m, double R, double rc, double *area)
+static int areas_half3d(const asp_mesh *m, double R, const foot *fp, double *area)
 {
     int nface = 0;
     for (int e = 0; e < m->nelem; e++) {
@@ -149,9 +160,9 @@ static int areas_half3d(const asp_mesh *m, double R, double rc, double *area)
             if (!all) continue;
             double X[12], w[4];
             for (int a = 0; a < 4; a++) memcpy(X + 3 * a, m->x + 3 * (size_t)id[a], 3 * sizeof *X);
-            int outside, cut = face_cut(X, rc, &outside);
+            int outside, cut = face_cut(X, fp, &outside);
             if (outside) w[0] = w[1] = w[2] = w[3] = 0.0;
-            else quad_face(X, rc, cut ? ASP_DISC_NSUB : 1, w);
+            else quad_face(X, fp, cut ? ASP_DISC_NSUB : 1, w);
             for (int a = 0; a < 4; a++) area[id[a]] += w[a];
             nface++;
         }
@@ -159,16 +170,19 @@ static int areas_half3d(const asp_mesh *m, double R, double rc, double *area)
     return nface;
 }
 
-static stc_status node_areas(const asp_mesh *m, double R_outer, double rc, double *area)
+static stc_status node_areas(const asp_mesh *m, double R_outer, const foot *fp, double *area)
 {
+    double rc = fmin(fmin(fp->ap, fp->am), fp->ay);
     STC_CHECK(R_outer > 0.0 && isfinite(R_outer), STC_EINVAL,
               "R_outer = %g mm: outer radius must be > 0", R_outer);
     STC_CHECK(rc > 0.0, STC_EINVAL, "rc = %g mm: contact radius must be > 0", rc);
     STC_CHECK(m && (m->dim == 2 || m->dim == 3) && m->nen == (m->dim == 2 ? 4 : 8),
               STC_EINVAL, "surface areas: mesh must be quad4 (dim 2) or hex8 (dim 3)");
     memset(area, 0, (size_t)m->nnode * sizeof *area);
-    int n = m->dim == 2 ? areas_axisym(m, R_outer, rc, area)
-                        : areas_half3d(m, R_outer, rc, area);
+    STC_CHECK(m->dim == 3 || (fp->ap == fp->am && fp->ap == fp->ay), STC_EINVAL,
+              "surface areas: an elliptic footprint needs the 3D mesh");
+    int n = m->dim == 2 ? areas_axisym(m, R_outer, fp->ap, area)
+                        : areas_half3d(m, R_outer, fp, area);
     STC_CHECK(n > 0, STC_EINVAL,
               "surface areas: no element face lies on the sphere R_outer = %g mm", R_outer);
     return STC_OK;
@@ -176,11 +190,20 @@ static stc_status node_areas(const asp_mesh *m, double R_outer, double rc, doubl
 
 stc_status asp_surface_node_areas(const asp_mesh *m, double R_outer, double *area)
 {
-    return node_areas(m, R_outer, INFINITY, area);
+    foot all = {INFINITY, INFINITY, INFINITY};
+    return node_areas(m, R_outer, &all, area);
 }
 
 stc_status asp_surface_node_areas_disc(const asp_mesh *m, double R_outer, double rc,
                                        double *area)
 {
-    return node_areas(m, R_outer, rc, area);
+    foot d = {rc, rc, rc};
+    return node_areas(m, R_outer, &d, area);
+}
+
+stc_status asp_surface_node_areas_foot(const asp_mesh *m, double R_outer, double ap, double am,
+                                       double ay, double *area)
+{
+    foot f = {ap, am, ay};
+    return node_areas(m, R_outer, &f, area);
 }

@@ -88,6 +88,19 @@ stc_status asp_surface_node_areas(const asp_mesh *m, double R_outer, double *are
 stc_status asp_surface_node_areas_disc(const asp_mesh *m, double R_outer, double rc,
                                        double *area);
 
+/* 3D: the same over a footprint of two half-ellipses, semi-axes ap along
+ * +x, am along -x and ay along y (shear.c: the contact of a sheared
+ * asperity); ap = am = ay = rc is the disc. */
+stc_status asp_surface_node_areas_foot(const asp_mesh *m, double R_outer, double ap, double am,
+                                       double ay, double *area);
+
+/* Contact edge on a line of nodes at increasing distances r[0..nr-1]
+ * during the ramp, from the preload radius a0 and the gap of the first open
+ * node now (g) against the ramp's start (g0), for a profile g ∝ (r - a)^(3/2)
+ * translating with the edge (asp_contact.c).  Nodes in contact: g <= 0. */
+double asp_contact_edge_advance(const double *r, const double *g0, const double *g, int nr,
+                                double a0);
+
 /* ---- sliding inception and ramp control (slide.c) -------------------- */
 
 typedef enum asp_slide_criterion {

@@ -176,6 +176,74 @@ static void test_disc_cap(void **state)
         }
 }
 
+/* Areas over a footprint of two half-ellipses (semi-axes ap along +x, am
+ * along -x, ay along y; the sheared contact, shear.c) sum to the spherical
+ * area over it, ∫ R'/sqrt(R'² - x² - y²) dx dy over the quarter ellipses of
+ * the half model (midpoint rule in elliptic polar coordinates, 400 x 400). */
+static double foot_cap(double ap, double am, double ay)
+{
+    enum { NQ = 400 };
+    double sum = 0.0;
+    for (int h = 0; h < 2; h++) {
+        double ax = h ? am : ap;
+        for (int i = 0; i < NQ; i++)
+            for (int j = 0; j < NQ; j++) {
+                double rho = (i + 0.5) / NQ, phi = 0.5 * M_PI * (j + 0.5) / NQ;
+                double x = ax * rho * cos(phi), y = ay * rho * sin(phi);
+                sum += R / sqrt(R * R - x * x - y * y) * ax * ay * rho / NQ * (0.5 * M_PI / NQ);
+            }
+    }
+    return sum;
+}
+
+static void test_foot_cap(void **state)
+{
+    (void)state;
+    const double F[3][3] = {{0.13, 0.13, 0.13}, {0.2, 0.12, 0.15}, {0.29, 0.21, 0.25}};
+    for (int l = 0; l < 2; l++) {
+        asp_mesh *m = make(3, 0.0, l);
+        double *A = malloc((size_t)m->nnode * sizeof *A), *D = malloc((size_t)m->nnode * sizeof *D);
+        assert_non_null(A), assert_non_null(D);
+        double worst = 0.0;
+        for (int k = 0; k < 3; k++) {
+            double sum = 0.0;
+            assert_int_equal(asp_surface_node_areas_foot(m, R, F[k][0], F[k][1], F[k][2], A),
+                             STC_OK);
+            for (int n = 0; n < m->nnode; n++) sum += A[n];
+            worst = fmax(worst, fabs(sum / foot_cap(F[k][0], F[k][1], F[k][2]) - 1.0));
+        }
+        /* the disc is the footprint with equal semi-axes, node by node */
+        assert_int_equal(asp_surface_node_areas_disc(m, R, 0.13, D), STC_OK);
+        assert_int_equal(asp_surface_node_areas_foot(m, R, 0.13, 0.13, 0.13, A), STC_OK);
+        for (int n = 0; n < m->nnode; n++) assert_true(A[n] == D[n]);
+        printf("level %d: footprint areas worst relative error %.2e\n", l, worst);
+        assert_true(worst < 1e-3);
+        free(A), free(D);
+        asp_mesh_destroy(&m);
+    }
+}
+
+/* The edge advance recovers the edge of a gap profile g = C (r - a)^(3/2)
+ * translated from a0 to a, exactly, while the first open node is open and as
+ * the next one takes over; stays at a0 when the gaps open (the trailing
+ * side) or no node is open. */
+static void test_edge_advance(void **state)
+{
+    (void)state;
+    double r[7] = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, g0[7], g[7], a0 = 0.23;
+    for (int i = 0; i < 7; i++) g0[i] = r[i] > a0 ? 2.5 * pow(r[i] - a0, 1.5) : 0.0;
+    for (double a = a0; a < 0.45; a += 0.0123) {
+        for (int i = 0; i < 7; i++) g[i] = r[i] > a ? 2.5 * pow(r[i] - a, 1.5) : 0.0;
+        assert_true(fabs(asp_contact_edge_advance(r, g0, g, 7, a0) - a) < 1e-12);
+    }
+    for (int i = 0; i < 7; i++) g[i] = 1.2 * g0[i]; /* opening */
+    assert_true(asp_contact_edge_advance(r, g0, g, 7, a0) == a0);
+    for (int i = 0; i < 7; i++) g[i] = 0.0; /* the whole line in contact */
+    assert_true(asp_contact_edge_advance(r, g0, g, 7, a0) == r[6]);
+    for (int i = 0; i < 7; i++) g[i] = 1.0; /* nothing in contact */
+    assert_true(asp_contact_edge_advance(r, g0, g, 7, a0) == a0);
+}
+
 static void test_invalid(void **state)
 {
     (void)state;
@@ -197,7 +265,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_axisym),       cmocka_unit_test(test_half3d),
         cmocka_unit_test(test_coated),       cmocka_unit_test(test_axisym_vs_3d),
-        cmocka_unit_test(test_disc_cap),     cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_disc_cap),     cmocka_unit_test(test_foot_cap),
+        cmocka_unit_test(test_edge_advance),     cmocka_unit_test(test_invalid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

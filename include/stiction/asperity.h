@@ -178,12 +178,20 @@ typedef enum asp_shear_criterion {
 } asp_shear_criterion;
 
 /* Defaults from asp_shear_options_default(). */
+/* Area of the contact as it grows during the ramp (junction growth); the
+ * two rules bracket the mesh-converged answer (docs/tangential-step.md §11). */
+typedef enum asp_junction {
+    ASP_JUNCTION_FOOTPRINT = 0, /* the edge advance read from the gaps ahead of it */
+    ASP_JUNCTION_NODES = 1      /* a node that touches gets F_z / p_m */
+} asp_junction;
+
 typedef struct asp_shear_options {
     asp_shear_criterion criterion; /* default ASP_SHEAR_CRIT_SHEAR */
     double alpha;        /* stiffness criterion ratio, in (0, 1); default 0.1 (BKE 2007) */
     double tau_c;        /* critical shear stress, MPa; 0 = Y/√3 of the coating (of the
                             sphere if uncoated); default 0 */
     double kappa;        /* tangential penalty k_t = κ G / h; default 100 */
+    asp_junction junction; /* contact growth rule; default ASP_JUNCTION_FOOTPRINT */
     int max_increments;  /* accepted ramp increments before giving up; default 200 */
     int keep_fields;     /* 1: keep snapshots for asp_solver_write_shear_fields
                             (memory: ~2 copies of the state); default 0 */
@@ -204,7 +212,9 @@ typedef struct asp_shear_point {
                           material that yielded in the increment (the shear
                           criterion's fraction; thesis §4.1.3, Fig. 4.9) */
     int n_contact;     /* contact nodes (half model) */
-    double x_lo, x_hi; /* contact extent along x on y = 0, mm (it shifts under shear) */
+    double a_lead;     /* contact footprint: extent from the axis along +x (the flat's */
+    double a_trail;    /*   motion), along -x and along y, mm; A integrates over */
+    double a_side;     /*   two half-ellipses with these semi-axes (shear.c) */
 } asp_shear_point;
 
 typedef struct asp_shear_result {
@@ -219,6 +229,7 @@ typedef struct asp_shear_result {
     double tau_c;        /* τc used, MPa */
     double a0;           /* contact radius after the normal step, mm */
     asp_shear_criterion criterion;
+    asp_junction junction;
     int converged;       /* 1: inception found; 0: gave up or failed (see reason) */
     int index;           /* ramp point of inception (0 = ux = 0) */
     int increments;      /* accepted ramp increments */

@@ -87,10 +87,10 @@ typedef struct cli_shear_args {
     int on;                /* run the tangential step */
     int alpha_set;         /* --alpha given */
     double load;           /* --load X = P/Pc_su (> 0: load control), else 0 */
-    asp_shear_options so;  /* --criterion, --alpha, --tau-c */
+    asp_shear_options so;  /* --criterion, --alpha, --tau-c, --junction */
 } cli_shear_args;
 void cli_shear_args_default(cli_shear_args *sa);
-/* --shear, --criterion, --alpha, --tau-c, --load; STC_EUNSUPPORTED for others. */
+/* --shear, --criterion, --alpha, --tau-c, --load, --junction; STC_EUNSUPPORTED for others. */
 stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value);
 /* Normal step to delta[0] (× omega_c_su unless in_mm) or to --load, then the
  * ramp; prints, writes DIR/shear.csv and fields_Q0/Q080/Qmax; exit code. */
@@ -104,7 +104,10 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
         {"alpha", "A", "stiffness criterion ratio KT_i/KT_1 in (0, 1) (default 0.1)"},         \
         {"tau-c", "MPa", "critical shear stress (default Y/sqrt(3) of the coating, or of the " \
                          "sphere if uncoated)"},                                               \
-        {"load", "X", "load control: normal load P = X Pc_su instead of --delta, then shear"}
+        {"load", "X", "load control: normal load P = X Pc_su instead of --delta, then shear"}, \
+        {"junction", "footprint|nodes",                                                        \
+         "contact growth under shear: edge advance from the gaps (default) or F_z/p_m of "   \
+         "the nodes that touch; the two bracket the mesh-converged answer"}
 
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;

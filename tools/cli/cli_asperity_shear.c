@@ -37,6 +37,11 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
         else if (!strcmp(value, "stiffness")) sa->so.criterion = ASP_SHEAR_CRIT_STIFFNESS;
         else return bad(key, value, "shear or stiffness");
         sa->on = 1;
+    } else if (!strcmp(key, "junction")) {
+        if (!strcmp(value, "footprint")) sa->so.junction = ASP_JUNCTION_FOOTPRINT;
+        else if (!strcmp(value, "nodes")) sa->so.junction = ASP_JUNCTION_NODES;
+        else return bad(key, value, "footprint or nodes");
+        sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
             return bad(key, value, "a number in (0, 1) (stiffness ratio KT_i/KT_1; BKE: 0.1)");
@@ -85,11 +90,12 @@ static int write_csv(const char *dir, const ptlist *l, const stc_critical *c)
     FILE *f = cli_out_open(&o, dir, "shear.csv");
     if (!f) return -1;
     fprintf(f, "ux_mm,ux_over_omega_c,Q_N,Q_over_P_c,P_N,A_mm2,stick_area_mm2,slip_fraction,"
-               "n_contact\n");
+               "n_contact,a_lead_mm,a_trail_mm,a_side_mm\n");
     for (int i = 0; i < l->n; i++) {
         const asp_shear_point *p = &l->p[i];
-        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d\n", p->ux, p->ux / c->omega_c,
-                p->Q, p->Q / c->P_c, p->P, p->A, p->A_stick, p->slip_frac, p->n_contact);
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%.9g,%.9g,%.9g\n", p->ux,
+                p->ux / c->omega_c, p->Q, p->Q / c->P_c, p->P, p->A, p->A_stick, p->slip_frac,
+                p->n_contact, p->a_lead, p->a_trail, p->a_side);
     }
     return cli_out_close(&o);
 }
@@ -158,6 +164,7 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_num(&j, "P_preload_N", r->P0);
     cj_str(&j, "criterion", r->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear");
     cj_num(&j, "tau_c_MPa", r->tau_c);
+    cj_str(&j, "junction", r->junction == ASP_JUNCTION_NODES ? "nodes" : "footprint");
     cj_int(&j, "shear_increments", r->increments);
     cj_int(&j, "shear_points", l->n);
     cj_int(&j, "shear_cutbacks", r->cutbacks);
