@@ -42,6 +42,7 @@ FIG48_THESIS = {0.5: 0.3, 3: 2.0, 12: 10.0, 72: 90.0}
 GRID_TR = (0.005, 0.025, 0.05)
 GRID_ER = (1, 2, 4)
 GRID_DELTA = (1, 10, 30, 60)
+GRID_R, GRID_E_SU, GRID_NU = 10.0, 200000.0, 0.32  # thesis Table 4.1 (grid_args)
 LOADS = (2, 10, 30, 60, 100)
 MESH_NOTE = [""]  # appended to every figure title: the 3D mesh level used
 
@@ -52,7 +53,8 @@ def total_wall(r):
 
 
 def grid_args(tr, er):
-    return ["--R", "10", "--E-su", "200000", "--E-over-Y", "1000", "--nu", "0.32",
+    return ["--R", "%g" % GRID_R, "--E-su", "%g" % GRID_E_SU, "--E-over-Y", "1000",
+            "--nu", "%g" % GRID_NU,
             "--t-over-R", "%g" % tr, "--E-ratio", "%g" % er, "--contact", "stick"]
 
 
@@ -275,6 +277,25 @@ def spec6_checks(rn):
                     er, initial_slope(c) / k1, r["Q_max_over_P_c"] / base["Q_max_over_P_c"],
                     r["mu_s"] / base["mu_s"]))
             print("  t/R %-5g delta %2g: %s" % (tr, d, "; ".join(parts)))
+    print("Initial slope against Cattaneo-Mindlin K = 8 G a / (2 - nu) (Johnson 1985 7.2),"
+          " with G of the coating / of the substrate:")
+    for tr in GRID_TR:
+        for d in GRID_DELTA:
+            parts = []
+            for er in GRID_ER:
+                r, c = rn.result("grid_t%g_E%g_d%g" % (tr, er, d)), \
+                    rn.curve("grid_t%g_E%g_d%g" % (tr, er, d))
+                if not r or not c:
+                    continue
+                Pc = r["P_N"] / r["P_over_P_c"]
+                wc = r["delta_mm"] / r["delta_over_omega_c_su"]
+                k = initial_slope(c) * Pc / wc  # N/mm
+                G_su = GRID_E_SU / (2.0 * (1.0 + GRID_NU))
+                km = 8.0 * r["a_mm"] / (2.0 - GRID_NU)
+                parts.append("Eco/Esu %g: %.2f / %.2f (t/a %.2g)" % (
+                    er, k / (km * er * G_su), k / (km * G_su), tr * GRID_R / r["a_mm"]))
+            if parts:
+                print("  t/R %-5g delta %2g: %s" % (tr, d, "; ".join(parts)))
 
 
 def fig421(rn, out):
