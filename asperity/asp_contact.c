@@ -334,13 +334,14 @@ stc_status asp_contact_foot_init(asp_solver *s)
     double tol = 1e-9 * s->Rp;
     for (int line = 0; line < 3; line++) {
         asp_foot_line *fl = &s->fline[line];
-        free(fl->k), free(fl->r), free(fl->g0);
+        free(fl->k), free(fl->r), free(fl->g0), free(fl->g);
         fl->n = 0;
         double *tmp = malloc((size_t)s->ncand * 2 * sizeof *tmp);
         fl->k = malloc((size_t)s->ncand * sizeof *fl->k);
         fl->r = malloc((size_t)s->ncand * sizeof *fl->r);
         fl->g0 = malloc((size_t)s->ncand * sizeof *fl->g0);
-        if (!tmp || !fl->k || !fl->r || !fl->g0) {
+        fl->g = malloc((size_t)s->ncand * sizeof *fl->g);
+        if (!tmp || !fl->k || !fl->r || !fl->g0 || !fl->g) {
             free(tmp);
             return STC_FAIL(STC_ENOMEM, "shear: out of memory for the contact footprint");
         }
@@ -368,7 +369,7 @@ void asp_contact_foot_free(asp_solver *s)
 {
     for (int line = 0; line < 3; line++) {
         asp_foot_line *fl = &s->fline[line];
-        free(fl->k), free(fl->r), free(fl->g0);
+        free(fl->k), free(fl->r), free(fl->g0), free(fl->g);
         memset(fl, 0, sizeof *fl);
     }
 }
@@ -377,17 +378,13 @@ void asp_contact_foot_free(asp_solver *s)
  * (the line x = 0) from the preload radius a0 and the edge advance on each
  * line (asp_contact_edge_advance): the footprint of a sheared contact
  * (shear.c), whose edges move outward. */
-stc_status asp_contact_footprint(const asp_solver *s, double a0, double ext[3])
+void asp_contact_footprint(const asp_solver *s, double a0, double ext[3])
 {
     for (int line = 0; line < 3; line++) {
         const asp_foot_line *fl = &s->fline[line];
-        double *g = malloc((size_t)(fl->n ? fl->n : 1) * sizeof *g);
-        STC_CHECK(g, STC_ENOMEM, "shear: out of memory for the contact footprint");
-        for (int i = 0; i < fl->n; i++) g[i] = cand_gap(s, fl->k[i]);
-        ext[line] = asp_contact_edge_advance(fl->r, fl->g0, g, fl->n, a0);
-        free(g);
+        for (int i = 0; i < fl->n; i++) fl->g[i] = cand_gap(s, fl->k[i]);
+        ext[line] = asp_contact_edge_advance(fl->r, fl->g0, fl->g, fl->n, a0);
     }
-    return STC_OK;
 }
 
 /* 3D half model: the radius is read along the symmetry line y = 0, x >= 0,

@@ -152,20 +152,18 @@ static stc_status alloc_shear(asp_solver *s)
  * ring-quantised node count; the disc area on still-open nodes goes to the
  * edge ring of the contact (nodes only partly on the disc), scaled up.
  * During the ramp the disc becomes the footprint of the sheared contact
- * (foot_areas), or the nodes that touch get their own areas (new_node_areas). */
+ * (foot_areas), or the nodes that touch get their own areas (new_node_areas).
+ * The full areas carea_full are set once (full_areas). */
 static stc_status node_areas(asp_solver *s, const double ext[3])
 {
-    int nn = s->mesh->nnode;
-    double *Ad = malloc((size_t)nn * sizeof *Ad), *Af = malloc((size_t)nn * sizeof *Af);
+    double *Ad = malloc((size_t)s->mesh->nnode * sizeof *Ad), *Af = s->carea_full;
     stc_status st = STC_OK;
-    STC_CHECK_GOTO(Ad && Af, st, done, STC_ENOMEM, "shear: out of memory");
+    STC_CHECK_GOTO(Ad, st, done, STC_ENOMEM, "shear: out of memory");
     STC_CALL_GOTO(asp_surface_node_areas_foot(s->mesh, s->Rp, ext[0], ext[1], ext[2], Ad), st,
                   done);
-    STC_CALL_GOTO(asp_surface_node_areas(s->mesh, s->Rp, Af), st, done);
     double lost = 0.0, edge = 0.0, all = 0.0;
     for (int k = 0; k < s->ncand; k++) {
         int n = s->cand[k];
-        s->carea_full[k] = Af[n];
         if (s->cs[k] == ASP_CS_OPEN) {
             lost += Ad[n];
             s->carea[k] = 0.0;
@@ -173,7 +171,7 @@ static stc_status node_areas(asp_solver *s, const double ext[3])
         }
         s->carea[k] = Ad[n];
         all += Ad[n];
-        if (Ad[n] < 0.999 * Af[n]) edge += Ad[n];
+        if (Ad[n] < 0.999 * Af[k]) edge += Ad[n];
     }
     STC_CHECK_GOTO(all > 0.0, st, done, STC_EINVAL,
                    "shear: contact footprint (%g, %g, %g) mm covers no contact node", ext[0],
@@ -183,10 +181,22 @@ static stc_status node_areas(asp_solver *s, const double ext[3])
     double base = whole ? all : edge, scale = (base + lost) / base;
     for (int k = 0; k < s->ncand; k++) {
         int n = s->cand[k];
-        if (s->cs[k] != ASP_CS_OPEN && (whole || Ad[n] < 0.999 * Af[n])) s->carea[k] *= scale;
+        if (s->cs[k] != ASP_CS_OPEN && (whole || Ad[n] < 0.999 * Af[k])) s->carea[k] *= scale;
     }
 done:
-    free(Ad), free(Af);
+    free(Ad);
+    return st;
+}
+
+/* Full tributary area of every candidate (the cap of new_node_areas and the
+ * test for an edge node in node_areas); the mesh does not change. */
+static stc_status full_areas(asp_solver *s)
+{
+    double *Af = malloc((size_t)s->mesh->nnode * sizeof *Af);
+    STC_CHECK(Af, STC_ENOMEM, "shear: out of memory");
+    stc_status st = asp_surface_node_areas(s->mesh, s->Rp, Af);
+    for (int k = 0; st == STC_OK && k < s->ncand; k++) s->carea_full[k] = Af[s->cand[k]];
+    free(Af);
     return st;
 }
 
@@ -205,7 +215,7 @@ done:
 static stc_status foot_areas(asp_solver *s)
 {
     double ext[3];
-    STC_CALL(asp_contact_footprint(s, s->pt0_a, ext));
+    asp_contact_footprint(s, s->pt0_a, ext);
     for (int i = 0; i < 3; i++) s->foot[i] = fmax(s->foot[i], ext[i]);
     return node_areas(s, s->foot);
 }
@@ -529,6 +539,7 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     for (int i = 0; i < 3; i++) s->foot[i] = s->pt.a;
     STC_CALL(asp_contact_foot_init(s));
     for (int k = 0; k < s->ncand; k++) s->cnew[k] = s->cs[k] == ASP_CS_OPEN;
+    STC_CALL(full_areas(s));
     STC_CALL(node_areas(s, s->foot));
     initial_slip(s);
     s->shear = 1;

@@ -23,11 +23,11 @@ typedef struct asp_ytrack {
 
 /* Surface nodes on one line from the axis (shear.c's contact footprint):
  * candidate index, distance from the axis (ascending), gap when the ramp
- * started. */
+ * started, and room for the gaps now. */
 typedef struct asp_foot_line {
     int n;
     int *k;
-    double *r, *g0;
+    double *r, *g0, *g;
 } asp_foot_line;
 
 struct asp_solver {
@@ -129,7 +129,7 @@ void asp_contact_results(asp_solver *s, asp_point *pt);
 stc_status asp_contact_foot_init(asp_solver *s);     /* the lines' nodes and gaps at ux = 0 */
 void asp_contact_foot_free(asp_solver *s);
 /* contact extent along +x, -x, +y from a0 and the gaps ahead of the edges, mm */
-stc_status asp_contact_footprint(const asp_solver *s, double a0, double ext[3]);
+void asp_contact_footprint(const asp_solver *s, double a0, double ext[3]);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
 void asp_history_push(asp_solver *s, double delta, double P);
 

@@ -18,9 +18,9 @@ static const char usage[] =
     "(delta_c2).  LIST is a,b,c or start:stop:count, increasing; several values\n"
     "give a load curve (one solver run).  --delta is in units of omega_c_su.\n"
     "Small-strain model: delta <= 0.01 R.\n"
-    "--shear (implied by --criterion, --alpha, --tau-c, --load, --junction): after the normal\n"
-    "step to one --delta (or to the load --load X = P/Pc_su) the flat moves along x\n"
-    "until the asperity slides: Q_max, mu_s = Q_max/P (3D model).";
+    "--shear (implied by --criterion, --alpha, --tau-c, --load, --junction): after\n"
+    "the normal step to one --delta (or to the load --load X = P/Pc_su) the flat\n"
+    "moves along x until the asperity slides: Q_max, mu_s = Q_max/P (3D model).";
 
 static const cli_opt opts[] = {
     {"delta", "LIST", "interference(s) / omega_c_su (> 0, increasing)"},
