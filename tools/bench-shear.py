@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
 """make bench, combined loading (issue 4 item 4): work-precision of mu_s.
 
-bench-shear.py CLI [MESHES]     (MESHES default "0,1": 3D mesh levels, or nX
-                                 for X elements across a_max, e.g. "0,n8.5,1")
+bench-shear.py CLI [MESHES]     (MESHES default "0,0:nodes,1": 3D mesh levels,
+                                 or nX for X elements across a_max, e.g.
+                                 "0,n8.5,1"; a ":nodes" suffix runs the
+                                 junction rule --junction nodes instead of
+                                 the default footprint, whose finest mesh is
+                                 the reference; the two rules bracket the
+                                 converged mu_s, docs/tangential-step.md §11)
 
 For the homogeneous WSP sphere at omega/omega_c = 3 and 12 and for one coated
 case (delta = 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step):
@@ -48,19 +53,22 @@ def run(cli, args):
 
 
 def mesh_args(m):
-    """CLI arguments of one mesh spec: a level, or nX = X elements across a_max."""
+    """CLI arguments of one mesh spec: a level, or nX = X elements across a_max,
+    with an optional ":nodes" (the junction rule)."""
+    m, _, rule = m.partition(":")
+    extra = ["--junction", rule] if rule else []
     if m.startswith("n"):
-        return ["--elements-per-contact", m[1:]]
-    return ["--mesh", m]
+        return ["--elements-per-contact", m[1:]] + extra
+    return ["--mesh", m] + extra
 
 
 def main():
     if len(sys.argv) < 2:
         sys.exit("usage: bench-shear.py CLI [MESHES]")
     cli = sys.argv[1]
-    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,1").split(",")
+    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,0:nodes,1").split(",")
     print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
-    print("%-34s %5s %8s %9s %9s %8s %7s %7s %6s %8s" % (
+    print("%-34s %7s %8s %9s %9s %8s %7s %7s %6s %8s" % (
         "case", "mesh", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
         "peak MB"))
     for name, args in CASES:
@@ -68,13 +76,13 @@ def main():
         for lev in levels:
             j, wall, extra = run(cli, args + mesh_args(lev))
             rows.append((lev, j, wall, extra))
-        fin = next((j["mu_s"] for lev, j, w, e in reversed(rows) if j), None)
+        fin = next((j["mu_s"] for lev, j, w, e in reversed(rows) if j and ":" not in lev), None)
         for lev, j, wall, extra in rows:
             if j is None:
-                print("%-34s %5s   failed after %.1f s: %s" % (name, lev, wall, extra))
+                print("%-34s %7s   failed after %.1f s: %s" % (name, lev, wall, extra))
                 continue
             err = 100 * (j["mu_s"] / fin - 1) if fin else math.nan
-            print("%-34s %5s %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f" % (
+            print("%-34s %7s %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f" % (
                 name, lev, j.get("dofs", -1), j["mu_s"], err, wall,
                 j.get("newton_iterations", "-"), j.get("factorizations", "-"),
                 j.get("shear_increments", "-"), extra))
