@@ -37,6 +37,16 @@ typedef struct asp_mesh {
     int *conn;            /* [nelem][nen], counter-clockwise / positive Jacobian */
     int *region;          /* [nelem] ASP_REGION_* */
     unsigned char *flags; /* [nnode] ASP_NODE_* bits */
+    /* Hanging nodes (3D shell coarsening, mesh3d.c): node hang[k] is not an
+     * unknown; its displacement is sum_a hang_w[4k+a] u(hang_m[4k+a]) over
+     * its masters (hang_m = -1 for unused slots; weights sum to 1; a master
+     * is never itself hanging).  Its coordinates are the same average of
+     * the masters', so the fine elements that use it conform to the coarse
+     * face it lies on.  nhang = 0 and NULL arrays when there are none. */
+    int nhang;
+    int *hang;            /* [nhang] node ids */
+    int *hang_m;          /* [nhang][4] master node ids or -1 */
+    double *hang_w;       /* [nhang][4] weights */
 } asp_mesh;
 
 /* What to mesh and how finely. */
@@ -47,6 +57,8 @@ typedef struct asp_mesh_spec {
     int level;      /* resolution: 0 coarse, 1 default, 2 fine, 3+ finer */
     double n;       /* 3D: elements across a_max, overrides level (an equivalent
                        level log2(n / 6) also scales the shells); 0 = 6 2^level */
+    int coarsen;    /* 3D: 2:1 angular coarsenings of the shells with hanging
+                       nodes (mesh3d.c); 0 = the default count, < 0 = none */
 } asp_mesh_spec;
 
 stc_status asp_mesh_axisym(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */

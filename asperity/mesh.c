@@ -454,6 +454,7 @@ void asp_mesh_destroy(asp_mesh **m)
 {
     if (!m || !*m) return;
     free((*m)->x), free((*m)->conn), free((*m)->region), free((*m)->flags);
+    free((*m)->hang), free((*m)->hang_m), free((*m)->hang_w);
     free(*m);
     *m = NULL;
 }

@@ -45,10 +45,29 @@
  * (R = 10, levels 0-2; tests/test_mesh3d.c).  Linear (chordal) boundary
  * faces: the volume error is ~0.3 % at level 1, halving per level.
  *
+ * Coarsening (spec->coarsen; default 1 step, up to 2, < 0 none = exactly
+ * the mesh above): the shells carry the box's full surface grid (92 % of
+ * the nodes, uncoarsened Hertz case) with the contact's angular resolution
+ * down to the base.  From the shell whose radius reaches 6 c (then 24 c,
+ * M3_COARSEN_T) on, the elements use every other grid line in x, y and
+ * depth (2:1; the coating rows and the first row below the interface are
+ * kept; at most one step per shell, none on the last two).  The fine-side
+ * points of a transition shell that are not on the coarse grid are hanging
+ * nodes (asp_mesh.hang): interpolated from the 2 or 4 coarse-grid
+ * neighbours on the same shell (index-space weights: 1/2, or 1/3 and 2/3
+ * next to a kept odd end) and moved onto the coarse face, so the mesh
+ * conforms.  Nodes (coarsen -1 / 1 / 2 with thresholds 3 c and 8 c), level
+ * 0, R' = 10.5, t = 0, a_max = 0.35: n = 6: 6810 / 4128 / 3699, n = 8.5:
+ * 16337 / 9848 / 8652, n = 12: 35360 / 20385 / 18150.  Worst quality
+ * unchanged within 0.01.  The chordal volume error of the coarse far field
+ * grows (t = 0.05, a_max = 0.1, two steps at 3 c / 8 c: 5.0 / 1.5 / 0.44 %
+ * at levels 0 / 1 / 2 against 0.73 / 0.31 / 0.14 %), all far from the
+ * contact.
+ *
  * Flags: ASP_NODE_BASE on z = 0, ASP_NODE_SYM on y = 0 (coordinates set
  * exactly), ASP_NODE_TOP on the outer sphere within lateral distance
- * max(3 a_max, core half-width) of the axis.  ASP_NODE_AXIS is not used in
- * 3D.
+ * max(3 a_max, core half-width) of the axis, never on a hanging node.
+ * ASP_NODE_AXIS is not used in 3D.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -80,6 +99,21 @@ static const double M3_MAX_CORE = 0.5;  /* core must stay inside |p| < this (ref
  * the converged axisymmetric P (its soft part is smaller, so less cancels). */
 static const double M3_SHELL_Q = 0.1;
 static const double M3_SHELL_G = 0.3;
+/* 2:1 angular coarsening of the shells: level g is used from the first
+ * shell whose reference radius reaches M3_COARSEN_T[g-1] c (c ~ a_max, the
+ * lateral distance ≈ 2 R' ρ near P).  The coarse far field is stiffer by
+ * plain interpolation error of the smooth field, not by locking (elastic
+ * incompatible-mode hexahedra there changed P by <= 0.02 %): with one step
+ * at T c the 3D Hertz point (a/R = 0.01, level 0) stiffens by about
+ * 1 % / T (T = 2, 3, 4, 6: +0.56, +0.35, +0.26, +0.16 % against the
+ * uncoarsened mesh), the energy beyond T a_max being ~1/T of the total
+ * (Boussinesq).  6 c and one step by default: Hertz +0.16 % (level 0) /
+ * +0.05 % (level 1); μs of a combined-loading run moves by +0.23 % (WSP
+ * 3 ωc) / -0.23 % (t/R 0.025, Eco/Esu 2, δ = 30 ωc_su) for 1.8x / 1.5x
+ * less wall time (docs/tangential-step.md §13).  A second step at 24 c
+ * adds +0.07 % (level 0) to Hertz. */
+enum { M3_NCOARSEN = 2, M3_COARSEN_DEFAULT = 1 };
+static const double M3_COARSEN_T[M3_NCOARSEN] = {6.0, 24.0};
 
 /* Everything derived from the spec, in reference units unless stated. */
 typedef struct m3_plan {
@@ -98,11 +132,20 @@ typedef struct m3_plan {
     int ncore, nsp;    /* core nodes, exposed-surface points */
     int *sp_core;      /* [nsp] core node of each surface point */
     int *sp_row;       /* [nsp] row l of a side point, -1 for bottom-only */
+    /* coarsening (plan_coarsen): line sets of level g = 0..G (g = 0: all) */
+    int G;             /* levels in use, 0 = none */
+    unsigned char *inI, *inJ, *inR, *inU; /* [G+1][2m+1], [m+1], [L+1], [4m+1] */
+    int *lev;          /* [S+1] level of the elements between shells k and k+1 */
+    int *act;          /* [G+1][nsp] index of a point among level g's, -1 if off */
+    int *base;         /* [S+2] first node of shell k >= 1; base[S+1] = nnode */
+    int nelem;
 } m3_plan;
 
 static void plan_free(m3_plan *p)
 {
     free(p->d), free(p->rho), free(p->sp_core), free(p->sp_row);
+    free(p->inI), free(p->inJ), free(p->inR), free(p->inU);
+    free(p->lev), free(p->act), free(p->base);
 }
 
 static int core_id(const m3_plan *p, int i, int j, int l)
@@ -270,6 +313,171 @@ static int sp_bottom(const m3_plan *p, int i, int j)
     return (4 * m + 1) * (p->L + 1) + j * (2 * m - 1) + (i - 1);
 }
 
+/* ---- coarsening ----
+ * Line sets: I ⊂ {0..2m} (x index), J ⊂ {0..m} (y index), R ⊂ {0..L}
+ * (rows); the strip's columns U follow through u_to_ij, so the strip and
+ * the bottom face agree on their shared edge and at the corners.  A shell
+ * k >= 1 holds the points of level lev[k-1] (its fine side); those not on
+ * level lev[k]'s grid are hanging on the coarse element's face. */
+static const unsigned char *set_I(const m3_plan *p, int g) { return p->inI + (size_t)g * (2 * p->m + 1); }
+static const unsigned char *set_J(const m3_plan *p, int g) { return p->inJ + (size_t)g * (p->m + 1); }
+static const unsigned char *set_R(const m3_plan *p, int g) { return p->inR + (size_t)g * (p->L + 1); }
+static const unsigned char *set_U(const m3_plan *p, int g) { return p->inU + (size_t)g * (4 * p->m + 1); }
+
+/* Next level of the set prev ⊂ {0..n} (0 and n members): keep the first,
+ * the last, every x <= upto (mandatory) and every member after a dropped
+ * one.  So each dropped member has both neighbours kept. */
+static void set_coarsen(const unsigned char *prev, int n, int upto, unsigned char *next)
+{
+    int kept = 0;
+    for (int x = 0; x <= n; x++) {
+        next[x] = 0;
+        if (!prev[x]) continue;
+        next[x] = x <= upto || x == n || !kept;
+        kept = next[x];
+    }
+}
+
+/* The members of in ⊂ {0..n} around x: x itself (returns 1), or the nearest
+ * on each side (returns 2) with the weights of linear interpolation in
+ * index space (1/2 each when x is the midpoint, the regular case; a set
+ * ending in a unit gap has a second-level member at 1/3 or 2/3). */
+static int bracket(const unsigned char *in, int n, int x, int *idx, double *w)
+{
+    if (in[x]) { idx[0] = x; w[0] = 1.0; return 1; }
+    int lo = x, hi = x;
+    while (lo > 0 && !in[lo]) lo--;
+    while (hi < n && !in[hi]) hi++;
+    idx[0] = lo, idx[1] = hi;
+    w[0] = (double)(hi - x) / (hi - lo);
+    w[1] = 1.0 - w[0];
+    return 2;
+}
+
+static int next_in(const unsigned char *in, int n, int x)
+{
+    do x++; while (x < n && !in[x]);
+    return x;
+}
+
+static int set_count(const unsigned char *in, int n)
+{
+    int c = 0;
+    for (int x = 0; x <= n; x++) c += in[x];
+    return c;
+}
+
+static void sp_bottom_ij(const m3_plan *p, int sp, int *i, int *j)
+{
+    int cid = p->sp_core[sp];
+    *i = cid % p->nx;
+    *j = (cid / p->nx) % p->ny;
+}
+
+/* The points of level g's grid that interpolate surface point sp:
+ * ms (surface points) and weights ws, tensor products of bracket(); a
+ * return of 1 means sp is on the grid. */
+static int grid_masters(const m3_plan *p, int g, int sp, int *ms, double *ws)
+{
+    int a[2], b[2], na, nb, n = 0, m = p->m;
+    double wa[2], wb[2];
+    if (p->sp_row[sp] >= 0) {
+        na = bracket(set_U(p, g), 4 * m, sp % (4 * m + 1), a, wa);
+        nb = bracket(set_R(p, g), p->L, p->sp_row[sp], b, wb);
+    } else {
+        int i, j;
+        sp_bottom_ij(p, sp, &i, &j);
+        na = bracket(set_I(p, g), 2 * m, i, a, wa);
+        nb = bracket(set_J(p, g), m, j, b, wb);
+    }
+    for (int ib = 0; ib < nb; ib++)
+        for (int ia = 0; ia < na; ia++) {
+            ms[n] = p->sp_row[sp] >= 0 ? sp_side(p, a[ia], b[ib]) : sp_bottom(p, a[ia], b[ib]);
+            ws[n++] = wa[ia] * wb[ib];
+        }
+    return n;
+}
+
+static int on_grid(const m3_plan *p, int g, int sp)
+{
+    if (p->sp_row[sp] >= 0)
+        return set_U(p, g)[sp % (4 * p->m + 1)] && set_R(p, g)[p->sp_row[sp]];
+    int i, j;
+    sp_bottom_ij(p, sp, &i, &j);
+    return set_I(p, g)[i] && set_J(p, g)[j];
+}
+
+static int cells(const m3_plan *p, int g)
+{
+    int m = p->m;
+    return (set_count(set_U(p, g), 4 * m) - 1) * (set_count(set_R(p, g), p->L) - 1) +
+           (set_count(set_I(p, g), 2 * m) - 1) * (set_count(set_J(p, g), m) - 1);
+}
+
+/* Shell levels: lev[k] = number of thresholds ρ_k has reached (capped at
+ * G), rising by at most one per shell and never on the last two shells
+ * (the base shell S and the one before keep their fine grid: no hanging
+ * node is ever on the base). */
+static void plan_levels(m3_plan *p)
+{
+    p->lev[0] = 0;
+    for (int k = 1; k <= p->S; k++) {
+        int g = 0;
+        while (g < p->G && p->rho[k] >= M3_COARSEN_T[g] * p->c) g++;
+        if (g > p->lev[k - 1] + 1) g = p->lev[k - 1] + 1;
+        if (k >= p->S - 1) g = p->lev[k - 1];
+        p->lev[k] = g;
+    }
+}
+
+static stc_status plan_coarsen(m3_plan *p, int coarsen)
+{
+    int m = p->m, L = p->L, G = coarsen < 0 ? 0 : coarsen == 0 ? M3_COARSEN_DEFAULT : coarsen;
+    int nI = 2 * m + 1, nJ = m + 1, nR = L + 1, nU = 4 * m + 1;
+    p->G = G;
+    p->inI = malloc((size_t)(G + 1) * nI);
+    p->inJ = malloc((size_t)(G + 1) * nJ);
+    p->inR = malloc((size_t)(G + 1) * nR);
+    p->inU = malloc((size_t)(G + 1) * nU);
+    p->lev = malloc((size_t)(p->S + 1) * sizeof *p->lev);
+    p->act = malloc((size_t)(G + 1) * p->nsp * sizeof *p->act);
+    p->base = malloc((size_t)(p->S + 2) * sizeof *p->base);
+    STC_CHECK(p->inI && p->inJ && p->inR && p->inU && p->lev && p->act && p->base, STC_ENOMEM,
+              "mesh3d: out of memory");
+    memset(p->inI, 1, (size_t)nI), memset(p->inJ, 1, (size_t)nJ), memset(p->inR, 1, (size_t)nR);
+    /* the coating rows and the first below the interface stay (rows run
+     * along the meridian: coarsening them would halve the coating's
+     * through-thickness resolution) */
+    int rkeep = p->coated ? p->lint + 1 : 0;
+    for (int g = 0; g < G; g++) {
+        set_coarsen(p->inI + g * nI, 2 * m, 0, p->inI + (g + 1) * nI);
+        set_coarsen(p->inJ + g * nJ, m, 0, p->inJ + (g + 1) * nJ);
+        set_coarsen(p->inR + g * nR, L, rkeep, p->inR + (g + 1) * nR);
+    }
+    for (int g = 0; g <= G; g++)
+        for (int u = 0; u < nU; u++) {
+            int i, j;
+            u_to_ij(p, u, &i, &j);
+            p->inU[g * nU + u] = set_I(p, g)[i] && set_J(p, g)[j];
+        }
+    for (int g = 0; g <= G; g++) {
+        int n = 0, *a = p->act + (size_t)g * p->nsp;
+        for (int sp = 0; sp < p->nsp; sp++) a[sp] = on_grid(p, g, sp) ? n++ : -1;
+    }
+    plan_levels(p);
+    p->nelem = 2 * m * m * L;
+    p->base[1] = p->ncore;
+    for (int k = 0; k < p->S; k++) {
+        int gf = p->lev[k]; /* shell k+1's fine side */
+        const int *a = p->act + (size_t)gf * p->nsp;
+        int n = 0;
+        for (int sp = 0; sp < p->nsp; sp++) n += a[sp] >= 0;
+        p->base[k + 2] = p->base[k + 1] + n;
+        p->nelem += cells(p, p->lev[k]);
+    }
+    return STC_OK;
+}
+
 /* Depth of the interface below w = 0 at lateral distance rl. */
 static double interface_depth(const m3_plan *p, double rl)
 {
@@ -429,9 +637,12 @@ static double hex_orient(const double *x, const int *c)
            e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
 }
 
+/* Node of surface point sp on shell k (-1 if not on its fine grid). */
 static int node_of(const m3_plan *p, int k, int sp)
 {
-    return k == 0 ? p->sp_core[sp] : p->ncore + (k - 1) * p->nsp + sp;
+    if (k == 0) return p->sp_core[sp];
+    int a = p->act[(size_t)p->lev[k - 1] * p->nsp + sp];
+    return a < 0 ? -1 : p->base[k] + a;
 }
 
 static void put_hex(asp_mesh *M, int *e, const int n[8], int region)
@@ -481,7 +692,9 @@ static stc_status fill_nodes(const m3_plan *p, asp_mesh *M, double top_r, double
      * be re-placed along their meridian; then the bottom-only points */
     int n1 = p->L + 1, ncol = 4 * m + 1;
     for (int k = 1; k <= p->S; k++) {
+        const unsigned char *inU = set_U(p, p->lev[k - 1]), *inR = set_R(p, p->lev[k - 1]);
         for (int u = 0; u < ncol; u++) {
+            if (!inU[u]) continue;
             for (int l = 0; l < n1; l++) {
                 double s[3];
                 box_point(p, sp_side(p, u, l), s);
@@ -496,6 +709,7 @@ static stc_status fill_nodes(const m3_plan *p, asp_mesh *M, double top_r, double
                 Q = buf + 3 * n1;
             }
             for (int l = 0; l < n1; l++) {
+                if (!inR[l]) continue;
                 int sp = sp_side(p, u, l), id = node_of(p, k, sp);
                 int j = (p->sp_core[sp] / p->nx) % p->ny;
                 double *X = M->x + 3 * id;
@@ -505,6 +719,7 @@ static stc_status fill_nodes(const m3_plan *p, asp_mesh *M, double top_r, double
         }
         for (int sp = ncol * n1; sp < p->nsp; sp++) {
             int id = node_of(p, k, sp), j = (p->sp_core[sp] / p->nx) % p->ny;
+            if (id < 0) continue;
             double s[3], pr[3], *X = M->x + 3 * id;
             box_point(p, sp, s);
             skel_pos(p, k, s, pr);
@@ -515,12 +730,73 @@ static stc_status fill_nodes(const m3_plan *p, asp_mesh *M, double top_r, double
     return STC_OK;
 }
 
+/* Hanging nodes of shell k: the points of its fine grid (level lev[k-1])
+ * that are not on its coarse grid (lev[k]), interpolated from the coarse
+ * grid's points on the same shell.  Counts them, and records them when M's
+ * arrays exist. */
+static int hang_scan(const m3_plan *p, asp_mesh *M)
+{
+    int nh = 0, ms[4];
+    double ws[4];
+    for (int k = 1; k < p->S; k++) {
+        if (p->lev[k] == p->lev[k - 1]) continue;
+        for (int sp = 0; sp < p->nsp; sp++) {
+            int id = node_of(p, k, sp), n;
+            if (id < 0 || (n = grid_masters(p, p->lev[k], sp, ms, ws)) == 1) continue;
+            if (M->hang) {
+                M->hang[nh] = id;
+                for (int a = 0; a < 4; a++) {
+                    M->hang_m[4 * nh + a] = a < n ? node_of(p, k, ms[a]) : -1;
+                    M->hang_w[4 * nh + a] = a < n ? ws[a] : 0.0;
+                }
+            }
+            nh++;
+        }
+    }
+    return nh;
+}
+
+/* Records the hanging nodes and moves each onto the coarse element's
+ * bilinear face (its masters' weighted average), so the fine elements that
+ * use it conform; hanging nodes are never contact candidates. */
+static stc_status fill_hanging(const m3_plan *p, asp_mesh *M)
+{
+    int nh = hang_scan(p, M);
+    if (nh == 0) return STC_OK;
+    M->hang = malloc((size_t)nh * sizeof *M->hang);
+    M->hang_m = malloc((size_t)nh * 4 * sizeof *M->hang_m);
+    M->hang_w = malloc((size_t)nh * 4 * sizeof *M->hang_w);
+    unsigned char *is = calloc((size_t)M->nnode, 1);
+    if (!M->hang || !M->hang_m || !M->hang_w || !is) {
+        free(is);
+        return STC_FAIL(STC_ENOMEM, "mesh3d: out of memory (%d hanging nodes)", nh);
+    }
+    M->nhang = hang_scan(p, M);
+    for (int h = 0; h < nh; h++) is[M->hang[h]] = 1;
+    int bad = -1;
+    for (int h = 0; h < nh; h++) {
+        double *X = M->x + 3 * M->hang[h], Y[3] = {0.0, 0.0, 0.0};
+        for (int a = 0; a < 4 && M->hang_m[4 * h + a] >= 0; a++) {
+            int mn = M->hang_m[4 * h + a];
+            if (is[mn]) bad = h;
+            for (int i = 0; i < 3; i++) Y[i] += M->hang_w[4 * h + a] * M->x[3 * mn + i];
+        }
+        if (M->hang_m[4 * h + 1] < 0 || (M->flags[M->hang[h]] & ASP_NODE_BASE)) bad = h;
+        memcpy(X, Y, sizeof Y);
+        M->flags[M->hang[h]] &= (unsigned char)~ASP_NODE_TOP;
+    }
+    free(is);
+    STC_CHECK(bad < 0, STC_EINVAL, "mesh3d: internal error: hanging node %d has a hanging "
+              "or missing master, or lies on the base", bad < 0 ? 0 : M->hang[bad]);
+    return STC_OK;
+}
+
 static int side_region(const m3_plan *p, int l)
 {
     return p->coated && l < p->lint ? ASP_REGION_COATING : ASP_REGION_SUBSTRATE;
 }
 
-static void fill_elements(const m3_plan *p, asp_mesh *M)
+static int fill_elements(const m3_plan *p, asp_mesh *M)
 {
     int m = p->m, e = 0, n[8];
     for (int l = 0; l < p->L; l++) /* core */
@@ -535,20 +811,25 @@ static void fill_elements(const m3_plan *p, asp_mesh *M)
                 put_hex(M, &e, n, side_region(p, l));
             }
     for (int k = 0; k < p->S; k++) { /* shells: side strip, then bottom */
-        for (int l = 0; l < p->L; l++)
-            for (int u = 0; u < 4 * m; u++) {
-                int q[4] = {sp_side(p, u, l), sp_side(p, u + 1, l),
-                            sp_side(p, u + 1, l + 1), sp_side(p, u, l + 1)};
+        int g = p->lev[k];
+        const unsigned char *inU = set_U(p, g), *inR = set_R(p, g);
+        const unsigned char *inI = set_I(p, g), *inJ = set_J(p, g);
+        for (int l = 0, l1 = next_in(inR, p->L, 0); l < p->L; l = l1, l1 = next_in(inR, p->L, l))
+            for (int u = 0, u1; u < 4 * m; u = u1) {
+                u1 = next_in(inU, 4 * m, u);
+                int q[4] = {sp_side(p, u, l), sp_side(p, u1, l),
+                            sp_side(p, u1, l1), sp_side(p, u, l1)};
                 for (int a = 0; a < 4; a++) {
                     n[a] = node_of(p, k, q[a]);
                     n[4 + a] = node_of(p, k + 1, q[a]);
                 }
                 put_hex(M, &e, n, side_region(p, l));
             }
-        for (int j = 0; j < m; j++)
-            for (int i = 0; i < 2 * m; i++) {
-                int q[4] = {sp_bottom(p, i, j), sp_bottom(p, i + 1, j),
-                            sp_bottom(p, i + 1, j + 1), sp_bottom(p, i, j + 1)};
+        for (int j = 0, j1 = next_in(inJ, m, 0); j < m; j = j1, j1 = next_in(inJ, m, j))
+            for (int i = 0, i1; i < 2 * m; i = i1) {
+                i1 = next_in(inI, 2 * m, i);
+                int q[4] = {sp_bottom(p, i, j), sp_bottom(p, i1, j),
+                            sp_bottom(p, i1, j1), sp_bottom(p, i, j1)};
                 for (int a = 0; a < 4; a++) {
                     n[a] = node_of(p, k, q[a]);
                     n[4 + a] = node_of(p, k + 1, q[a]);
@@ -556,6 +837,7 @@ static void fill_elements(const m3_plan *p, asp_mesh *M)
                 put_hex(M, &e, n, ASP_REGION_SUBSTRATE);
             }
     }
+    return e;
 }
 
 static stc_status check_spec(const asp_mesh_spec *s)
@@ -570,6 +852,9 @@ static stc_status check_spec(const asp_mesh_spec *s)
     STC_CHECK(s->n == 0.0 || (s->n >= 3.0 && s->n <= 384.0), STC_EINVAL,
               "mesh3d: n = %g elements across a_max: must be 0 (from the level) or in [3, 384]",
               s->n);
+    STC_CHECK(s->coarsen <= M3_NCOARSEN, STC_EINVAL,
+              "mesh3d: coarsen = %d: must be <= %d (< 0 none, 0 default = %d)", s->coarsen,
+              M3_NCOARSEN, M3_COARSEN_DEFAULT);
     return STC_OK;
 }
 
@@ -584,12 +869,13 @@ stc_status asp_mesh_half3d(const asp_mesh_spec *spec, asp_mesh **out)
     STC_CALL_GOTO(plan_make(spec, &p), st, done);
     p.R = spec->R;
     STC_CALL_GOTO(plan_number(&p), st, done);
+    STC_CALL_GOTO(plan_coarsen(&p, spec->coarsen), st, done);
     M = calloc(1, sizeof *M);
     STC_CHECK_GOTO(M, st, done, STC_ENOMEM, "mesh3d: out of memory");
     M->dim = 3;
     M->nen = 8;
-    M->nnode = p.ncore + p.S * p.nsp;
-    M->nelem = 2 * p.m * p.m * p.L + p.S * (4 * p.m * p.L + 2 * p.m * p.m);
+    M->nnode = p.base[p.S + 1];
+    M->nelem = p.nelem;
     M->x = malloc((size_t)M->nnode * 3 * sizeof *M->x);
     M->flags = malloc((size_t)M->nnode);
     M->conn = malloc((size_t)M->nelem * 8 * sizeof *M->conn);
@@ -600,7 +886,9 @@ stc_status asp_mesh_half3d(const asp_mesh_spec *spec, asp_mesh **out)
     STC_CHECK_GOTO(buf, st, done, STC_ENOMEM, "mesh3d: out of memory");
     STC_CALL_GOTO(fill_nodes(&p, M, fmax(M3_TOP_FLAG * spec->a_max, 2.0 * p.Rp * p.c), buf),
                   st, done);
-    fill_elements(&p, M);
+    STC_CALL_GOTO(fill_hanging(&p, M), st, done);
+    STC_CHECK_GOTO(fill_elements(&p, M) == M->nelem, st, done, STC_EINVAL,
+                   "mesh3d: internal error: element count");
     *out = M;
     M = NULL;
 done:

@@ -108,6 +108,7 @@ void asp_options_default(asp_options *o)
     o->max_cutbacks = 10;
     o->threads = 0;
     o->surface_layers = -1;
+    o->shell_coarsen = -1;
 }
 
 static stc_status check_options(const asp_options *o)
@@ -119,6 +120,8 @@ static stc_status check_options(const asp_options *o)
                   (o->elements_per_contact >= 3.0 && o->elements_per_contact <= 384.0),
               STC_EINVAL, "elements per contact = %g: must be 0 (from the level) or in [3, 384]",
               o->elements_per_contact);
+    STC_CHECK(o->shell_coarsen >= -1 && o->shell_coarsen <= 2, STC_EINVAL,
+              "shell coarsenings = %d: must be -1 (default) or in [0, 2]", o->shell_coarsen);
     STC_CHECK(o->surface_layers >= -1 && o->surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS,
               STC_EINVAL, "surface layers = %d: must be -1 (auto) or in [0, %d]",
               o->surface_layers, ASP_MESH_MAX_SURFACE_LAYERS);
@@ -153,14 +156,36 @@ static int cmp_int(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Node adjacency through elements: nb[ptr[i] .. ptr[i+1]) sorted, unique. */
-static stc_status node_graph(const asp_mesh *m, int **ptr_out, int **nb_out)
+/* Nodes element e couples, a hanging node replaced by its masters
+ * (duplicates possible); returns the count (<= 4 nen). */
+static int eff_nodes(const asp_mesh *m, const int *hidx, int e, int *out)
 {
-    int n = m->nnode, nen = m->nen;
+    int k = 0;
+    for (int a = 0; a < m->nen; a++) {
+        int n = m->conn[m->nen * e + a], h = hidx ? hidx[n] : -1;
+        if (h < 0) {
+            out[k++] = n;
+            continue;
+        }
+        for (int b = 0; b < 4; b++)
+            if (m->hang_m[4 * h + b] >= 0) out[k++] = m->hang_m[4 * h + b];
+    }
+    return k;
+}
+
+/* Node adjacency through elements (a hanging node's coupling goes to its
+ * masters; every node is its own neighbour, so a hanging node keeps its
+ * diagonal): nb[ptr[i] .. ptr[i+1]) sorted, unique. */
+static stc_status node_graph(const asp_mesh *m, const int *hidx, int **ptr_out, int **nb_out)
+{
+    int n = m->nnode, en[32];
     int *cnt = calloc((size_t)n + 1, sizeof *cnt);
     STC_CHECK(cnt, STC_ENOMEM, "solver: out of memory");
-    for (int e = 0; e < m->nelem; e++)
-        for (int a = 0; a < nen; a++) cnt[m->conn[nen * e + a] + 1] += nen;
+    for (int i = 0; i < n; i++) cnt[i + 1] = 1;
+    for (int e = 0; e < m->nelem; e++) {
+        int k = eff_nodes(m, hidx, e, en);
+        for (int a = 0; a < k; a++) cnt[en[a] + 1] += k;
+    }
     for (int i = 0; i < n; i++) cnt[i + 1] += cnt[i];
     int *nb = malloc((size_t)cnt[n] * sizeof *nb), *fill = malloc((size_t)n * sizeof *fill);
     if (!nb || !fill) {
@@ -168,10 +193,12 @@ static stc_status node_graph(const asp_mesh *m, int **ptr_out, int **nb_out)
         return STC_FAIL(STC_ENOMEM, "solver: out of memory");
     }
     memcpy(fill, cnt, (size_t)n * sizeof *fill);
-    for (int e = 0; e < m->nelem; e++)
-        for (int a = 0; a < nen; a++)
-            for (int b = 0; b < nen; b++)
-                nb[fill[m->conn[nen * e + a]]++] = m->conn[nen * e + b];
+    for (int i = 0; i < n; i++) nb[fill[i]++] = i;
+    for (int e = 0; e < m->nelem; e++) {
+        int k = eff_nodes(m, hidx, e, en);
+        for (int a = 0; a < k; a++)
+            for (int b = 0; b < k; b++) nb[fill[en[a]]++] = en[b];
+    }
     /* sort and compact in place */
     int w = 0;
     for (int i = 0; i < n; i++) {
@@ -200,7 +227,7 @@ static stc_status build_pattern(asp_solver *s)
 {
     const asp_mesh *m = s->mesh;
     int d = s->dim, *ptr = NULL, *nb = NULL;
-    STC_CALL(node_graph(m, &ptr, &nb));
+    STC_CALL(node_graph(m, s->hidx, &ptr, &nb));
     size_t nnz = 0;
     for (int i = 0; i < m->nnode; i++)
         for (int k = ptr[i]; k < ptr[i + 1]; k++)
@@ -233,12 +260,27 @@ static stc_status build_pattern(asp_solver *s)
                 int I = m->conn[s->nen * e + a / d] * d + a % d;
                 int J = m->conn[s->nen * e + b / d] * d + b % d;
                 size_t at = ((size_t)e * s->nde + a) * s->nde + b;
-                s->emap[at] = I <= J ? asp_kpos(s->K, I, J) : -1;
+                s->emap[at] = I <= J && !(s->ehang && s->ehang[e]) ? asp_kpos(s->K, I, J) : -1;
             }
     return STC_OK;
 }
 
 /* ---- assembly -------------------------------------------------------------- */
+
+void asp_node_u(const asp_solver *s, const double *u, int n, double *out)
+{
+    int d = s->dim, h = s->hidx ? s->hidx[n] : -1;
+    if (h < 0) {
+        for (int i = 0; i < d; i++) out[i] = u[d * n + i];
+        return;
+    }
+    const int *mm = s->mesh->hang_m + 4 * h;
+    const double *w = s->mesh->hang_w + 4 * h;
+    for (int i = 0; i < d; i++) out[i] = 0.0;
+    for (int b = 0; b < 4; b++)
+        if (mm[b] >= 0)
+            for (int i = 0; i < d; i++) out[i] += w[b] * u[d * mm[b] + i];
+}
 
 /* Element e at s->u: fe, Ke (if want_K), stress and state; < 0 if inverted. */
 static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke)
@@ -247,11 +289,10 @@ static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke)
     int d = s->dim, nen = s->nen;
     double X[24], ue[24];
     const int *c = m->conn + (size_t)nen * e;
-    for (int a = 0; a < nen; a++)
-        for (int i = 0; i < d; i++) {
-            X[d * a + i] = m->x[d * c[a] + i];
-            ue[d * a + i] = s->u[d * c[a] + i];
-        }
+    for (int a = 0; a < nen; a++) {
+        for (int i = 0; i < d; i++) X[d * a + i] = m->x[d * c[a] + i];
+        asp_node_u(s, s->u, c[a], ue + d * a);
+    }
     size_t q0 = (size_t)e * s->nqp;
     const asp_j2 *mat = &s->mat[m->region[e]];
     return d == 2 ? asp_quad4_axi(X, ue, mat, s->st_old + q0, s->st_new + q0, fe,
@@ -260,11 +301,65 @@ static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke)
                              want_K ? Ke : NULL, s->sig + 6 * q0);
 }
 
+/* Scatter of an element with hanging nodes: each DOF of a hanging node
+ * goes to its masters' with their weights (K += T^T Ke T, f += T^T fe);
+ * the positions in K are looked up (these are one layer of the shells). */
+static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
+                         int atomic)
+{
+    int nde = s->nde, d = s->dim, gi[24][4], gn[24];
+    double gw[24][4], *Kx = s->K->x, *f = s->fint;
+    const asp_mesh *m = s->mesh;
+    const int *c = m->conn + (size_t)s->nen * e;
+    for (int a = 0; a < nde; a++) {
+        int n = c[a / d], h = s->hidx[n];
+        gn[a] = 0;
+        if (h < 0) {
+            gi[a][0] = d * n + a % d, gw[a][0] = 1.0, gn[a] = 1;
+            continue;
+        }
+        for (int b = 0; b < 4; b++)
+            if (m->hang_m[4 * h + b] >= 0) {
+                gi[a][gn[a]] = d * m->hang_m[4 * h + b] + a % d;
+                gw[a][gn[a]++] = m->hang_w[4 * h + b];
+            }
+    }
+    for (int a = 0; a < nde; a++)
+        for (int k = 0; k < gn[a]; k++) {
+            double v = gw[a][k] * fe[a];
+            if (atomic) {
+#pragma omp atomic
+                f[gi[a][k]] += v;
+            } else {
+                f[gi[a][k]] += v;
+            }
+        }
+    if (!want_K) return;
+    for (int a = 0; a < nde; a++)
+        for (int b = 0; b < nde; b++)
+            for (int ka = 0; ka < gn[a]; ka++)
+                for (int kb = 0; kb < gn[b]; kb++) {
+                    int I = gi[a][ka], J = gi[b][kb], pos;
+                    if (I > J || (pos = asp_kpos(s->K, I, J)) < 0) continue;
+                    double v = gw[a][ka] * gw[b][kb] * Ke[a * nde + b];
+                    if (atomic) {
+#pragma omp atomic
+                        Kx[pos] += v;
+                    } else {
+                        Kx[pos] += v;
+                    }
+                }
+}
+
 /* Scatter one element into fint and K; atomic when threads share them. */
 static void scatter(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
                     int atomic)
 {
     int nde = s->nde, d = s->dim;
+    if (s->ehang && s->ehang[e]) {
+        scatter_hang(s, e, want_K, fe, Ke, atomic);
+        return;
+    }
     const int *c = s->mesh->conn + (size_t)s->nen * e;
     const int *map = s->emap + (size_t)e * nde * nde;
     double *Kx = s->K->x, *f = s->fint;
@@ -351,6 +446,10 @@ static void set_dirichlet(asp_solver *s, double delta)
         if (d == 2 && (f & ASP_NODE_AXIS)) s->fixed[d * n] = 1, s->ubc[d * n] = 0.0;
         if (d == 3 && (f & ASP_NODE_SYM)) s->fixed[d * n + 1] = 1, s->ubc[d * n + 1] = 0.0;
     }
+    /* hanging nodes are not unknowns: identity rows, u kept at 0 (their
+     * displacement is the masters' average, asp_node_u) */
+    for (int k = 0; k < m->nhang; k++)
+        for (int c = 0; c < d; c++) s->fixed[d * m->hang[k] + c] = 1, s->ubc[d * m->hang[k] + c] = 0.0;
     for (int k = 0; k < s->ncand; k++) {
         if (s->cs[k] == ASP_CS_OPEN) continue;
         int n = s->cand[k];
@@ -780,6 +879,21 @@ static stc_status alloc_state(asp_solver *s)
     return STC_OK;
 }
 
+/* hidx and ehang from the mesh's hanging nodes (none: both NULL). */
+static stc_status index_hanging(asp_solver *s)
+{
+    const asp_mesh *m = s->mesh;
+    if (m->nhang == 0) return STC_OK;
+    s->hidx = malloc((size_t)m->nnode * sizeof *s->hidx);
+    s->ehang = calloc((size_t)m->nelem, 1);
+    STC_CHECK(s->hidx && s->ehang, STC_ENOMEM, "solver: out of memory");
+    for (int i = 0; i < m->nnode; i++) s->hidx[i] = -1;
+    for (int k = 0; k < m->nhang; k++) s->hidx[m->hang[k]] = k;
+    for (int e = 0; e < m->nelem; e++)
+        for (int a = 0; a < m->nen; a++) s->ehang[e] |= s->hidx[m->conn[m->nen * e + a]] >= 0;
+    return STC_OK;
+}
+
 static stc_status make_mesh(asp_solver *s, double delta_max)
 {
     stc_material su, co;
@@ -812,7 +926,9 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     int base = s->opt.geom == ASP_GEOM_3D ? 0 : 1;
     s->level = s->opt.mesh_level >= 0 ? s->opt.mesh_level
                                       : base + (ASP_MESH_DEFAULT - s->opt.mesh_level);
-    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->level, s->opt.elements_per_contact};
+    /* asp_mesh_spec.coarsen: 0 = default, < 0 = none */
+    int crs = s->opt.shell_coarsen < 0 ? 0 : s->opt.shell_coarsen == 0 ? -1 : s->opt.shell_coarsen;
+    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->level, s->opt.elements_per_contact, crs};
     double n = s->opt.elements_per_contact > 0.0 ? s->opt.elements_per_contact
                                                  : 6.0 * (1 << s->level);
     if (s->opt.geom == ASP_GEOM_3D) {
@@ -822,6 +938,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
         STC_CALL(asp_mesh_axisym_nl(&spec, s->a_min, n, asp_surface_layers(&s->opt), &s->mesh));
     }
     STC_CALL(asp_mesh_quality(s->mesh, &s->quality));
+    STC_CALL(index_hanging(s));
     s->dim = s->mesh->dim, s->nen = s->mesh->nen;
     s->nqp = s->dim == 2 ? ASP_QUAD4_NQP : ASP_HEX8_NQP;
     s->nde = s->dim * s->nen;
@@ -892,7 +1009,7 @@ void asp_solver_destroy(asp_solver **sp)
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);
-    free(s->emap), free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
+    free(s->emap), free(s->hidx), free(s->ehang), free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
     asp_shear_release(s);
@@ -905,7 +1022,7 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->dim = s->dim;
     info->nodes = s->mesh->nnode;
     info->elements = s->mesh->nelem;
-    info->dofs = s->ndof;
+    info->dofs = s->ndof - s->dim * s->mesh->nhang; /* hanging nodes are not unknowns */
     info->mesh_quality = s->quality;
     info->h_contact = s->h;
     info->a_max = s->a_max;

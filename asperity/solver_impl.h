@@ -44,6 +44,8 @@ struct asp_solver {
     cholmod_sparse *K;    /* upper triangle, fixed pattern */
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
+    int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
+    unsigned char *ehang; /* [nelem] 1: the element uses a hanging node (scatter_hang) */
 
     /* linear algebra (speed3d) */
     int have_factor;      /* L holds a numeric factor (of an earlier tangent) */
@@ -122,6 +124,9 @@ int asp_surface_layers(const asp_options *o);
 /* Position of the upper-triangle entry (i, j), i <= j, in K->x; -1 if not
  * in the pattern (solver.c). */
 int asp_kpos(const cholmod_sparse *K, int i, int j);
+/* Displacement of node n from the DOF vector u (dim components into out):
+ * a hanging node's is the weighted average of its masters' (solver.c). */
+void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
 
 /* asp_contact.c: results at the converged state; the contact footprint of
  * the tangential step (shear.c). */

@@ -78,9 +78,10 @@ static stc_status write_h5(const asp_solver *s, const char *path)
     double *sv = malloc(8 * ne * sizeof *sv), *col = malloc(6 * ne * sizeof *col);
     stc_status st = STC_OK;
     STC_CHECK_GOTO(xyz && u && sv && col, st, done, STC_ENOMEM, "fields: out of memory");
-    for (size_t i = 0; i < nn; i++)
-        for (int k = 0; k < s->dim; k++)
-            xyz[3 * i + k] = m->x[s->dim * i + k], u[3 * i + k] = s->u_conv[s->dim * i + k];
+    for (size_t i = 0; i < nn; i++) {
+        for (int k = 0; k < s->dim; k++) xyz[3 * i + k] = m->x[s->dim * i + k];
+        asp_node_u(s, s->u_conv, (int)i, u + 3 * i);
+    }
     cell_fields(s, sv);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* library code does not print */
     hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);

@@ -1,7 +1,9 @@
 /* 3D half-model mesh: volumes converge to the exact half hemisphere and
  * coating shell, every Jacobian is positive (quality bound), boundary flags
  * sit on their surfaces, regions respect the interface, the contact zone has
- * the promised size and the coating >= 4 elements.
+ * the promised size and the coating >= 4 elements; the shells' 2:1
+ * coarsening makes consistent hanging nodes, and without it the mesh is the
+ * uncoarsened one.
  * Set STC_MESH3D_VTK=file.vtk to dump the default mesh for eyeballing. */
 #include <math.h>
 #include <setjmp.h>
@@ -57,13 +59,24 @@ static double hex_volume(const double X[24])
     return V;
 }
 
-static asp_mesh *make(double t, double a, int level)
+static asp_mesh *make_c(double t, double a, int level, int coarsen)
 {
-    asp_mesh_spec s = {R, t, a, level, 0.0};
+    asp_mesh_spec s = {R, t, a, level, 0.0, coarsen};
     asp_mesh *M = NULL;
     stc_status st = asp_mesh_half3d(&s, &M);
     if (st != STC_OK) fail_msg("asp_mesh_half3d: %s", stc_errmsg());
     return M;
+}
+
+static asp_mesh *make(double t, double a, int level) { return make_c(t, a, level, 0); }
+
+/* is_hanging[n] (caller frees) */
+static unsigned char *hanging_marks(const asp_mesh *M)
+{
+    unsigned char *is = calloc((size_t)M->nnode, 1);
+    assert_non_null(is);
+    for (int h = 0; h < M->nhang; h++) is[M->hang[h]] = 1;
+    return is;
 }
 
 /* Relative volume errors of the whole mesh and of the coating region. */
@@ -80,23 +93,30 @@ static void volume_errors(const asp_mesh *M, double t, double *ev, double *ec)
     *ec = t > 0.0 ? fabs(Vc / (M_PI * (Rp * Rp * Rp - R * R * R) / 3.0) - 1.0) : 0.0;
 }
 
+/* The uncoarsened mesh (coarsen < 0): < 1 % at every level.  The default
+ * coarsened mesh is chordal over 4x wider far-field cells (30° of azimuth
+ * at level 0 near the equator), measured 5.0e-2 / 1.5e-2 / 4.4e-3 at levels
+ * 0 / 1 / 2: only its convergence is asserted (the loss is far from the
+ * contact; see the mesh3d.c header). */
 static void test_volume_converges(void **state)
 {
     (void)state;
-    double prev_v = 1.0, prev_c = 1.0;
-    int prev_n = 0;
-    for (int level = 0; level <= 2; level++) {
-        asp_mesh *M = make(0.05, 0.1, level);
-        double ev, ec;
-        volume_errors(M, 0.05, &ev, &ec);
-        printf("level %d: %d nodes, %d hex8; volume error %.2e, coating volume error %.2e\n",
-               level, M->nnode, M->nelem, ev, ec);
-        assert_true(ev < 1e-2 && ec < 1e-2);
-        assert_true(ev < 0.6 * prev_v && ec < 0.6 * prev_c);
-        assert_true(M->nelem > 3 * prev_n);
-        prev_v = ev, prev_c = ec, prev_n = M->nelem;
-        asp_mesh_destroy(&M);
-        assert_null(M);
+    for (int coarsen = -1; coarsen <= 0; coarsen++) {
+        double prev_v = 1.0, prev_c = 1.0;
+        int prev_n = 0;
+        for (int level = 0; level <= 2; level++) {
+            asp_mesh *M = make_c(0.05, 0.1, level, coarsen);
+            double ev, ec;
+            volume_errors(M, 0.05, &ev, &ec);
+            printf("coarsen %d level %d: %d nodes, %d hex8; volume error %.2e, coating "
+                   "volume error %.2e\n", coarsen, level, M->nnode, M->nelem, ev, ec);
+            if (coarsen < 0) assert_true(ev < 1e-2 && ec < 1e-2);
+            assert_true(ev < 0.6 * prev_v && ec < 0.6 * prev_c);
+            assert_true(M->nelem > 3 * prev_n);
+            prev_v = ev, prev_c = ec, prev_n = M->nelem;
+            asp_mesh_destroy(&M);
+            assert_null(M);
+        }
     }
 }
 
@@ -140,6 +160,7 @@ static void test_flags_and_regions(void **state)
     (void)state;
     const double t = 0.05, a = 0.1, Rp = R + t;
     asp_mesh *M = make(t, a, 1);
+    unsigned char *is_h = hanging_marks(M);
     int nb = 0, ns = 0, nt = 0, base_missing = 0;
     for (int n = 0; n < M->nnode; n++) {
         const double *x = M->x + 3 * n;
@@ -159,11 +180,13 @@ static void test_flags_and_regions(void **state)
         }
     }
     assert_int_equal(base_missing, 0);
-    /* every element lies on its side of the interface |X| = R */
+    /* every element lies on its side of the interface |X| = R (a hanging
+     * node lies on its coarse face's chord: test_hanging checks it) */
     int wrong = 0, ncoat = 0;
     for (int e = 0; e < M->nelem; e++) {
         ncoat += M->region[e] == ASP_REGION_COATING;
         for (int k = 0; k < 8; k++) {
+            if (is_h[M->conn[8 * e + k]]) continue;
             double r = norm3(M->x + 3 * M->conn[8 * e + k]);
             if (M->region[e] == ASP_REGION_COATING ? r < R * (1 - 1e-12)
                                                    : r > R * (1 + 1e-12))
@@ -174,6 +197,7 @@ static void test_flags_and_regions(void **state)
            nb, ns, nt, ncoat, wrong);
     assert_int_equal(wrong, 0);
     assert_true(nb > 0 && ns > 0 && ncoat > 0);
+    free(is_h);
     asp_mesh_destroy(&M);
 }
 
@@ -287,7 +311,7 @@ static void write_vtk(const asp_mesh *M, const char *path)
 static void test_speed_and_dump(void **state)
 {
     (void)state;
-    asp_mesh_spec s = {R, 0.05, 0.1, 1, 0.0};
+    asp_mesh_spec s = {R, 0.05, 0.1, 1, 0.0, 0};
     asp_mesh *M = NULL;
     double t0 = now();
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_OK);
@@ -300,9 +324,138 @@ static void test_speed_and_dump(void **state)
     asp_mesh_destroy(&M);
 }
 
+/* coarsen < 0 is exactly the mesh before coarsening existed: node and
+ * element counts recorded from that code (mesh3d.c as of 2026-11-21). */
+static void test_uncoarsened(void **state)
+{
+    (void)state;
+    const struct { double t, a; int level, nnode, nelem; } c[] = {
+        {0.0, 0.1, 0, 7674, 6696},      {0.05, 0.1, 0, 8831, 7776},
+        {0.05, 0.1, 1, 41065, 38208},   {0.02, 0.1, 1, 46223, 43200},
+        {0.5, 0.1, 1, 77171, 73152},    {0.25, 0.25, 1, 46326, 43392},
+        {0.0, 2.5, 1, 23135, 21312}};
+    for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+        asp_mesh *M = make_c(c[k].t, c[k].a, c[k].level, -1);
+        asp_mesh *M1 = make_c(c[k].t, c[k].a, c[k].level, 1);
+        asp_mesh *M2 = make(c[k].t, c[k].a, c[k].level);
+        printf("t = %-4g a_max = %-4g level %d: nodes %6d / %6d / %6d (coarsen -1 / 1 / 2), "
+               "hanging %d / %d\n", c[k].t, c[k].a, c[k].level, M->nnode, M1->nnode,
+               M2->nnode, M1->nhang, M2->nhang);
+        assert_int_equal(M->nnode, c[k].nnode);
+        assert_int_equal(M->nelem, c[k].nelem);
+        assert_int_equal(M->nhang, 0);
+        assert_null(M->hang);
+        assert_true(M1->nnode < M->nnode && M2->nnode <= M1->nnode);
+        asp_mesh_destroy(&M), asp_mesh_destroy(&M1), asp_mesh_destroy(&M2);
+    }
+}
+
+/* Local indices of the nodes of hex e among ids[n]; -1 if one is absent. */
+static int local_set(const asp_mesh *M, int e, const int *ids, int n)
+{
+    int mask = 0;
+    for (int a = 0; a < n; a++) {
+        int k = 0;
+        while (k < 8 && M->conn[8 * e + k] != ids[a]) k++;
+        if (k == 8) return -1;
+        mask |= 1 << k;
+    }
+    return mask;
+}
+
+/* Masks of the hex8 faces and edges (local node numbering). */
+static int is_face_or_edge(int mask, int n)
+{
+    static const int F[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    for (int f = 0; f < 6; f++) {
+        if (n == 4 && mask == ((1 << F[f][0]) | (1 << F[f][1]) | (1 << F[f][2]) | (1 << F[f][3])))
+            return 1;
+        for (int a = 0; a < 4 && n == 2; a++)
+            if (mask == ((1 << F[f][a]) | (1 << F[f][(a + 1) % 4]))) return 1;
+    }
+    return 0;
+}
+
+/* Hanging-node invariants: coordinates = the masters' weighted average,
+ * weights sum to 1, masters not hanging, no hanging contact candidate or
+ * base node, the masters are a face (4) or an edge (2) of some element
+ * (the coarse one) that does not contain the hanging node, and every node
+ * is used by an element. */
+static void hanging(double t, double a, int level, int coarsen)
+{
+    asp_mesh *M = make_c(t, a, level, coarsen);
+    unsigned char *is_h = hanging_marks(M);
+    int *deg = calloc((size_t)M->nnode + 1, sizeof *deg), *adj = malloc(8 * (size_t)M->nelem * sizeof *adj);
+    assert_true(deg && adj);
+    for (int e = 0; e < M->nelem; e++)
+        for (int k = 0; k < 8; k++) deg[M->conn[8 * e + k] + 1]++;
+    for (int n = 0; n < M->nnode; n++) {
+        assert_true(deg[n + 1] > 0); /* no orphan node */
+        deg[n + 1] += deg[n];
+    }
+    int *fill = calloc((size_t)M->nnode, sizeof *fill);
+    assert_non_null(fill);
+    for (int e = 0; e < M->nelem; e++)
+        for (int k = 0; k < 8; k++) {
+            int n = M->conn[8 * e + k];
+            adj[deg[n] + fill[n]++] = e;
+        }
+    double Rp = R + t, dmin = 1e30, lat = 1e30;
+    int n4 = 0;
+    assert_true(M->nhang > 0);
+    for (int h = 0; h < M->nhang; h++) {
+        int id = M->hang[h], *ms = M->hang_m + 4 * h, n = 0;
+        const double *w = M->hang_w + 4 * h, *X = M->x + 3 * id;
+        double Y[3] = {0, 0, 0}, ws = 0.0;
+        assert_false(is_h[id] > 1);
+        while (n < 4 && ms[n] >= 0) n++;
+        assert_true(n == 2 || n == 4);
+        n4 += n == 4;
+        for (int k = n; k < 4; k++) assert_true(ms[k] == -1 && w[k] == 0.0);
+        for (int k = 0; k < n; k++) {
+            assert_true(w[k] > 0.0 && w[k] < 1.0);
+            assert_false(is_h[ms[k]]);
+            ws += w[k];
+            for (int i = 0; i < 3; i++) Y[i] += w[k] * M->x[3 * ms[k] + i];
+        }
+        assert_true(fabs(ws - 1.0) < 1e-14);
+        for (int i = 0; i < 3; i++) assert_true(fabs(X[i] - Y[i]) <= 1e-12 * Rp);
+        assert_false(M->flags[id] & (ASP_NODE_TOP | ASP_NODE_BASE));
+        int coarse = 0;
+        for (int q = deg[ms[0]]; q < deg[ms[0] + 1]; q++) {
+            int e = adj[q], mask = local_set(M, e, ms, n);
+            if (mask < 0) continue;
+            coarse++;
+            assert_true(is_face_or_edge(mask, n));
+            assert_true(local_set(M, e, &id, 1) < 0);
+        }
+        assert_true(coarse >= 1);
+        double d[3] = {X[0], X[1], X[2] - Rp};
+        dmin = fmin(dmin, norm3(d));
+        if (norm3(X) > Rp * (1 - 1e-2)) lat = fmin(lat, hypot(X[0], X[1]));
+    }
+    printf("t = %-4g a_max = %g level %d coarsen %d: %6d nodes, %5d hanging (%d with 4 "
+           "masters); nearest %.2f a_max from P, on the surface %.2f a_max off the axis\n",
+           t, a, level, coarsen, M->nnode, M->nhang, n4, dmin / a, lat / a);
+    free(deg), free(adj), free(fill), free(is_h);
+    asp_mesh_destroy(&M);
+}
+
+static void test_hanging(void **state)
+{
+    (void)state;
+    const double cases[][2] = {{0.0, 0.1}, {0.02, 0.1}, {0.5, 0.1}}; /* t, a_max */
+    for (int c = 0; c < 3; c++)
+        for (int level = 0; level <= 1; level++) {
+            hanging(cases[c][0], cases[c][1], level, 0);
+            hanging(cases[c][0], cases[c][1], level, 1);
+        }
+}
+
 static void expect_bad(double Rr, double t, double a, int level, const char *needle)
 {
-    asp_mesh_spec s = {Rr, t, a, level, 0.0};
+    asp_mesh_spec s = {Rr, t, a, level, 0.0, 0};
     asp_mesh *M = (asp_mesh *)&s; /* must be reset to NULL on failure */
     stc_error_clear();
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_EINVAL);
@@ -318,6 +471,11 @@ static void test_invalid(void **state)
     expect_bad(10.0, 0.0, 0.0, 1, "a_max = 0");
     expect_bad(10.0, 0.0, 0.1, -1, "level = -1");
     expect_bad(10.0, 0.0, 8.0, 1, "does not fit"); /* a_max = 6 fits since the 1.0 a_max core */
+    asp_mesh_spec s = {10.0, 0.0, 0.1, 1, 0.0, 3};
+    asp_mesh *M = NULL;
+    assert_int_equal(asp_mesh_half3d(&s, &M), STC_EINVAL);
+    assert_null(M);
+    assert_non_null(strstr(stc_errmsg(), "coarsen = 3"));
     printf("invalid specs rejected with messages\n");
 }
 
@@ -330,6 +488,8 @@ int main(void)
         cmocka_unit_test(test_contact_zone),
         cmocka_unit_test(test_shell_growth),
         cmocka_unit_test(test_speed_and_dump),
+        cmocka_unit_test(test_uncoarsened),
+        cmocka_unit_test(test_hanging),
         cmocka_unit_test(test_invalid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -20,7 +20,9 @@ static const double R = 10.0, A_MAX = 0.3;
 static asp_mesh *make(int dim, double t, int level)
 {
     asp_mesh *m = NULL;
-    asp_mesh_spec s = {R, t, A_MAX, level, 0.0};
+    /* uncoarsened shells: the whole-hemisphere sums below need every
+     * surface face on the sphere (hanging nodes sit on flat coarse faces) */
+    asp_mesh_spec s = {R, t, A_MAX, level, 0.0, -1};
     assert_int_equal(dim == 2 ? asp_mesh_axisym(&s, &m) : asp_mesh_half3d(&s, &m), STC_OK);
     return m;
 }

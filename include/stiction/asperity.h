@@ -86,6 +86,10 @@ typedef struct asp_options {
                                 there; resolves a stuck-surface stress maximum),
                                 N in [0, 6]; -1 = automatic: 3 under stick, 0
                                 under slip (3D: no layers); default -1 */
+    int shell_coarsen;       /* 3D: 2:1 angular coarsenings of the mesh's outer
+                                shells (hanging nodes), in [0, 2]; -1 = the
+                                mesh's default (1, from 6 a_max on; see
+                                asperity/mesh3d.c); default -1 */
 } asp_options;
 
 void asp_options_default(asp_options *o);

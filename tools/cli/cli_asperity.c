@@ -36,6 +36,9 @@ static const cli_opt opts[] = {
     {"elements-per-contact", "N",
      "elements across the largest contact radius, overrides --mesh (6 2^level); "
      "values between levels, e.g. 8 (in [3, 384]; 3D: the shells follow the level log2(N/6))"},
+    {"shell-coarsen", "N",
+     "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
+     "(default 1: from 6 a_max on)"},
     {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
     {"krylov", "off|auto|on",
      "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
@@ -105,6 +108,11 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 3.0 && v <= 384.0))
             return bad(key, value, "a number in [3, 384]");
         a->o.elements_per_contact = v;
+    } else if (!strcmp(key, "shell-coarsen")) {
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 2)
+            return bad(key, value, "an integer in [0, 2]");
+        a->o.shell_coarsen = (int)l;
     } else if (!strcmp(key, "newton-reuse")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 100)
