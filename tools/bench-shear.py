@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """make bench, combined loading (issue 4 item 4): work-precision of mu_s.
 
-bench-shear.py CLI [MESHES]     (MESHES default "0,0:nodes,1": 3D mesh levels,
-                                 or nX for X elements across a_max, e.g.
-                                 "0,n8.5,1"; a ":nodes" suffix runs the
+bench-shear.py CLI [MESHES]     (MESHES default "0,0:nodes,0:c0,1": 3D mesh
+                                 levels, or nX for X elements across a_max,
+                                 e.g. "0,n8.5,1"; a ":nodes" suffix runs the
                                  junction rule --junction nodes instead of
                                  the default footprint, whose finest mesh is
                                  the reference; the two rules bracket the
-                                 converged mu_s, docs/tangential-step.md §11)
+                                 converged mu_s, docs/tangential-step.md §11;
+                                 ":c0" / ":c2" run the mesh with no / two
+                                 2:1 coarsenings of the outer shells instead
+                                 of the default one, §13)
 
 For the homogeneous WSP sphere at omega/omega_c = 3 and 12 and for one coated
 case (delta = 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step):
@@ -54,9 +57,17 @@ def run(cli, args):
 
 def mesh_args(m):
     """CLI arguments of one mesh spec: a level, or nX = X elements across a_max,
-    with an optional ":nodes" (the junction rule)."""
-    m, _, rule = m.partition(":")
-    extra = ["--junction", rule] if rule else []
+    with optional ":" modifiers: "nodes" (the junction rule), "cN" (N 2:1
+    coarsenings of the outer shells instead of the default one)."""
+    m, *mods = m.split(":")
+    extra = []
+    for mod in mods:
+        if mod == "nodes":
+            extra += ["--junction", "nodes"]
+        elif mod.startswith("c") and mod[1:].isdigit():
+            extra += ["--shell-coarsen", mod[1:]]
+        else:
+            sys.exit("bench-shear.py: mesh modifier '%s': must be nodes or cN" % mod)
     if m.startswith("n"):
         return ["--elements-per-contact", m[1:]] + extra
     return ["--mesh", m] + extra
@@ -66,7 +77,7 @@ def main():
     if len(sys.argv) < 2:
         sys.exit("usage: bench-shear.py CLI [MESHES]")
     cli = sys.argv[1]
-    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,0:nodes,1").split(",")
+    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,0:nodes,0:c0,1").split(",")
     print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
     print("%-34s %7s %8s %9s %9s %8s %7s %7s %6s %8s" % (
         "case", "mesh", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",

@@ -275,11 +275,16 @@ def bench(cli):
                 name, lev, j["dofs"], j["P_N"], 100 * (j["P_N"] / Pf - 1), er, w, m))
     print("3D half model, Hertz a/R = 0.01 (error vs the axisymmetric level 3 above)")
     Pax = rows_ax[-1][1]["P_N"]
+    # shell coarsenings: 1 is the default; 0 and 2 show what it trades
     for lev in (0, 1):
-        j, w, m = run(cli, HERTZ + ["--delta-mm", "0.001", "--model", "3d", "--mesh", str(lev)])
-        print("  level %d: %6d DOFs, P = %.6g N (%+.3f %% vs axisym, %+.3f %% vs Hertz), %.2f s, "
-              "%.1f MB" % (lev, j["dofs"], j["P_N"], 100 * (j["P_N"] / Pax - 1),
-                           100 * (j["P_N"] / hertz(10.09, 74000.0, 0.32, 0.001)[0] - 1), w, m))
+        for crs in (1, 0, 2):
+            j, w, m = run(cli, HERTZ + ["--delta-mm", "0.001", "--model", "3d", "--mesh", str(lev),
+                                        "--shell-coarsen", str(crs)])
+            print("  level %d, %d shell coarsening%s: %6d DOFs, P = %.6g N (%+.3f %% vs axisym, "
+                  "%+.3f %% vs Hertz), %.2f s, %.1f MB"
+                  % (lev, crs, "" if crs == 1 else "s", j["dofs"], j["P_N"],
+                     100 * (j["P_N"] / Pax - 1),
+                     100 * (j["P_N"] / hertz(10.09, 74000.0, 0.32, 0.001)[0] - 1), w, m))
     print("Load curve delta/wc = 5, 10, ..., 60 (slip, homogeneous), one solver run per level;")
     print("errors against the finest level's P_smooth (the sawtooth-free load, asp_solver_P_smooth)")
     curves = []
