@@ -59,6 +59,7 @@
  * converged one (4 elements across the final contact, no small-δ grading;
  * 1 contact node at 1 ωc: -33 %).
  */
+#include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -222,6 +223,62 @@ int asp_kpos(const cholmod_sparse *K, int i, int j)
     return f ? (int)(f - Ki) : -1;
 }
 
+/* The DOFs of element e with each DOF of a hanging node replaced by its
+ * masters' (gi) and weights (gw); gn: how many per element DOF. */
+static void hang_expand(const asp_solver *s, int e, int gi[24][4], double gw[24][4], int gn[24])
+{
+    const asp_mesh *m = s->mesh;
+    const int *c = m->conn + (size_t)s->nen * e;
+    int d = s->dim;
+    for (int a = 0; a < s->nde; a++) {
+        int n = c[a / d], h = s->hidx[n];
+        gn[a] = 0;
+        if (h < 0) {
+            gi[a][0] = d * n + a % d, gw[a][0] = 1.0, gn[a] = 1;
+            continue;
+        }
+        for (int b = 0; b < 4; b++)
+            if (m->hang_m[4 * h + b] >= 0) {
+                gi[a][gn[a]] = d * m->hang_m[4 * h + b] + a % d;
+                gw[a][gn[a]++] = m->hang_w[4 * h + b];
+            }
+    }
+}
+
+/* hoff/hpos: for every element with a hanging node, the positions in K->x
+ * of its expanded (a, b, master of a, master of b) terms, in scatter_hang's
+ * order (-1 below the diagonal), looked up once per mesh. */
+static stc_status build_hang_map(asp_solver *s)
+{
+    int gi[24][4], gn[24], nde = s->nde;
+    double gw[24][4];
+    size_t n = 0;
+    for (int e = 0; e < s->mesh->nelem; e++) {
+        if (s->hoff[e] < 0) continue;
+        hang_expand(s, e, gi, gw, gn);
+        int t = 0;
+        for (int a = 0; a < nde; a++) t += gn[a];
+        n += (size_t)t * t;
+    }
+    STC_CHECK(n <= INT_MAX, STC_ENOMEM, "solver: %zu hanging-node terms", n);
+    s->hpos = malloc((n ? n : 1) * sizeof *s->hpos);
+    STC_CHECK(s->hpos, STC_ENOMEM, "solver: out of memory for the hanging-node map");
+    n = 0;
+    for (int e = 0; e < s->mesh->nelem; e++) {
+        if (s->hoff[e] < 0) continue;
+        s->hoff[e] = (int)n;
+        hang_expand(s, e, gi, gw, gn);
+        for (int a = 0; a < nde; a++)
+            for (int b = 0; b < nde; b++)
+                for (int ka = 0; ka < gn[a]; ka++)
+                    for (int kb = 0; kb < gn[b]; kb++) {
+                        int I = gi[a][ka], J = gi[b][kb];
+                        s->hpos[n++] = I <= J ? asp_kpos(s->K, I, J) : -1;
+                    }
+    }
+    return STC_OK;
+}
+
 /* Upper-triangular CSC pattern of K and the element scatter map. */
 static stc_status build_pattern(asp_solver *s)
 {
@@ -260,9 +317,9 @@ static stc_status build_pattern(asp_solver *s)
                 int I = m->conn[s->nen * e + a / d] * d + a % d;
                 int J = m->conn[s->nen * e + b / d] * d + b % d;
                 size_t at = ((size_t)e * s->nde + a) * s->nde + b;
-                s->emap[at] = I <= J && !(s->ehang && s->ehang[e]) ? asp_kpos(s->K, I, J) : -1;
+                s->emap[at] = I <= J && !(s->hoff && s->hoff[e] >= 0) ? asp_kpos(s->K, I, J) : -1;
             }
-    return STC_OK;
+    return s->hoff ? build_hang_map(s) : STC_OK;
 }
 
 /* ---- assembly -------------------------------------------------------------- */
@@ -302,28 +359,13 @@ static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke)
 }
 
 /* Scatter of an element with hanging nodes: each DOF of a hanging node
- * goes to its masters' with their weights (K += T^T Ke T, f += T^T fe);
- * the positions in K are looked up (these are one layer of the shells). */
+ * goes to its masters' with their weights (K += T^T Ke T, f += T^T fe). */
 static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
                          int atomic)
 {
-    int nde = s->nde, d = s->dim, gi[24][4], gn[24];
+    int nde = s->nde, gi[24][4], gn[24];
     double gw[24][4], *Kx = s->K->x, *f = s->fint;
-    const asp_mesh *m = s->mesh;
-    const int *c = m->conn + (size_t)s->nen * e;
-    for (int a = 0; a < nde; a++) {
-        int n = c[a / d], h = s->hidx[n];
-        gn[a] = 0;
-        if (h < 0) {
-            gi[a][0] = d * n + a % d, gw[a][0] = 1.0, gn[a] = 1;
-            continue;
-        }
-        for (int b = 0; b < 4; b++)
-            if (m->hang_m[4 * h + b] >= 0) {
-                gi[a][gn[a]] = d * m->hang_m[4 * h + b] + a % d;
-                gw[a][gn[a]++] = m->hang_w[4 * h + b];
-            }
-    }
+    hang_expand(s, e, gi, gw, gn);
     for (int a = 0; a < nde; a++)
         for (int k = 0; k < gn[a]; k++) {
             double v = gw[a][k] * fe[a];
@@ -335,18 +377,18 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
             }
         }
     if (!want_K) return;
+    const int *pos = s->hpos + s->hoff[e];
     for (int a = 0; a < nde; a++)
         for (int b = 0; b < nde; b++)
             for (int ka = 0; ka < gn[a]; ka++)
-                for (int kb = 0; kb < gn[b]; kb++) {
-                    int I = gi[a][ka], J = gi[b][kb], pos;
-                    if (I > J || (pos = asp_kpos(s->K, I, J)) < 0) continue;
+                for (int kb = 0; kb < gn[b]; kb++, pos++) {
+                    if (*pos < 0) continue;
                     double v = gw[a][ka] * gw[b][kb] * Ke[a * nde + b];
                     if (atomic) {
 #pragma omp atomic
-                        Kx[pos] += v;
+                        Kx[*pos] += v;
                     } else {
-                        Kx[pos] += v;
+                        Kx[*pos] += v;
                     }
                 }
 }
@@ -356,7 +398,7 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
                     int atomic)
 {
     int nde = s->nde, d = s->dim;
-    if (s->ehang && s->ehang[e]) {
+    if (s->hoff && s->hoff[e] >= 0) {
         scatter_hang(s, e, want_K, fe, Ke, atomic);
         return;
     }
@@ -449,7 +491,10 @@ static void set_dirichlet(asp_solver *s, double delta)
     /* hanging nodes are not unknowns: identity rows, u kept at 0 (their
      * displacement is the masters' average, asp_node_u) */
     for (int k = 0; k < m->nhang; k++)
-        for (int c = 0; c < d; c++) s->fixed[d * m->hang[k] + c] = 1, s->ubc[d * m->hang[k] + c] = 0.0;
+        for (int c = 0; c < d; c++) {
+            int i = d * m->hang[k] + c;
+            s->fixed[i] = 1, s->ubc[i] = 0.0;
+        }
     for (int k = 0; k < s->ncand; k++) {
         if (s->cs[k] == ASP_CS_OPEN) continue;
         int n = s->cand[k];
@@ -879,18 +924,22 @@ static stc_status alloc_state(asp_solver *s)
     return STC_OK;
 }
 
-/* hidx and ehang from the mesh's hanging nodes (none: both NULL). */
+/* hidx and hoff from the mesh's hanging nodes (none: both NULL); hoff is
+ * 0 for an element with a hanging node until build_hang_map sets it. */
 static stc_status index_hanging(asp_solver *s)
 {
     const asp_mesh *m = s->mesh;
     if (m->nhang == 0) return STC_OK;
     s->hidx = malloc((size_t)m->nnode * sizeof *s->hidx);
-    s->ehang = calloc((size_t)m->nelem, 1);
-    STC_CHECK(s->hidx && s->ehang, STC_ENOMEM, "solver: out of memory");
+    s->hoff = malloc((size_t)m->nelem * sizeof *s->hoff);
+    STC_CHECK(s->hidx && s->hoff, STC_ENOMEM, "solver: out of memory");
     for (int i = 0; i < m->nnode; i++) s->hidx[i] = -1;
     for (int k = 0; k < m->nhang; k++) s->hidx[m->hang[k]] = k;
-    for (int e = 0; e < m->nelem; e++)
-        for (int a = 0; a < m->nen; a++) s->ehang[e] |= s->hidx[m->conn[m->nen * e + a]] >= 0;
+    for (int e = 0; e < m->nelem; e++) {
+        s->hoff[e] = -1;
+        for (int a = 0; a < m->nen; a++)
+            if (s->hidx[m->conn[m->nen * e + a]] >= 0) s->hoff[e] = 0;
+    }
     return STC_OK;
 }
 
@@ -1009,7 +1058,8 @@ void asp_solver_destroy(asp_solver **sp)
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);
-    free(s->emap), free(s->hidx), free(s->ehang), free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
+    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos);
+    free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
     asp_shear_release(s);

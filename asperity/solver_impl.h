@@ -45,7 +45,9 @@ struct asp_solver {
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
     int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
-    unsigned char *ehang; /* [nelem] 1: the element uses a hanging node (scatter_hang) */
+    int *hoff;            /* [nelem] start in hpos of an element that uses a hanging
+                             node (scatter_hang), else -1; NULL if none */
+    int *hpos;            /* positions in K->x of those elements' T^T Ke T terms */
 
     /* linear algebra (speed3d) */
     int have_factor;      /* L holds a numeric factor (of an earlier tangent) */
