@@ -319,10 +319,25 @@ static int sp_bottom(const m3_plan *p, int i, int j)
  * the bottom face agree on their shared edge and at the corners.  A shell
  * k >= 1 holds the points of level lev[k-1] (its fine side); those not on
  * level lev[k]'s grid are hanging on the coarse element's face. */
-static const unsigned char *set_I(const m3_plan *p, int g) { return p->inI + (size_t)g * (2 * p->m + 1); }
-static const unsigned char *set_J(const m3_plan *p, int g) { return p->inJ + (size_t)g * (p->m + 1); }
-static const unsigned char *set_R(const m3_plan *p, int g) { return p->inR + (size_t)g * (p->L + 1); }
-static const unsigned char *set_U(const m3_plan *p, int g) { return p->inU + (size_t)g * (4 * p->m + 1); }
+static const unsigned char *set_I(const m3_plan *p, int g)
+{
+    return p->inI + (size_t)g * (2 * p->m + 1);
+}
+
+static const unsigned char *set_J(const m3_plan *p, int g)
+{
+    return p->inJ + (size_t)g * (p->m + 1);
+}
+
+static const unsigned char *set_R(const m3_plan *p, int g)
+{
+    return p->inR + (size_t)g * (p->L + 1);
+}
+
+static const unsigned char *set_U(const m3_plan *p, int g)
+{
+    return p->inU + (size_t)g * (4 * p->m + 1);
+}
 
 /* Next level of the set prev ⊂ {0..n} (0 and n members): keep the first,
  * the last, every x <= upto (mandatory) and every member after a dropped
