@@ -48,7 +48,7 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
                      const asp_qp_state *old, asp_qp_state *upd,
                      double *fe, double *Ke, double *sig)
 {
-    static const asp_qp_state virgin = {{0}, 0.0};
+    static const asp_qp_state virgin = {{0}, 0.0, {0}};
     double D[NV * NV], DB[NV * MAXDOF];
     int nplastic = 0;
     if (fe) memset(fe, 0, sizeof(double) * (size_t)ndof);
@@ -65,6 +65,19 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
         asp_qp_state *uq = upd ? &upd[q] : &tmp;
         nplastic += asp_j2_update(m, eps, old ? &old[q] : &virgin, uq, s,
                                   Ke ? D : NULL);
+        /* the midpoint return's tangent is not symmetric: its skew part
+         * W = (D - Dᵀ)/2 is kept apart and D symmetrized */
+        double W[NV * NV] = {0};
+        int skew = 0;
+        if (Ke)
+            for (int a = 0; a < NV; a++)
+                for (int b = 0; b < a; b++) {
+                    double sy = 0.5 * (D[a * NV + b] + D[b * NV + a]);
+                    double sk = 0.5 * (D[a * NV + b] - D[b * NV + a]);
+                    D[a * NV + b] = D[b * NV + a] = sy;
+                    W[a * NV + b] = sk, W[b * NV + a] = -sk;
+                    skew |= sk != 0.0;
+                }
         if (sig) memcpy(sig + q * NV, s, sizeof s);
         if (fe)
             for (int j = 0; j < ndof; j++) {
@@ -81,7 +94,7 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
                     v += D[a * NV + b] * Bq[b * ndof + j];
                 DB[a * ndof + j] = v * w[q];
             }
-        /* upper triangle only: D is symmetric (associative flow) */
+        /* upper triangle of the symmetric part */
         for (int i = 0; i < ndof; i++)
             for (int a = 0; a < NV; a++) {
                 double bai = Bq[a * ndof + i];
@@ -89,10 +102,31 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
                 for (int j = i; j < ndof; j++)
                     Ke[i * ndof + j] += bai * DB[a * ndof + j];
             }
+        if (!skew) continue;
+        /* skew part Bᵀ W B, kept below the diagonal until the end */
+        for (int a = 0; a < NV; a++)
+            for (int j = 0; j < ndof; j++) {
+                double v = 0.0;
+                for (int b = 0; b < NV; b++)
+                    v += W[a * NV + b] * Bq[b * ndof + j];
+                DB[a * ndof + j] = v * w[q];
+            }
+        for (int i = 1; i < ndof; i++)
+            for (int a = 0; a < NV; a++) {
+                double bai = Bq[a * ndof + i];
+                if (bai == 0.0) continue;
+                for (int j = 0; j < i; j++)
+                    Ke[i * ndof + j] += bai * DB[a * ndof + j];
+            }
     }
+    /* Ke = symmetric (upper) + skew (lower holds its (i > j) entries) */
     if (Ke)
         for (int i = 0; i < ndof; i++)
-            for (int j = 0; j < i; j++) Ke[i * ndof + j] = Ke[j * ndof + i];
+            for (int j = 0; j < i; j++) {
+                double sy = Ke[j * ndof + i], sk = Ke[i * ndof + j];
+                Ke[i * ndof + j] = sy + sk;
+                Ke[j * ndof + i] = sy - sk;
+            }
     return nplastic;
 }
 

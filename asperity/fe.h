@@ -79,19 +79,23 @@ stc_status asp_mesh_quality(const asp_mesh *m, double *worst);
 typedef struct asp_qp_state {
     double eps_p[6]; /* plastic strain, Voigt, engineering shear */
     double epbar;    /* equivalent plastic strain */
+    double s[6];     /* deviatoric stress, Voigt, tensor shear (MPa) */
 } asp_qp_state;
 
 typedef struct asp_j2 {
     double E, nu, Y;     /* MPa, -, MPa */
     double lambda, mu, kappa; /* Lamé constants and bulk modulus, MPa */
+    int midpoint;        /* 1: midpoint return (default), 0: radial return */
 } asp_j2;
 
 void asp_j2_init(asp_j2 *m, const stc_material *mat);
 
-/* Radial return for total strain eps given the converged state `old`.
- * Writes stress sig[6], the updated state `upd` and (if D != NULL) the
- * consistent tangent D[6][6] (row major, engineering-shear Voigt).
- * Returns 1 if the point is plastic in this step, 0 if elastic.  Pure. */
+/* Return map for total strain eps given the converged state `old`:
+ * midpoint rule (m->midpoint, the default of asp_j2_init) or radial
+ * return.  Writes stress sig[6], the updated state `upd` and (if D !=
+ * NULL) the consistent tangent D[6][6] (row major, engineering-shear
+ * Voigt; not symmetric under the midpoint rule).  Returns 1 if the point
+ * is plastic in this step, 0 if elastic.  Pure. */
 int asp_j2_update(const asp_j2 *m, const double eps[6], const asp_qp_state *old,
                   asp_qp_state *upd, double sig[6], double *D);
 

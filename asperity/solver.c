@@ -105,6 +105,7 @@ void asp_options_default(asp_options *o)
     o->krylov = ASP_KRYLOV_AUTO;
     o->krylov_max = 30;
     o->steps_per_node = 0.0;
+    o->return_map = ASP_RETURN_MIDPOINT;
     o->max_active_set = 40;
     o->max_cutbacks = 10;
     o->threads = 0;
@@ -140,6 +141,9 @@ static stc_status check_options(const asp_options *o)
               o->utol);
     STC_CHECK(o->krylov >= ASP_KRYLOV_OFF && o->krylov <= ASP_KRYLOV_ON, STC_EINVAL,
               "krylov = %d: must be 0 (off), 1 (auto) or 2 (on)", (int)o->krylov);
+    STC_CHECK(o->return_map == ASP_RETURN_MIDPOINT || o->return_map == ASP_RETURN_RADIAL,
+              STC_EINVAL, "return map = %d: must be 0 (midpoint) or 1 (radial)",
+              (int)o->return_map);
     STC_CHECK(o->krylov_max >= 1 && o->krylov_max <= 1000, STC_EINVAL,
               "krylov max = %d: must be in [1, 1000]", o->krylov_max);
     STC_CHECK(o->max_newton >= 2 && o->newton_reuse >= 1 && o->max_active_set >= 2 &&
@@ -297,6 +301,11 @@ static stc_status build_pattern(asp_solver *s)
         free(ptr), free(nb);
         return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
     }
+    s->Kk = calloc(nnz ? nnz : 1, sizeof *s->Kk);
+    if (!s->Kk) {
+        free(ptr), free(nb);
+        return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
+    }
     int *Kp = s->K->p, *Ki = s->K->i, w = 0;
     for (int i = 0; i < m->nnode; i++)
         for (int c = 0; c < d; c++) {
@@ -364,7 +373,7 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
                          int atomic)
 {
     int nde = s->nde, gi[24][4], gn[24];
-    double gw[24][4], *Kx = s->K->x, *f = s->fint;
+    double gw[24][4], *Kx = s->K->x, *Kk = s->Kk, *f = s->fint;
     hang_expand(s, e, gi, gw, gn);
     for (int a = 0; a < nde; a++)
         for (int k = 0; k < gn[a]; k++) {
@@ -383,12 +392,18 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
             for (int ka = 0; ka < gn[a]; ka++)
                 for (int kb = 0; kb < gn[b]; kb++, pos++) {
                     if (*pos < 0) continue;
-                    double v = gw[a][ka] * gw[b][kb] * Ke[a * nde + b];
+                    double ab = Ke[a * nde + b], ba = Ke[b * nde + a];
+                    double v = gw[a][ka] * gw[b][kb] * 0.5 * (ab + ba);
+                    double k = gw[a][ka] * gw[b][kb] * 0.5 * (ab - ba);
                     if (atomic) {
 #pragma omp atomic
                         Kx[*pos] += v;
+                        if (k != 0.0) {
+#pragma omp atomic
+                            Kk[*pos] += k;
+                        }
                     } else {
-                        Kx[*pos] += v;
+                        Kx[*pos] += v, Kk[*pos] += k;
                     }
                 }
 }
@@ -404,12 +419,17 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
     }
     const int *c = s->mesh->conn + (size_t)s->nen * e;
     const int *map = s->emap + (size_t)e * nde * nde;
-    double *Kx = s->K->x, *f = s->fint;
+    double *Kx = s->K->x, *Kk = s->Kk, *f = s->fint;
     if (!atomic) {
         for (int a = 0; a < nde; a++) f[d * c[a / d] + a % d] += fe[a];
         if (want_K)
-            for (int k = 0; k < nde * nde; k++)
-                if (map[k] >= 0) Kx[map[k]] += Ke[k];
+            for (int a = 0; a < nde; a++)
+                for (int b = 0; b < nde; b++) {
+                    int k = map[a * nde + b];
+                    if (k < 0) continue;
+                    double ab = Ke[a * nde + b], ba = Ke[b * nde + a];
+                    Kx[k] += 0.5 * (ab + ba), Kk[k] += 0.5 * (ab - ba);
+                }
         return;
     }
     for (int a = 0; a < nde; a++) {
@@ -417,10 +437,17 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
         f[d * c[a / d] + a % d] += fe[a];
     }
     if (want_K)
-        for (int k = 0; k < nde * nde; k++)
-            if (map[k] >= 0) {
+        for (int a = 0; a < nde; a++)
+            for (int b = 0; b < nde; b++) {
+                int k = map[a * nde + b];
+                if (k < 0) continue;
+                double ab = Ke[a * nde + b], ba = Ke[b * nde + a];
 #pragma omp atomic
-                Kx[map[k]] += Ke[k];
+                Kx[k] += 0.5 * (ab + ba);
+                if (ab != ba) {
+#pragma omp atomic
+                    Kk[k] += 0.5 * (ab - ba);
+                }
             }
 }
 
@@ -436,7 +463,10 @@ static stc_status assemble(asp_solver *s, int want_K)
     s->n_asm++;
     memset(s->fint, 0, (size_t)s->ndof * sizeof *s->fint);
     s->k_fresh = 0;
-    if (want_K) memset(s->K->x, 0, s->K->nzmax * sizeof(double));
+    if (want_K) {
+        memset(s->K->x, 0, s->K->nzmax * sizeof(double));
+        memset(s->Kk, 0, s->K->nzmax * sizeof(double));
+    }
 #pragma omp parallel for schedule(static) num_threads(nthr) if (nthr > 1)
     for (int e = 0; e < m->nelem; e++) {
         double fe[24], Ke[24 * 24];
@@ -450,6 +480,10 @@ static stc_status assemble(asp_solver *s, int want_K)
     s->t_asm += omp_get_wtime() - t0;
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
     if (s->shear) asp_shear_assemble(s, want_K); /* stick-law springs (shear.c) */
+    if (want_K) {
+        s->skew = 0;
+        for (size_t k = 0; k < s->K->nzmax && !s->skew; k++) s->skew = s->Kk[k] != 0.0;
+    }
     s->k_fresh = want_K;
     return STC_OK;
 }
@@ -609,6 +643,23 @@ static void sym_matvec(const cholmod_sparse *K, const double *x, double *y, int 
         }
 }
 
+/* y += W x for the skew part W of the tangent (its upper entries in Kk;
+ * W_ji = -W_ij); free_only: the free-free block (the constrained system). */
+static void skew_matvec_add(const asp_solver *s, const double *x, double *y, int free_only)
+{
+    const int *Kp = s->K->p, *Ki = s->K->i;
+    if (!s->skew) return;
+    for (int j = 0; j < s->ndof; j++) {
+        if (free_only && s->fixed[j]) continue;
+        for (int k = Kp[j]; k < Kp[j + 1]; k++) {
+            int i = Ki[k];
+            if (i == j || (free_only && s->fixed[i])) continue;
+            y[i] += s->Kk[k] * x[j];
+            y[j] -= s->Kk[k] * x[i];
+        }
+    }
+}
+
 /* Constraint defect c = ubc - u on the fixed DOFs (0 elsewhere); returns |c|. */
 static double constraint_defect(const asp_solver *s, double *c)
 {
@@ -644,11 +695,70 @@ static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
     return STC_OK;
 }
 
+/* Under the midpoint return the tangent is K + W with W skew (j2.c); the
+ * factor is of K, its symmetric part.  Factorizing K alone made Newton
+ * converge linearly (residual ~x0.1 per iteration; axisymmetric level 1 at
+ * 60 ωc: 380 Newton iterations against 230 with radial return).  After a
+ * direct solve, corrections du += K^-1 (b - (K + W) du) restore the
+ * quadratic rate (247); each costs a mat-vec and a triangular solve.  They
+ * converge while |K^-1 W| < 1; a correction that does not lower the
+ * residual is undone and GMRES with the same factor takes over (the
+ * Krylov path uses GMRES directly, linear_step).  K is the constrained
+ * (identity-row) matrix here, W its free-free block. */
+enum { SKEW_SWEEPS = 3 };
+static double dot(const double *a, const double *b, int n);
+static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax);
+static stc_status krylov_alloc(asp_solver *s);
+
+/* r = b - (K + W) du on the free DOFs (0 on the fixed); returns |r|. */
+static double skew_residual(const asp_solver *s, const double *bx, const double *du, double *r)
+{
+    sym_matvec(s->K, du, r, s->ndof);
+    skew_matvec_add(s, du, r, 1);
+    double a = 0.0;
+    for (int i = 0; i < s->ndof; i++) {
+        r[i] = s->fixed[i] ? 0.0 : bx[i] - r[i];
+        a += r[i] * r[i];
+    }
+    return sqrt(a);
+}
+
+static stc_status skew_correct(asp_solver *s, cholmod_dense *b, double *du)
+{
+    if (!s->skew) return STC_OK;
+    int n = s->ndof;
+    double *r = s->skew_r, *bx = b->x;
+    double rn = skew_residual(s, bx, du, r), tol = 1e-10 * sqrt(dot(bx, bx, n));
+    for (int sweep = 0; sweep < SKEW_SWEEPS && rn > tol; sweep++) {
+        memcpy(s->kb2->x, r, (size_t)n * sizeof *r);
+        STC_CHECK(cholmod_solve2(CHOLMOD_A, s->L, s->kb2, NULL, &s->kx, NULL, &s->ky, &s->ke,
+                                 &s->cc),
+                  STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
+        const double *z = s->kx->x;
+        for (int i = 0; i < n; i++)
+            if (!s->fixed[i]) du[i] += z[i];
+        double r1 = skew_residual(s, bx, du, r);
+        if (r1 < 0.5 * rn) {
+            rn = r1;
+            continue;
+        }
+        /* not contracting: undo, and GMRES preconditioned by the factor */
+        for (int i = 0; i < n; i++)
+            if (!s->fixed[i]) du[i] -= z[i];
+        STC_CALL(krylov_alloc(s));
+        int k = gmres(s, bx, r, 0.0, s->opt.krylov_max);
+        if (k >= 0) memcpy(du, r, (size_t)n * sizeof *du);
+        break; /* else: keep the best correction so far */
+    }
+    return STC_OK;
+}
+
 static stc_status newton_solve(asp_solver *s, cholmod_dense *b, const double *c, double cn,
                                double *du)
 {
     newton_rhs(s, b, c, cn, du);
-    return direct_solve(s, b, du);
+    STC_CALL(direct_solve(s, b, du));
+    return skew_correct(s, b, du);
 }
 
 /* ---- Newton-Krylov (speed3d) ----------------------------------------------
@@ -685,6 +795,9 @@ static double dot(const double *a, const double *b, int n)
  * more Newton iterations and 50 % more line-search evaluations. */
 #define KRYLOV_ABS 1e-3
 #define KRYLOV_ETA 1e-6
+/* GMRES keeps at most this many basis vectors (krylov_max above it: the
+ * step is refactorized after KRYLOV_MAX_CAP iterations) */
+#define KRYLOV_MAX_CAP 100
 
 /* z = P L^-1 P r with the stored factor (P: zero the fixed DOFs). */
 static int precondition(asp_solver *s, const double *r, double *z)
@@ -725,13 +838,86 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax
     }
 }
 
+/* GMRES for the same system when the tangent has a skew part (midpoint
+ * return, j2.c), PCG's contract: right-preconditioned restarted GMRES, one
+ * cycle of at most kmax iterations (Saad 2003, alg. 9.5, with Givens
+ * rotations; modified Gram-Schmidt).  Right preconditioning keeps the
+ * true residual, which is what tol bounds.  Returns the iterations, or -1
+ * when kmax do not reach tol (or the preconditioner failed). */
+static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax)
+{
+    int n = s->ndof, m = kmax < KRYLOV_MAX_CAP ? kmax : KRYLOV_MAX_CAP;
+    double *V = s->gv, *w = V + (size_t)(m + 1) * n, *z = s->kv;
+    double H[(KRYLOV_MAX_CAP + 1) * KRYLOV_MAX_CAP], cs[KRYLOV_MAX_CAP], sn[KRYLOV_MAX_CAP];
+    double g[KRYLOV_MAX_CAP + 1], y[KRYLOV_MAX_CAP];
+    for (int i = 0; i < n; i++) V[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
+    double beta = sqrt(dot(V, V, n));
+    double rel = KRYLOV_ETA * beta;
+    tol = tol > 0.0 ? fmin(tol, rel) : rel;
+    int k = 0;
+    if (beta > tol) {
+        for (int i = 0; i < n; i++) V[i] /= beta;
+        g[0] = beta;
+        for (;; k++) {
+            if (k == m) return -1;
+            double *vk = V + (size_t)k * n, *vn = V + (size_t)(k + 1) * n;
+            if (precondition(s, vk, z)) return -1;
+            sym_matvec(s->K, z, w, n);
+            skew_matvec_add(s, z, w, 1);
+            for (int i = 0; i < n; i++)
+                if (s->fixed[i]) w[i] = 0.0;
+            for (int j = 0; j <= k; j++) {
+                const double *vj = V + (size_t)j * n;
+                double h = dot(w, vj, n);
+                H[j * m + k] = h;
+                for (int i = 0; i < n; i++) w[i] -= h * vj[i];
+            }
+            double hn = sqrt(dot(w, w, n));
+            if (!isfinite(hn)) return -1;
+            for (int i = 0; i < n; i++) vn[i] = hn > 0.0 ? w[i] / hn : 0.0;
+            for (int j = 0; j < k; j++) { /* earlier rotations */
+                double a = H[j * m + k], b = H[(j + 1) * m + k];
+                H[j * m + k] = cs[j] * a + sn[j] * b;
+                H[(j + 1) * m + k] = -sn[j] * a + cs[j] * b;
+            }
+            double a = H[k * m + k], r = hypot(a, hn);
+            if (!(r > 0.0)) return -1;
+            cs[k] = a / r, sn[k] = hn / r;
+            H[k * m + k] = r;
+            g[k + 1] = -sn[k] * g[k];
+            g[k] *= cs[k];
+            if (fabs(g[k + 1]) <= tol || hn == 0.0) {
+                k++;
+                break;
+            }
+        }
+        for (int j = k - 1; j >= 0; j--) { /* H y = g, upper triangular */
+            double v = g[j];
+            for (int l = j + 1; l < k; l++) v -= H[j * m + l] * y[l];
+            y[j] = v / H[j * m + j];
+        }
+        for (int i = 0; i < n; i++) w[i] = 0.0;
+        for (int j = 0; j < k; j++) {
+            const double *vj = V + (size_t)j * n;
+            for (int i = 0; i < n; i++) w[i] += y[j] * vj[i];
+        }
+        if (precondition(s, w, z)) return -1;
+        for (int i = 0; i < n; i++) du[i] = z[i];
+    }
+    for (int i = 0; i < n; i++)
+        if (s->fixed[i]) du[i] = bx[i];
+    return k;
+}
+
 static stc_status krylov_alloc(asp_solver *s)
 {
     if (s->kv) return STC_OK;
     size_t n = (size_t)s->ndof;
     s->kv = malloc(4 * n * sizeof *s->kv);
     s->kb = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
-    STC_CHECK(s->kv && s->kb, STC_ENOMEM, "solver: out of memory for the PCG vectors");
+    int m = s->opt.krylov_max < KRYLOV_MAX_CAP ? s->opt.krylov_max : KRYLOV_MAX_CAP;
+    s->gv = malloc((size_t)(m + 2) * n * sizeof *s->gv);
+    STC_CHECK(s->kv && s->kb && s->gv, STC_ENOMEM, "solver: out of memory for the PCG vectors");
     return STC_OK;
 }
 
@@ -769,7 +955,8 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
         int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
         omp_set_max_active_levels(0), openblas_set_num_threads(1);
         double t0 = omp_get_wtime();
-        int k = pcg(s, b->x, du, tol, s->opt.krylov_max);
+        int k = s->skew ? gmres(s, b->x, du, tol, s->opt.krylov_max)
+                        : pcg(s, b->x, du, tol, s->opt.krylov_max);
         s->t_pcg += omp_get_wtime() - t0;
         omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
         s->k_last = k;
@@ -777,7 +964,8 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
         if (k >= 0) return STC_OK;
     }
     STC_CALL(factorize(s, ns));
-    return direct_solve(s, b, du);
+    STC_CALL(direct_solve(s, b, du));
+    return skew_correct(s, b, du);
 }
 
 /* Newton with backtracking line search for the current constraints.  With
@@ -812,7 +1000,10 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
                   it, delta, rn / fmax(ref, 1e-300), o->rtol);
         if (age >= o->newton_reuse || cn > 0.0) {
             STC_CHECK(s->k_fresh, STC_ESOLVER, "solver: stale stiffness at δ = %g mm", delta);
-            if (cn > 0.0) sym_matvec(s->K, c, du, s->ndof); /* before the identity rows */
+            if (cn > 0.0) { /* before the identity rows */
+                sym_matvec(s->K, c, du, s->ndof);
+                skew_matvec_add(s, c, du, 0);
+            }
             STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref));
             age = 0;
         } else {
@@ -918,8 +1109,11 @@ static stc_status alloc_state(asp_solver *s)
     s->ubc = calloc(n, sizeof *s->u), s->cvec = calloc(n, sizeof *s->u);
     s->du_scr = malloc(n * sizeof *s->u), s->u0_scr = malloc(n * sizeof *s->u);
     s->b_scr = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
+    s->kb2 = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
+    s->skew_r = malloc(n * sizeof *s->u);
     STC_CHECK(s->u && s->u_conv && s->du_last && s->fint && s->sig && s->st_old && s->st_new &&
-                  s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->b_scr,
+                  s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->b_scr &&
+                  s->kb2 && s->skew_r,
               STC_ENOMEM, "solver: out of memory for %zu DOFs", n);
     return STC_OK;
 }
@@ -950,6 +1144,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     stc_params_materials(&s->par, &su, &co);
     asp_j2_init(&s->mat[ASP_REGION_SUBSTRATE], &su);
     asp_j2_init(&s->mat[ASP_REGION_COATING], &co);
+    for (int k = 0; k < 2; k++) s->mat[k].midpoint = s->opt.return_map == ASP_RETURN_MIDPOINT;
     double t = stc_params_t(&s->par);
     s->Rp = s->par.R + t;
     STC_CALL(stc_critical_eval(&su, s->par.R, &c));
@@ -1054,11 +1249,12 @@ void asp_solver_destroy(asp_solver **sp)
     if (s->L) cholmod_free_factor(&s->L, &s->cc);
     if (s->K) cholmod_free_sparse(&s->K, &s->cc);
     free(s->kv), cholmod_free_dense(&s->kb, &s->cc), cholmod_free_dense(&s->kx, &s->cc);
+    cholmod_free_dense(&s->kb2, &s->cc), free(s->skew_r);
     free(s->du_scr), free(s->u0_scr), cholmod_free_dense(&s->b_scr, &s->cc);
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);
-    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos);
+    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos), free(s->Kk), free(s->gv);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);

@@ -41,7 +41,10 @@ struct asp_solver {
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
 
     cholmod_common cc;
-    cholmod_sparse *K;    /* upper triangle, fixed pattern */
+    cholmod_sparse *K;    /* upper triangle, fixed pattern: the symmetric part of the tangent */
+    double *Kk;           /* [nnz(K)] skew part of the tangent (K's pattern, upper entries;
+                             the midpoint return's, j2.c); all zero under radial return */
+    int skew;             /* Kk is not zero at this tangent */
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
     int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
@@ -54,6 +57,9 @@ struct asp_solver {
     cholmod_dense *kx, *ky, *ke; /* cholmod_solve2 solution and workspace */
     cholmod_dense *kb;    /* PCG: preconditioner right-hand side */
     double *kv;           /* [4][ndof] PCG vectors r, z, p, q (lazily allocated) */
+    double *gv;           /* GMRES: [krylov_max + 2][ndof] basis and work (lazily) */
+    double *skew_r;       /* [ndof] residual of the skew corrections */
+    cholmod_dense *kb2;   /* right-hand side of the skew corrections */
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
     double t_asm, t_fact, t_pcg; /* cumulative wall time: element loop, factorizations, PCG, s */

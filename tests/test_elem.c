@@ -161,7 +161,7 @@ static void test_hex8_patch(void **state)
     double eps_ex[6] = {G[0][0], G[1][1], G[2][2], G[0][1] + G[1][0],
                         G[1][2] + G[2][1], G[2][0] + G[0][2]};
     double sig_ex[6], fint[3] = {0}, serr = 0.0;
-    asp_qp_state z = {{0}, 0}, tmp;
+    asp_qp_state z = {{0}, 0, {0}}, tmp;
     asp_j2_update(&m, eps_ex, &z, &tmp, sig_ex, NULL);
     double smax = 0.0;
     for (int a = 0; a < 6; a++) smax = fmax(smax, fabs(sig_ex[a]));
@@ -205,7 +205,7 @@ static void quad4_patch_case(const double a, const double c, const double d,
             Xg[i][j][1] = 0.2 * j + (j == 1 ? 0.05 * prand(&s) : 0.0);
         }
     double eps_ex[6] = {a, d, a, c, 0, 0}, sig_ex[6], smax = 0.0;
-    asp_qp_state z = {{0}, 0}, tmp;
+    asp_qp_state z = {{0}, 0, {0}}, tmp;
     asp_j2_update(&m, eps_ex, &z, &tmp, sig_ex, NULL);
     for (int k = 0; k < 6; k++) smax = fmax(smax, fabs(sig_ex[k]));
     static const int QC[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};

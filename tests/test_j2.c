@@ -1,6 +1,7 @@
-/* J2 material kernel: elastic law, radial return onto the yield surface,
- * isochoric flow, consistent tangent vs finite differences, uniaxial strain
- * against the closed form. */
+/* J2 material kernel: elastic law, return onto the yield surface (midpoint
+ * and radial), isochoric flow, consistent tangents vs finite differences,
+ * order of accuracy in the increment, uniaxial strain against the closed
+ * form. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -32,7 +33,7 @@ static void test_elastic_exact(void **state)
 {
     (void)state;
     asp_j2 m = steel();
-    asp_qp_state old = {{0}, 0}, upd;
+    asp_qp_state old = {{0}, 0, {0}}, upd;
     double eps[6] = {1e-4, -2e-4, 0.5e-4, 3e-4, -1e-4, 0.7e-4}, sig[6], D[36];
     assert_int_equal(asp_j2_update(&m, eps, &old, &upd, sig, D), 0);
     double tr = eps[0] + eps[1] + eps[2];
@@ -50,7 +51,7 @@ static void test_return_on_surface(void **state)
 {
     (void)state;
     asp_j2 m = steel();
-    asp_qp_state old = {{0}, 0}, upd;
+    asp_qp_state old = {{0}, 0, {0}}, upd;
     double worst = 0.0, worst_tr = 0.0;
     for (int d = 0; d < 5; d++) {
         double eps[6], sig[6];
@@ -100,27 +101,79 @@ static double tangent_error(const asp_j2 *m, const asp_qp_state *old,
 static void test_tangent_fd(void **state)
 {
     (void)state;
-    asp_j2 m = steel();
-    asp_qp_state virgin = {{0}, 0};
-    /* a pre-strained state, to test with nonzero eps_p */
-    asp_qp_state pre;
-    double e1[6], s1[6];
-    for (int a = 0; a < 6; a++) e1[a] = 4e-3 * DIRS[1][a];
-    assert_int_equal(asp_j2_update(&m, e1, &virgin, &pre, s1, NULL), 1);
-    double worst_el = 0.0, worst_pl = 0.0;
-    for (int d = 0; d < 5; d++) {
+    for (int mode = 0; mode < 2; mode++) { /* midpoint, radial */
+        asp_j2 m = steel();
+        m.midpoint = mode == 0;
+        asp_qp_state virgin = {{0}, 0, {0}};
+        /* a pre-strained state, to test with nonzero eps_p */
+        asp_qp_state pre;
+        double e1[6], s1[6];
+        for (int a = 0; a < 6; a++) e1[a] = 4e-3 * DIRS[1][a];
+        assert_int_equal(asp_j2_update(&m, e1, &virgin, &pre, s1, NULL), 1);
+        double worst_el = 0.0, worst_pl = 0.0;
+        for (int d = 0; d < 5; d++) {
+            double eps[6];
+            for (int a = 0; a < 6; a++) eps[a] = 1e-4 * DIRS[d][a];
+            worst_el = fmax(worst_el, tangent_error(&m, &virgin, eps, 0));
+            for (int a = 0; a < 6; a++) eps[a] = 6e-3 * DIRS[d][a];
+            worst_pl = fmax(worst_pl, tangent_error(&m, &virgin, eps, 1));
+            for (int a = 0; a < 6; a++) eps[a] = e1[a] + 3e-3 * DIRS[(d + 2) % 5][a];
+            worst_pl = fmax(worst_pl, tangent_error(&m, &pre, eps, 1));
+        }
+        /* a reversal within one increment: elastic unloading through the
+         * yield surface's interior, then reverse yield (midpoint: the
+         * elastic fraction beta > 0 from a point on the surface) */
         double eps[6];
-        for (int a = 0; a < 6; a++) eps[a] = 1e-4 * DIRS[d][a];
-        worst_el = fmax(worst_el, tangent_error(&m, &virgin, eps, 0));
-        for (int a = 0; a < 6; a++) eps[a] = 6e-3 * DIRS[d][a];
-        worst_pl = fmax(worst_pl, tangent_error(&m, &virgin, eps, 1));
-        for (int a = 0; a < 6; a++) eps[a] = e1[a] + 3e-3 * DIRS[(d + 2) % 5][a];
+        for (int a = 0; a < 6; a++) eps[a] = e1[a] - 9e-3 * DIRS[1][a] + 1e-3 * DIRS[4][a];
         worst_pl = fmax(worst_pl, tangent_error(&m, &pre, eps, 1));
+        printf("%s: tangent vs central FD: elastic %.2e, plastic %.2e (rel. to max|D|)\n",
+               mode ? "radial" : "midpoint", worst_el, worst_pl);
+        assert_true(worst_el < 1e-6);
+        assert_true(worst_pl < 1e-6);
     }
-    printf("tangent vs central FD: elastic %.2e, plastic %.2e (rel. to max|D|)\n",
-           worst_el, worst_pl);
-    assert_true(worst_el < 1e-6);
-    assert_true(worst_pl < 1e-6);
+}
+
+/* Order of accuracy in the increment: a strain path that first yields, then
+ * turns its deviatoric direction by 90° while growing (the stress turns
+ * on the yield surface, as under a growing contact), integrated in n and 2n
+ * increments against 20000 midpoint increments.  Measured errors (|Δσ|/Y)
+ * and ratios printed; second order for the midpoint rule, first for the
+ * radial return, and the midpoint more accurate at equal n. */
+static double path_error(int midpoint, int n, const double ref[6], double out[6])
+{
+    asp_j2 m = steel();
+    m.midpoint = midpoint;
+    asp_qp_state st = {{0}, 0, {0}}, nx;
+    double ey = m.Y / (2 * m.mu), d1[6] = {1, -1, 0, 0, 0, 0}, d2[6] = {0, 0, 0, 1, 0, 0};
+    double sig[6], e = 0.0;
+    for (int k = 1; k <= n; k++) {
+        double t = (double)k / n, th = 0.5 * M_PI * t, mag = ey * (3.0 + 3.0 * t), eps[6];
+        for (int a = 0; a < 6; a++)
+            eps[a] = mag * (cos(th) * d1[a] + sin(th) * d2[a] * 2.0) + 2e-4 * t * (a < 3);
+        asp_j2_update(&m, eps, &st, &nx, sig, NULL);
+        st = nx;
+    }
+    if (out) memcpy(out, sig, sizeof sig);
+    if (ref)
+        for (int a = 0; a < 6; a++) e = fmax(e, fabs(sig[a] - ref[a]) / m.Y);
+    return e;
+}
+
+static void test_increment_order(void **state)
+{
+    (void)state;
+    double ref[6];
+    path_error(1, 20000, NULL, ref);
+    double m1 = path_error(1, 8, ref, NULL), m2 = path_error(1, 16, ref, NULL);
+    double r1 = path_error(0, 8, ref, NULL), r2 = path_error(0, 16, ref, NULL);
+    double rr = path_error(0, 20000, ref, NULL);
+    printf("turning path, |dsigma|/Y at 8 / 16 increments: midpoint %.2e / %.2e (ratio %.2f), "
+           "radial %.2e / %.2e (ratio %.2f); radial at 20000: %.1e\n",
+           m1, m2, m1 / m2, r1, r2, r1 / r2, rr);
+    assert_true(m1 / m2 > 3.0 && m1 / m2 < 5.5);
+    assert_true(r1 / r2 > 1.5 && r1 / r2 < 2.7);
+    assert_true(m1 < 0.5 * r1);
+    assert_true(rr < 1e-3); /* both converge to the same path integral */
 }
 
 /* D symmetric (associative flow) and the plastic tangent annihilates n. */
@@ -128,7 +181,7 @@ static void test_tangent_structure(void **state)
 {
     (void)state;
     asp_j2 m = steel();
-    asp_qp_state old = {{0}, 0}, upd;
+    asp_qp_state old = {{0}, 0, {0}}, upd;
     double eps[6], sig[6], D[36];
     for (int a = 0; a < 6; a++) eps[a] = 5e-3 * DIRS[3][a];
     assert_int_equal(asp_j2_update(&m, eps, &old, &upd, sig, D), 1);
@@ -153,7 +206,7 @@ static void test_uniaxial_strain(void **state)
 {
     (void)state;
     asp_j2 m = steel();
-    asp_qp_state st = {{0}, 0}, nx;
+    asp_qp_state st = {{0}, 0, {0}}, nx;
     double ey = m.Y / (2 * m.mu), worst = 0.0;
     int nstep = 40;
     for (int k = 1; k <= nstep; k++) {
@@ -199,6 +252,7 @@ int main(void)
         cmocka_unit_test(test_elastic_exact),
         cmocka_unit_test(test_return_on_surface),
         cmocka_unit_test(test_tangent_fd),
+        cmocka_unit_test(test_increment_order),
         cmocka_unit_test(test_tangent_structure),
         cmocka_unit_test(test_uniaxial_strain),
         cmocka_unit_test(test_von_mises),

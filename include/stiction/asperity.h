@@ -49,6 +49,15 @@ typedef enum {
 /* asp_options.mesh_level relative to the model's default level */
 enum { ASP_MESH_DEFAULT = -1, ASP_MESH_FINE = -2 };
 
+/* How the von Mises return map integrates an increment (asperity/j2.c).
+ * Radial return (backward Euler) is first-order accurate in the increment
+ * size; the midpoint rule (normal at the average of the start and end
+ * stresses) is second order, at the price of a non-symmetric tangent. */
+typedef enum asp_return_map {
+    ASP_RETURN_MIDPOINT = 0, /* generalized midpoint, α = 1/2 (Ortiz & Popov 1985) */
+    ASP_RETURN_RADIAL = 1    /* backward Euler radial return (Simo & Hughes 1998) */
+} asp_return_map;
+
 typedef struct asp_options {
     asp_geom geom;           /* default ASP_GEOM_AUTO */
     asp_contact_law contact; /* default ASP_CONTACT_SLIP */
@@ -90,6 +99,8 @@ typedef struct asp_options {
                                 shells (hanging nodes), in [0, 2]; -1 = the
                                 mesh's default (1, from 6 a_max on; see
                                 asperity/mesh3d.c); default -1 */
+    asp_return_map return_map; /* plastic integration over an increment;
+                                  default ASP_RETURN_MIDPOINT */
 } asp_options;
 
 void asp_options_default(asp_options *o);

@@ -47,6 +47,9 @@ static const cli_opt opts[] = {
     {"steps-per-node", "X",
      "load increments per surface node entering the contact past yield, in [0.5, 16] "
      "(default auto: 4 slip, 2 slip 3D, 1 stick)"},
+    {"return-map", "midpoint|radial",
+     "plastic integration over an increment: midpoint rule (second order) or radial return "
+     "(backward Euler, first order) (default midpoint)"},
     {"no-separation", NULL, "a node in contact never opens"},
     {"threads", "N", "OpenMP threads for the element loop (default: runtime)"},
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
@@ -128,6 +131,10 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > 1000)
             return bad(key, value, "an integer in [1, 1000]");
         a->o.krylov_max = (int)l;
+    } else if (!strcmp(key, "return-map")) {
+        if (!strcmp(value, "midpoint")) a->o.return_map = ASP_RETURN_MIDPOINT;
+        else if (!strcmp(value, "radial")) a->o.return_map = ASP_RETURN_RADIAL;
+        else return bad(key, value, "midpoint or radial");
     } else if (!strcmp(key, "steps-per-node")) {
         double v;
         if (!strcmp(value, "auto")) a->o.steps_per_node = 0.0;
