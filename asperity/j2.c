@@ -95,9 +95,10 @@ static void tangent(const asp_j2 *m, double theta, double beta,
 
 /* Midpoint return for the trial deviator str (outside the yield surface)
  * from old->s; p the pressure.  Returns 0, leaving the radial return to
- * the caller, in the degenerate cases (no real root: a rotation of the
- * stress by more than ~90° in one increment; never seen in the solver
- * runs).  Tangent, with M = ∂m/∂s_t, m = s_0 + s_t, P = I - n̂n̂, r = x/|m|,
+ * the caller, in the degenerate cases: no real root, or an end stress
+ * more than 60° from n̂ (a rotation by more than ~120° in one increment;
+ * reached at the start of the shear ramp at 48 ωc, where the tangent's
+ * 1 / (s_1·n̂) had turned Newton's step into NaN).  Tangent, with M = ∂m/∂s_t, m = s_0 + s_t, P = I - n̂n̂, r = x/|m|,
  * the elastic fraction β (∂β from |s_0| = k) and s_1·ds_1 = 0 for ∂x:
  * ds_1 = [I - r P M - n̂ ⊗ w / (s_1·n̂)] ds_t, w = s_1 - r Mᵀ P s_1,
  * M = (1 + β) I - β Δs ⊗ s_0 / (s_0·Δs); checked against central
@@ -111,7 +112,7 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
     for (int a = 0; a < NV; a++) ds[a] = str[a] - s0[a];
     { /* elastic part: where the straight path s0 + β Δs leaves the yield surface */
         double A = tdot(ds, ds), B = tdot(s0, ds), C = n0 * n0 - k * k;
-        beta = fmax((-B + sqrt(fmax(B * B - A * C, 0.0))) / A, 0.0);
+        if (A > 0.0) beta = fmax((-B + sqrt(fmax(B * B - A * C, 0.0))) / A, 0.0);
         for (int a = 0; a < NV; a++) s0[a] += beta * ds[a];
     }
     for (int a = 0; a < NV; a++) mm[a] = s0[a] + str[a];
@@ -123,8 +124,11 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
     double x = c - sqrt(disc); /* 2μ Δλ */
     if (x < 0.0 || x >= mn) return 0;
     double s1[NV];
+    for (int a = 0; a < NV; a++) s1[a] = str[a] - x * nh[a];
+    /* the end stress more than 60° from the flow direction: a rotation the
+     * midpoint does not follow (its tangent grows as 1 / (s_1·n̂)) */
+    if (tdot(s1, nh) < 0.5 * k) return 0;
     for (int a = 0; a < NV; a++) {
-        s1[a] = str[a] - x * nh[a];
         sig[a] = s1[a] + (a < 3 ? p : 0.0);
         upd->eps_p[a] += (a < 3 ? 1.0 : 2.0) * x / (2.0 * m->mu) * nh[a];
         upd->s[a] = s1[a];
@@ -134,7 +138,8 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
         double sn = tdot(s1, nh), r = x / mn, sd = tdot(s0, ds);
         double ps[NV], pd[NV], w[NV], ns1 = tdot(nh, s1), nds = tdot(nh, ds);
         for (int a = 0; a < NV; a++) ps[a] = s1[a] - nh[a] * ns1, pd[a] = ds[a] - nh[a] * nds;
-        double g = beta > 0.0 ? beta / sd : 0.0, dps = tdot(ds, ps);
+        double g = beta > 0.0 && sd > 1e-12 * k * sqrt(tdot(ds, ds)) ? beta / sd : 0.0;
+        double dps = tdot(ds, ps);
         for (int a = 0; a < NV; a++) w[a] = s1[a] - r * ((1.0 + beta) * ps[a] - g * s0[a] * dps);
         tangent(m, 1.0 - r * (1.0 + beta), 0.0, nh, D);
         for (int a = 0; a < NV; a++)

@@ -607,6 +607,25 @@ static double norm_sel(const asp_solver *s, const double *v, int want_fixed)
     return sqrt(a);
 }
 
+/* K_jj += f |K_jj| on the free DOFs (the fixed have identity rows), the
+ * diagonal saved in skew_r first; f = 0 puts it back. */
+static const double SHIFTS[4] = {1e-6, 1e-4, 1e-2, 1.0};
+
+static void shift_diagonal(asp_solver *s, double f)
+{
+    const int *Kp = s->K->p, *Ki = s->K->i;
+    double *Kx = s->K->x;
+    for (int j = 0; j < s->ndof; j++) {
+        if (s->fixed[j]) continue;
+        for (int k = Kp[j + 1] - 1; k >= Kp[j]; k--)
+            if (Ki[k] == j) {
+                if (f > 0.0) s->skew_r[j] = Kx[k], Kx[k] += f * fabs(Kx[k]);
+                else Kx[k] = s->skew_r[j];
+                break;
+            }
+    }
+}
+
 static stc_status factorize(asp_solver *s, nstat *ns)
 {
     apply_constraints(s);
@@ -616,6 +635,19 @@ static stc_status factorize(asp_solver *s, nstat *ns)
     if (s->serial_factor) omp_set_max_active_levels(0), openblas_set_num_threads(1);
     double t0 = omp_get_wtime();
     cholmod_factorize(s->K, s->L, &s->cc);
+    /* the midpoint tangent's symmetric part can be slightly indefinite (in
+     * the plane of the flow direction n̂ and the end stress s_1 it has a
+     * negative eigenvalue ~ |s_1 ⊥ n̂|²/4, j2.c); the factor is only the
+     * preconditioner of the full tangent then (skew_correct, gmres), so
+     * it is shifted by a fraction of its diagonal until it factorizes
+     * (measured: WSP 48 ωc, level 0, failed at the ramp's first increment
+     * without the shift) */
+    for (int t = 0; s->cc.status == CHOLMOD_NOT_POSDEF && s->skew && t < 4; t++) {
+        shift_diagonal(s, SHIFTS[t]);
+        cholmod_factorize(s->K, s->L, &s->cc);
+        shift_diagonal(s, 0.0);
+        s->n_shifted++;
+    }
     s->t_fact += omp_get_wtime() - t0;
     if (s->serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
     ns->facts++;
@@ -1275,6 +1307,7 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->time_assembly_s = s->t_asm;
     info->time_factorize_s = s->t_fact;
     info->time_pcg_s = s->t_pcg;
+    info->shifted_factorizations = s->n_shifted;
 }
 
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y)

@@ -45,6 +45,7 @@ struct asp_solver {
     double *Kk;           /* [nnz(K)] skew part of the tangent (K's pattern, upper entries;
                              the midpoint return's, j2.c); all zero under radial return */
     int skew;             /* Kk is not zero at this tangent */
+    int n_shifted;        /* factorizations that needed a diagonal shift */
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
     int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
