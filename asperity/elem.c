@@ -46,13 +46,15 @@ static double gauss_pt(void) { return 1.0 / sqrt(3.0); }
 static int integrate(int nqp, int ndof, const double *B, const double *w,
                      const double *u, const asp_j2 *m,
                      const asp_qp_state *old, asp_qp_state *upd,
-                     double *fe, double *Ke, double *sig)
+                     double *fe, double *Ke, double *Kp, double *sig)
 {
     static const asp_qp_state virgin = {{0}, 0.0, {0}};
-    double D[NV * NV], DB[NV * MAXDOF];
+    double D[NV * NV], Dp[NV * NV], DB[NV * MAXDOF];
     int nplastic = 0;
     if (fe) memset(fe, 0, sizeof(double) * (size_t)ndof);
     if (Ke) memset(Ke, 0, sizeof(double) * (size_t)(ndof * ndof));
+    if (!Ke) Kp = NULL;
+    if (Kp) memset(Kp, 0, sizeof(double) * (size_t)(ndof * ndof));
     for (int q = 0; q < nqp; q++) {
         const double *Bq = B + (size_t)q * NV * ndof;
         double eps[NV], s[NV];
@@ -63,8 +65,8 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
         }
         asp_qp_state tmp;
         asp_qp_state *uq = upd ? &upd[q] : &tmp;
-        nplastic += asp_j2_update(m, eps, old ? &old[q] : &virgin, uq, s,
-                                  Ke ? D : NULL);
+        nplastic += asp_j2_update_pc(m, eps, old ? &old[q] : &virgin, uq, s,
+                                     Ke ? D : NULL, Kp ? Dp : NULL);
         /* the midpoint return's tangent is not symmetric: its skew part
          * W = (D - Dᵀ)/2 is kept apart and D symmetrized */
         double W[NV * NV] = {0};
@@ -94,14 +96,34 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
                     v += D[a * NV + b] * Bq[b * ndof + j];
                 DB[a * ndof + j] = v * w[q];
             }
-        /* upper triangle of the symmetric part */
+        /* upper triangle of the symmetric part (and of Kp where Dp = D) */
+        int same = !Kp || !memcmp(D, Dp, sizeof D);
         for (int i = 0; i < ndof; i++)
             for (int a = 0; a < NV; a++) {
                 double bai = Bq[a * ndof + i];
                 if (bai == 0.0) continue;
                 for (int j = i; j < ndof; j++)
                     Ke[i * ndof + j] += bai * DB[a * ndof + j];
+                if (Kp && same)
+                    for (int j = i; j < ndof; j++)
+                        Kp[i * ndof + j] += bai * DB[a * ndof + j];
             }
+        if (!same) {
+            for (int a = 0; a < NV; a++)
+                for (int j = 0; j < ndof; j++) {
+                    double v = 0.0;
+                    for (int b = 0; b < NV; b++)
+                        v += Dp[a * NV + b] * Bq[b * ndof + j];
+                    DB[a * ndof + j] = v * w[q];
+                }
+            for (int i = 0; i < ndof; i++)
+                for (int a = 0; a < NV; a++) {
+                    double bai = Bq[a * ndof + i];
+                    if (bai == 0.0) continue;
+                    for (int j = i; j < ndof; j++)
+                        Kp[i * ndof + j] += bai * DB[a * ndof + j];
+                }
+        }
         if (!skew) continue;
         /* skew part Bᵀ W B, kept below the diagonal until the end */
         for (int a = 0; a < NV; a++)
@@ -119,6 +141,9 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
                     Ke[i * ndof + j] += bai * DB[a * ndof + j];
             }
     }
+    if (Kp)
+        for (int i = 0; i < ndof; i++)
+            for (int j = 0; j < i; j++) Kp[i * ndof + j] = Kp[j * ndof + i];
     /* Ke = symmetric (upper) + skew (lower holds its (i > j) entries) */
     if (Ke)
         for (int i = 0; i < ndof; i++)
@@ -158,7 +183,7 @@ void asp_quad4_qp_coords(const double *X, double *xq)
 
 int asp_quad4_axi(const double *X, const double *u, const asp_j2 *m,
                   const asp_qp_state *old, asp_qp_state *upd,
-                  double *fe, double *Ke, double *sig)
+                  double *fe, double *Ke, double *Kp, double *sig)
 {
     enum { NQ = ASP_QUAD4_NQP, ND = 8 };
     double g = gauss_pt(), B[NQ][NV][ND], w[NQ];
@@ -199,7 +224,7 @@ int asp_quad4_axi(const double *X, const double *u, const asp_j2 *m,
         for (int k = 0; k < 3; k++)
             for (int j = 0; j < ND; j++)
                 B[q][k][j] += (bm[j] - bq[q][j]) / 3.0;
-    return integrate(NQ, ND, &B[0][0][0], w, u, m, old, upd, fe, Ke, sig);
+    return integrate(NQ, ND, &B[0][0][0], w, u, m, old, upd, fe, Ke, Kp, sig);
 }
 
 /* ---- hex8 ---------------------------------------------------------------- */
@@ -261,7 +286,7 @@ static double hex_grad(const double *X, const double xi[3], double dNdx[8][3])
 
 int asp_hex8(const double *X, const double *u, const asp_j2 *m,
              const asp_qp_state *old, asp_qp_state *upd,
-             double *fe, double *Ke, double *sig)
+             double *fe, double *Ke, double *Kp, double *sig)
 {
     enum { NQ = ASP_HEX8_NQP, ND = 24 };
     /* Voigt shear rows: (xy, yz, zx) pair the components (0,1), (1,2), (2,0) */
@@ -292,5 +317,5 @@ int asp_hex8(const double *X, const double *u, const asp_j2 *m,
                 B[q][3 + s][3 * a + j] = d[q][a][i];
             }
         }
-    return integrate(NQ, ND, &B[0][0][0], w, u, m, old, upd, fe, Ke, sig);
+    return integrate(NQ, ND, &B[0][0][0], w, u, m, old, upd, fe, Ke, Kp, sig);
 }

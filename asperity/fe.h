@@ -98,6 +98,12 @@ void asp_j2_init(asp_j2 *m, const stc_material *mat);
  * is plastic in this step, 0 if elastic.  Pure. */
 int asp_j2_update(const asp_j2 *m, const double eps[6], const asp_qp_state *old,
                   asp_qp_state *upd, double sig[6], double *D);
+/* The same, also writing (if D and Dp != NULL) a symmetric positive
+ * definite approximation Dp of D to factorize: D itself where D is
+ * symmetric (elastic, radial return), else the midpoint tangent of a
+ * proportional increment along the same flow direction. */
+int asp_j2_update_pc(const asp_j2 *m, const double eps[6], const asp_qp_state *old,
+                     asp_qp_state *upd, double sig[6], double *D, double *Dp);
 
 /* Von Mises equivalent stress of a Voigt stress. */
 double asp_von_mises(const double sig[6]);
@@ -108,17 +114,19 @@ enum { ASP_QUAD4_NQP = 4, ASP_HEX8_NQP = 8 };
 
 /* Axisymmetric 4-node quadrilateral.  X: [4][2] (r, z); u: [8] (ur, uz per
  * node).  Computes fe[8] = ∫ Bbarᵀ σ 2πr dA (internal force, N) and, if Ke
- * is not NULL, Ke[8][8] row major.  sig (nullable): [4][6] stress per qp.
+ * is not NULL, Ke[8][8] row major (the exact tangent: not symmetric under
+ * the midpoint return); if Kp is not NULL too, Kp[8][8] from the SPD
+ * approximation of asp_j2_update_pc.  sig (nullable): [4][6] stress per qp.
  * Returns the number of plastic qps, or -1 for a non-positive Jacobian. */
 int asp_quad4_axi(const double *X, const double *u, const asp_j2 *m,
                   const asp_qp_state *old, asp_qp_state *upd,
-                  double *fe, double *Ke, double *sig);
+                  double *fe, double *Ke, double *Kp, double *sig);
 
 /* 3D 8-node hexahedron, same conventions: X [8][3], u [24], fe [24],
- * Ke [24][24], sig [8][6]. */
+ * Ke, Kp [24][24], sig [8][6]. */
 int asp_hex8(const double *X, const double *u, const asp_j2 *m,
              const asp_qp_state *old, asp_qp_state *upd,
-             double *fe, double *Ke, double *sig);
+             double *fe, double *Ke, double *Kp, double *sig);
 
 /* Gauss-point coordinates of an element (for yield location reporting):
  * xq [nqp][dim]. */

@@ -104,7 +104,7 @@ static void tangent(const asp_j2 *m, double theta, double beta,
  * M = (1 + β) I - β Δs ⊗ s_0 / (s_0·Δs); checked against central
  * differences in test_j2. */
 static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *old,
-                    asp_qp_state *upd, double sig[NV], double p, double *D)
+                    asp_qp_state *upd, double sig[NV], double p, double *D, double *Dp)
 {
     double k = sqrt(2.0 / 3.0) * m->Y, s0[NV], ds[NV], mm[NV], nh[NV], beta = 0.0;
     memcpy(s0, old->s, sizeof s0);
@@ -142,6 +142,11 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
         double dps = tdot(ds, ps);
         for (int a = 0; a < NV; a++) w[a] = s1[a] - r * ((1.0 + beta) * ps[a] - g * s0[a] * dps);
         tangent(m, 1.0 - r * (1.0 + beta), 0.0, nh, D);
+        /* SPD part for the factorization: the exact tangent of a
+         * proportional increment, (1 - r(1 + β)) (I_dev - n̂n̂) deviatoric
+         * (there β = k/|s_t| from the virgin state: the radial return's
+         * θ), floored to stay positive definite */
+        if (Dp) tangent(m, fmax(1.0 - r * (1.0 + beta), 0.01), 1.0, nh, Dp);
         for (int a = 0; a < NV; a++)
             for (int b = 0; b < NV; b++)
                 D[a * NV + b] += 2.0 * m->mu * (r * (1.0 + beta) * nh[a] * nh[b] +
@@ -152,6 +157,12 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
 
 int asp_j2_update(const asp_j2 *m, const double eps[NV], const asp_qp_state *old,
                   asp_qp_state *upd, double sig[NV], double *D)
+{
+    return asp_j2_update_pc(m, eps, old, upd, sig, D, NULL);
+}
+
+int asp_j2_update_pc(const asp_j2 *m, const double eps[NV], const asp_qp_state *old,
+                     asp_qp_state *upd, double sig[NV], double *D, double *Dp)
 {
     /* Elastic trial strain and stress */
     double ee[NV];
@@ -175,11 +186,12 @@ int asp_j2_update(const asp_j2 *m, const double eps[NV], const asp_qp_state *old
         if (D) {
             double zero[NV] = {0};
             tangent(m, 1.0, 0.0, zero, D);
+            if (Dp) memcpy(Dp, D, NV * NV * sizeof *D);
         }
         return 0;
     }
 
-    if (m->midpoint && midpoint(m, s, old, upd, sig, p, D)) return 1;
+    if (m->midpoint && midpoint(m, s, old, upd, sig, p, D, D ? Dp : NULL)) return 1;
     /* Perfect plasticity: Δγ = (|s_tr| - √(2/3) Y) / 2μ, s = √(2/3) Y n */
     double n[NV], dgam = (snorm - radius) / (2.0 * m->mu);
     for (int a = 0; a < NV; a++) {
@@ -190,7 +202,9 @@ int asp_j2_update(const asp_j2 *m, const double eps[NV], const asp_qp_state *old
     }
     upd->epbar += sqrt(2.0 / 3.0) * dgam;
     /* Simo & Hughes eq. 3.3.13 with H = 0: θ = θ̄ = √(2/3) Y / |s_tr| */
-    if (D)
+    if (D) {
         tangent(m, radius / snorm, 1.0, n, D);
+        if (Dp) memcpy(Dp, D, NV * NV * sizeof *D);
+    }
     return 1;
 }

@@ -29,6 +29,12 @@
  * surface pushes through the flat are all made active before the first
  * solve.  Every failure ends with a reason in the message.
  *
+ * Tangent: under the midpoint return (j2.c) the consistent tangent is not
+ * symmetric.  K holds an SPD approximation of it (factorized: the
+ * pattern, the analysis and CHOLMOD's LLᵀ stay), Kd and Kk the rest
+ * (symmetric, skew); Newton stays quadratic through corrections / GMRES
+ * against K + Kd + Kk (skew_correct, gmres).
+ *
  * Cost (closing note of issue 3): the element loop and the factorization
  * are each ~1-5 ms on an axisymmetric mesh, so the work is the NUMBER of
  * evaluations; small axisymmetric systems run on one thread (see create).
@@ -39,9 +45,11 @@
  * (1.72 %, 0.76 %): the P_smooth error is set by how the node-entry
  * sawtooth is sampled, not monotone in n.  With P_smooth averaging over δ
  * (trapezoid weights, asp_contact.c) two errors are left (curve3d helper,
- * vs level 3, harness runs, n = 6..12): a mid-curve (22-38 ωc) bias that
- * is the sampling of each tooth, the same for every n and ~1/steps per
- * node (-1.1 | -0.55 | -0.35 | -0.2 % at 2 | 4 | 6 | 8), and the end
+ * vs level 3, harness runs, n = 6..12): a mid-curve (22-38 ωc) bias, the
+ * same for every n and ~1/steps per node (-1.1 | -0.55 | -0.35 | -0.2 %
+ * at 2 | 4 | 6 | 8; session 6 found it to be the radial return's
+ * first-order error in the increment, not the sampling: the midpoint
+ * return, now the default, leaves -0.15 .. -0.2 %, j2.c), and the end
  * point (one-sided window), -0.8 .. +1.9 % at 60 ωc whatever the steps
  * (n = 7: +1.4 .. +1.9 %).  Max error n = 6..12 at 4 steps: 0.84 1.44
  * 0.72 0.67 0.75 0.60 0.59 %.  Tried and not robust either: windows 1.5x
@@ -302,7 +310,8 @@ static stc_status build_pattern(asp_solver *s)
         return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
     }
     s->Kk = calloc(nnz ? nnz : 1, sizeof *s->Kk);
-    if (!s->Kk) {
+    s->Kd = calloc(nnz ? nnz : 1, sizeof *s->Kd);
+    if (!s->Kk || !s->Kd) {
         free(ptr), free(nb);
         return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
     }
@@ -349,7 +358,7 @@ void asp_node_u(const asp_solver *s, const double *u, int n, double *out)
 }
 
 /* Element e at s->u: fe, Ke (if want_K), stress and state; < 0 if inverted. */
-static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke)
+static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke, double *Kp)
 {
     const asp_mesh *m = s->mesh;
     int d = s->dim, nen = s->nen;
@@ -362,18 +371,18 @@ static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke)
     size_t q0 = (size_t)e * s->nqp;
     const asp_j2 *mat = &s->mat[m->region[e]];
     return d == 2 ? asp_quad4_axi(X, ue, mat, s->st_old + q0, s->st_new + q0, fe,
-                                  want_K ? Ke : NULL, s->sig + 6 * q0)
+                                  want_K ? Ke : NULL, Kp, s->sig + 6 * q0)
                   : asp_hex8(X, ue, mat, s->st_old + q0, s->st_new + q0, fe,
-                             want_K ? Ke : NULL, s->sig + 6 * q0);
+                             want_K ? Ke : NULL, Kp, s->sig + 6 * q0);
 }
 
 /* Scatter of an element with hanging nodes: each DOF of a hanging node
  * goes to its masters' with their weights (K += T^T Ke T, f += T^T fe). */
 static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
-                         int atomic)
+                         const double *Kp, int atomic)
 {
     int nde = s->nde, gi[24][4], gn[24];
-    double gw[24][4], *Kx = s->K->x, *Kk = s->Kk, *f = s->fint;
+    double gw[24][4], *Kx = s->K->x, *Kk = s->Kk, *Kd = s->Kd, *f = s->fint;
     hang_expand(s, e, gi, gw, gn);
     for (int a = 0; a < nde; a++)
         for (int k = 0; k < gn[a]; k++) {
@@ -392,9 +401,9 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
             for (int ka = 0; ka < gn[a]; ka++)
                 for (int kb = 0; kb < gn[b]; kb++, pos++) {
                     if (*pos < 0) continue;
-                    double ab = Ke[a * nde + b], ba = Ke[b * nde + a];
-                    double v = gw[a][ka] * gw[b][kb] * 0.5 * (ab + ba);
-                    double k = gw[a][ka] * gw[b][kb] * 0.5 * (ab - ba);
+                    double ab = Ke[a * nde + b], ba = Ke[b * nde + a], ww = gw[a][ka] * gw[b][kb];
+                    double v = ww * Kp[a * nde + b], k = ww * 0.5 * (ab - ba);
+                    double dd = ww * 0.5 * (ab + ba) - v;
                     if (atomic) {
 #pragma omp atomic
                         Kx[*pos] += v;
@@ -402,24 +411,28 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
 #pragma omp atomic
                             Kk[*pos] += k;
                         }
+                        if (dd != 0.0) {
+#pragma omp atomic
+                            Kd[*pos] += dd;
+                        }
                     } else {
-                        Kx[*pos] += v, Kk[*pos] += k;
+                        Kx[*pos] += v, Kk[*pos] += k, Kd[*pos] += dd;
                     }
                 }
 }
 
 /* Scatter one element into fint and K; atomic when threads share them. */
 static void scatter(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
-                    int atomic)
+                    const double *Kp, int atomic)
 {
     int nde = s->nde, d = s->dim;
     if (s->hoff && s->hoff[e] >= 0) {
-        scatter_hang(s, e, want_K, fe, Ke, atomic);
+        scatter_hang(s, e, want_K, fe, Ke, Kp, atomic);
         return;
     }
     const int *c = s->mesh->conn + (size_t)s->nen * e;
     const int *map = s->emap + (size_t)e * nde * nde;
-    double *Kx = s->K->x, *Kk = s->Kk, *f = s->fint;
+    double *Kx = s->K->x, *Kk = s->Kk, *Kd = s->Kd, *f = s->fint;
     if (!atomic) {
         for (int a = 0; a < nde; a++) f[d * c[a / d] + a % d] += fe[a];
         if (want_K)
@@ -427,8 +440,8 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
                 for (int b = 0; b < nde; b++) {
                     int k = map[a * nde + b];
                     if (k < 0) continue;
-                    double ab = Ke[a * nde + b], ba = Ke[b * nde + a];
-                    Kx[k] += 0.5 * (ab + ba), Kk[k] += 0.5 * (ab - ba);
+                    double ab = Ke[a * nde + b], ba = Ke[b * nde + a], p = Kp[a * nde + b];
+                    Kx[k] += p, Kk[k] += 0.5 * (ab - ba), Kd[k] += 0.5 * (ab + ba) - p;
                 }
         return;
     }
@@ -441,12 +454,17 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
             for (int b = 0; b < nde; b++) {
                 int k = map[a * nde + b];
                 if (k < 0) continue;
-                double ab = Ke[a * nde + b], ba = Ke[b * nde + a];
+                double ab = Ke[a * nde + b], ba = Ke[b * nde + a], p = Kp[a * nde + b];
+                double dd = 0.5 * (ab + ba) - p;
 #pragma omp atomic
-                Kx[k] += 0.5 * (ab + ba);
+                Kx[k] += p;
                 if (ab != ba) {
 #pragma omp atomic
                     Kk[k] += 0.5 * (ab - ba);
+                }
+                if (dd != 0.0) {
+#pragma omp atomic
+                    Kd[k] += dd;
                 }
             }
 }
@@ -466,23 +484,25 @@ static stc_status assemble(asp_solver *s, int want_K)
     if (want_K) {
         memset(s->K->x, 0, s->K->nzmax * sizeof(double));
         memset(s->Kk, 0, s->K->nzmax * sizeof(double));
+        memset(s->Kd, 0, s->K->nzmax * sizeof(double));
     }
 #pragma omp parallel for schedule(static) num_threads(nthr) if (nthr > 1)
     for (int e = 0; e < m->nelem; e++) {
-        double fe[24], Ke[24 * 24];
-        if (element(s, e, want_K, fe, Ke) < 0) {
+        double fe[24], Ke[24 * 24], Kp[24 * 24];
+        if (element(s, e, want_K, fe, Ke, want_K ? Kp : NULL) < 0) {
 #pragma omp critical
             bad = e;
             continue;
         }
-        scatter(s, e, want_K, fe, Ke, nthr > 1);
+        scatter(s, e, want_K, fe, Ke, Kp, nthr > 1);
     }
     s->t_asm += omp_get_wtime() - t0;
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
     if (s->shear) asp_shear_assemble(s, want_K); /* stick-law springs (shear.c) */
     if (want_K) {
         s->skew = 0;
-        for (size_t k = 0; k < s->K->nzmax && !s->skew; k++) s->skew = s->Kk[k] != 0.0;
+        for (size_t k = 0; k < s->K->nzmax && !s->skew; k++)
+            s->skew = s->Kk[k] != 0.0 || s->Kd[k] != 0.0;
     }
     s->k_fresh = want_K;
     return STC_OK;
@@ -635,13 +655,13 @@ static stc_status factorize(asp_solver *s, nstat *ns)
     if (s->serial_factor) omp_set_max_active_levels(0), openblas_set_num_threads(1);
     double t0 = omp_get_wtime();
     cholmod_factorize(s->K, s->L, &s->cc);
-    /* the midpoint tangent's symmetric part can be slightly indefinite (in
-     * the plane of the flow direction n̂ and the end stress s_1 it has a
-     * negative eigenvalue ~ |s_1 ⊥ n̂|²/4, j2.c); the factor is only the
-     * preconditioner of the full tangent then (skew_correct, gmres), so
-     * it is shifted by a fraction of its diagonal until it factorizes
-     * (measured: WSP 48 ωc, level 0, failed at the ramp's first increment
-     * without the shift) */
+    /* safety net: when K is not the tangent (midpoint return) the factor
+     * is only a preconditioner (skew_correct, gmres), so a K that does not
+     * factorize is shifted by a fraction of its diagonal until it does.
+     * K is SPD by construction there (j2's Dp); when the symmetric part of
+     * the tangent was factorized instead, this was needed (it can be
+     * indefinite: in the plane of n̂ and s_1 it has a negative eigenvalue
+     * ~ |s_1 ⊥ n̂|²/4).  Not reached in the runs of docs §14. */
     for (int t = 0; s->cc.status == CHOLMOD_NOT_POSDEF && s->skew && t < 4; t++) {
         shift_diagonal(s, SHIFTS[t]);
         cholmod_factorize(s->K, s->L, &s->cc);
@@ -675,8 +695,9 @@ static void sym_matvec(const cholmod_sparse *K, const double *x, double *y, int 
         }
 }
 
-/* y += W x for the skew part W of the tangent (its upper entries in Kk;
- * W_ji = -W_ij); free_only: the free-free block (the constrained system). */
+/* y += (Kd + W) x: the tangent's part that is not in the factorized K,
+ * Kd symmetric and W skew (their upper entries in Kd, Kk; W_ji = -W_ij);
+ * free_only: the free-free block (the constrained system). */
 static void skew_matvec_add(const asp_solver *s, const double *x, double *y, int free_only)
 {
     const int *Kp = s->K->p, *Ki = s->K->i;
@@ -685,9 +706,9 @@ static void skew_matvec_add(const asp_solver *s, const double *x, double *y, int
         if (free_only && s->fixed[j]) continue;
         for (int k = Kp[j]; k < Kp[j + 1]; k++) {
             int i = Ki[k];
-            if (i == j || (free_only && s->fixed[i])) continue;
-            y[i] += s->Kk[k] * x[j];
-            y[j] -= s->Kk[k] * x[i];
+            if (free_only && s->fixed[i]) continue;
+            y[i] += (s->Kd[k] + s->Kk[k]) * x[j];
+            if (i != j) y[j] += (s->Kd[k] - s->Kk[k]) * x[i];
         }
     }
 }
@@ -727,16 +748,21 @@ static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
     return STC_OK;
 }
 
-/* Under the midpoint return the tangent is K + W with W skew (j2.c); the
- * factor is of K, its symmetric part.  Factorizing K alone made Newton
+/* Under the midpoint return the tangent is not symmetric (j2.c).  The
+ * matrix factorized, K, is then an SPD approximation (j2's Dp: the tangent
+ * of a proportional increment), and the tangent is K + Kd + W (Kd
+ * symmetric, W skew).  Factorizing the symmetric part alone made Newton
  * converge linearly (residual ~x0.1 per iteration; axisymmetric level 1 at
- * 60 ωc: 380 Newton iterations against 230 with radial return).  After a
- * direct solve, corrections du += K^-1 (b - (K + W) du) restore the
- * quadratic rate (247); each costs a mat-vec and a triangular solve.  They
- * converge while |K^-1 W| < 1; a correction that does not lower the
- * residual is undone and GMRES with the same factor takes over (the
- * Krylov path uses GMRES directly, linear_step).  K is the constrained
- * (identity-row) matrix here, W its free-free block. */
+ * 60 ωc: 380 Newton iterations against 230 with radial return), and that
+ * symmetric part can be indefinite (the coated t/R .025 δ = 30 ramp at
+ * 8.5 elements per contact: 20 shifted factorizations, 4 cut-backs,
+ * 909 s).  After a direct solve, corrections du += K^-1 (b - (K + Kd + W)
+ * du) restore the quadratic rate (243 iterations); each costs a mat-vec
+ * and a triangular solve.  They converge while |K^-1 (Kd + W)| < 1; a
+ * correction that does not halve the residual is undone and GMRES with the
+ * same factor takes over (the Krylov path uses GMRES directly,
+ * linear_step).  K is the constrained (identity-row) matrix here, Kd and W
+ * their free-free blocks. */
 enum { SKEW_SWEEPS = 3 };
 static double dot(const double *a, const double *b, int n);
 static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax);
@@ -1286,7 +1312,7 @@ void asp_solver_destroy(asp_solver **sp)
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);
-    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos), free(s->Kk), free(s->gv);
+    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos), free(s->Kk), free(s->Kd), free(s->gv);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);

@@ -41,10 +41,12 @@ struct asp_solver {
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
 
     cholmod_common cc;
-    cholmod_sparse *K;    /* upper triangle, fixed pattern: the symmetric part of the tangent */
+    cholmod_sparse *K;    /* upper triangle, fixed pattern: the matrix factorized, the
+                             tangent where it is symmetric, else an SPD approximation */
     double *Kk;           /* [nnz(K)] skew part of the tangent (K's pattern, upper entries;
                              the midpoint return's, j2.c); all zero under radial return */
-    int skew;             /* Kk is not zero at this tangent */
+    double *Kd;           /* [nnz(K)] symmetric part of the tangent minus K (same) */
+    int skew;             /* Kk or Kd is not zero: K is not the tangent */
     int n_shifted;        /* factorizations that needed a diagonal shift */
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */

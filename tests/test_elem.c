@@ -55,15 +55,25 @@ static void quad_geom(double r0, double h, double distort, unsigned seed, double
 
 typedef int (*elem_fn)(const double *, const double *, const asp_j2 *,
                        const asp_qp_state *, asp_qp_state *, double *, double *,
-                       double *);
+                       double *, double *);
 
 /* max |Ke - FD(fe)| / max |Ke| with central differences; every call must
- * report `nplastic` plastic points (so no FD step crosses the yield surface). */
+ * report `nplastic` plastic points (so no FD step crosses the yield surface).
+ * Also: the factorization matrix Kp is symmetric, and equals Ke where Ke is
+ * symmetric (elastic; and the midpoint return from a virgin state is a
+ * proportional increment). */
 static double ke_fd_error(elem_fn f, int nd, const double *X, const double *u,
                           const asp_j2 *m, const asp_qp_state *old, int nplastic)
 {
-    double fe[24], Ke[576], fp[24], fm[24], up[24];
-    assert_int_equal(f(X, u, m, old, NULL, fe, Ke, NULL), nplastic);
+    double fe[24], Ke[576], Kp[576], fp[24], fm[24], up[24];
+    assert_int_equal(f(X, u, m, old, NULL, fe, Ke, Kp, NULL), nplastic);
+    double kpmax = 0.0;
+    for (int k = 0; k < nd * nd; k++) kpmax = fmax(kpmax, fabs(Kp[k]));
+    for (int i = 0; i < nd; i++)
+        for (int j = 0; j < nd; j++) {
+            assert_true(fabs(Kp[i * nd + j] - Kp[j * nd + i]) <= 1e-12 * kpmax);
+            if (!old) assert_true(fabs(Kp[i * nd + j] - Ke[i * nd + j]) <= 1e-9 * kpmax);
+        }
     double umax = 0.0, kmax = 0.0, worst = 0.0;
     for (int j = 0; j < nd; j++) umax = fmax(umax, fabs(u[j]));
     for (int k = 0; k < nd * nd; k++) kmax = fmax(kmax, fabs(Ke[k]));
@@ -71,9 +81,9 @@ static double ke_fd_error(elem_fn f, int nd, const double *X, const double *u,
     for (int j = 0; j < nd; j++) {
         memcpy(up, u, sizeof(double) * (size_t)nd);
         up[j] = u[j] + h;
-        assert_int_equal(f(X, up, m, old, NULL, fp, NULL, NULL), nplastic);
+        assert_int_equal(f(X, up, m, old, NULL, fp, NULL, NULL, NULL), nplastic);
         up[j] = u[j] - h;
-        assert_int_equal(f(X, up, m, old, NULL, fm, NULL, NULL), nplastic);
+        assert_int_equal(f(X, up, m, old, NULL, fm, NULL, NULL, NULL), nplastic);
         for (int i = 0; i < nd; i++)
             worst = fmax(worst, fabs((fp[i] - fm[i]) / (2 * h) - Ke[i * nd + j]) / kmax);
     }
@@ -100,7 +110,7 @@ static void test_hex8_tangent_fd(void **state)
     worst_pl = fmax(worst_pl, ke_fd_error(asp_hex8, 24, X, u, &m, NULL, 8));
     asp_qp_state pre[8];
     double fe[24];
-    assert_int_equal(asp_hex8(X, u, &m, NULL, pre, fe, NULL, NULL), 8);
+    assert_int_equal(asp_hex8(X, u, &m, NULL, pre, fe, NULL, NULL, NULL), 8);
     for (int a = 0; a < 8; a++) u[3 * a + 2] += 0.6e-2 * (X[3 * a] - 1.0);
     worst_pl = fmax(worst_pl, ke_fd_error(asp_hex8, 24, X, u, &m, pre, 8));
     printf("hex8 Ke vs FD of fe: elastic %.2e, plastic %.2e\n", worst_el, worst_pl);
@@ -175,7 +185,7 @@ static void test_hex8_patch(void **state)
             linear_field(G, X + 3 * a, u + 3 * a);
             if (i == 1 && j == 1 && k == 1) corner_of_center = a;
         }
-        assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, NULL, sig), 0);
+        assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL, sig), 0);
         for (int q = 0; q < 48; q++) serr = fmax(serr, fabs(sig[q] - sig_ex[q % 6]) / smax);
         for (int d = 0; d < 3; d++) fint[d] += fe[3 * corner_of_center + d];
     }
@@ -222,7 +232,7 @@ static void quad4_patch_case(const double a, const double c, const double d,
             u[2 * n + 1] = c * X[2 * n] + d * X[2 * n + 1] + 1e-3;
             if (i == 1 && j == 1) center = n;
         }
-        assert_int_equal(asp_quad4_axi(X, u, &m, NULL, NULL, fe, NULL, sig), 0);
+        assert_int_equal(asp_quad4_axi(X, u, &m, NULL, NULL, fe, NULL, NULL, sig), 0);
         for (int q = 0; q < 24; q++)
             *serr = fmax(*serr, fabs(sig[q] - sig_ex[q % 6]) / smax);
         fint[0] += fe[2 * center];
@@ -266,7 +276,7 @@ static void test_rigid_modes(void **state)
             ua[1] = w[2] * x[0] - w[0] * x[2];
             ua[2] = w[0] * x[1] - w[1] * x[0];
         }
-        assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL), 0);
+        assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL, NULL), 0);
         for (int j = 0; j < 24; j++) worst = fmax(worst, fabs(fe[j]));
     }
     /* scale: force of a 1e-3 strain on a face */
@@ -278,10 +288,10 @@ static void test_rigid_modes(void **state)
     double Xq[8], uq[8], fq[8], wq = 0.0, wr = 0.0;
     quad_geom(0.4, 0.1, 0.1, 29u, Xq);
     for (int a = 0; a < 4; a++) { uq[2 * a] = 0.0; uq[2 * a + 1] = 1e-3; }
-    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, NULL, NULL), 0);
+    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, NULL, NULL, NULL), 0);
     for (int j = 0; j < 8; j++) wq = fmax(wq, fabs(fq[j]));
     for (int a = 0; a < 4; a++) { uq[2 * a] = 1e-3; uq[2 * a + 1] = 0.0; }
-    asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, NULL, NULL);
+    asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, NULL, NULL, NULL);
     for (int j = 0; j < 8; j++) wr = fmax(wr, fabs(fq[j]));
     printf("quad4 axi: uniform u_z max |fe| = %.2e; uniform u_r %.2e (not rigid)\n", wq, wr);
     assert_true(wq < 1e-10 * wr);
@@ -298,7 +308,7 @@ static void test_axi_hoop_and_ring_force(void **state)
     const double c = 2e-4, d = -3e-4, r1 = 0.3, r2 = 0.5;
     double X[8] = {r1, 0.0, r2, 0.0, r2, 0.2, r1, 0.2}, u[8], fe[8], sig[24];
     for (int a = 0; a < 4; a++) { u[2 * a] = c * X[2 * a]; u[2 * a + 1] = 0.0; }
-    assert_int_equal(asp_quad4_axi(X, u, &m, NULL, NULL, fe, NULL, sig), 0);
+    assert_int_equal(asp_quad4_axi(X, u, &m, NULL, NULL, fe, NULL, NULL, sig), 0);
     double err = 0.0, s_rr = 2 * (m.lambda + m.mu) * c, s_zz = 2 * m.lambda * c;
     for (int q = 0; q < 4; q++) {
         err = fmax(err, fabs(sig[6 * q + 0] - s_rr) / s_rr);
@@ -307,7 +317,7 @@ static void test_axi_hoop_and_ring_force(void **state)
         err = fmax(err, fabs(sig[6 * q + 3]) / s_rr);
     }
     for (int a = 0; a < 4; a++) { u[2 * a] = 0.0; u[2 * a + 1] = d * X[2 * a + 1]; }
-    asp_quad4_axi(X, u, &m, NULL, NULL, fe, NULL, sig);
+    asp_quad4_axi(X, u, &m, NULL, NULL, fe, NULL, NULL, sig);
     double Fz = fe[5] + fe[7], Fex = sig[1] * M_PI * (r2 * r2 - r1 * r1);
     double ferr = fabs(Fz - Fex) / fabs(Fex);
     printf("axi radial expansion stress error %.2e; ring force %.6g N vs %.6g N (rel %.1e)\n",
@@ -361,7 +371,7 @@ static void test_no_locking(void **state)
         u[3 * a + 1] = -0.5 * (X[3 * a + 1] - 1.0);
         u[3 * a + 2] = 0.0;
     }
-    assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, Ke, NULL), 8);
+    assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, Ke, NULL, NULL), 8);
     int nh = count_stiff(Ke, 24, eig);
     printf("hex8 plastic: %d stiff mode(s) (largest %.3g, next %.3g)\n", nh,
            eig[23], eig[22]);
@@ -373,7 +383,7 @@ static void test_no_locking(void **state)
         uq[2 * a] = 0.5 * Xq[2 * a];
         uq[2 * a + 1] = -1.0 * (Xq[2 * a + 1] - 2.0);
     }
-    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, Kq, NULL), 4);
+    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, Kq, NULL, NULL), 4);
     int nq = count_stiff(Kq, 8, eq);
     printf("quad4 axi plastic: %d stiff mode(s) (largest %.3g, next %.3g)\n", nq,
            eq[7], eq[6]);
@@ -389,7 +399,7 @@ static void test_spectrum(void **state)
     asp_j2 m = material(0.3);
     double X[24], u[24] = {0}, fe[24], Ke[576], eig[24];
     hex_geom(0.1, 0.15, 41u, X);
-    assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, Ke, NULL), 0);
+    assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, Ke, NULL, NULL), 0);
     count_stiff(Ke, 24, eig);
     double emax = eig[23];
     int nzero = 0;
@@ -401,7 +411,7 @@ static void test_spectrum(void **state)
 
     double Xq[8], uq[8] = {0}, fq[8], Kq[64], eq[8];
     quad_geom(0.3, 0.1, 0.1, 43u, Xq);
-    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, Kq, NULL), 0);
+    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, Kq, NULL, NULL), 0);
     count_stiff(Kq, 8, eq);
     int nzq = 0;
     for (int i = 0; i < 8; i++) nzq += fabs(eq[i]) < 1e-10 * eq[7];
@@ -423,9 +433,9 @@ static void test_bad_jacobian(void **state)
         X[3 * 4 + i] = X[3 * 6 + i];
         X[3 * 6 + i] = t;
     }
-    assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL), -1);
+    assert_int_equal(asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL, NULL), -1);
     double Xq[8] = {0.1, 0, 0.1, 0.1, 0.2, 0.1, 0.2, 0}, uq[8] = {0}, fq[8]; /* clockwise */
-    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, NULL, NULL), -1);
+    assert_int_equal(asp_quad4_axi(Xq, uq, &m, NULL, NULL, fq, NULL, NULL, NULL), -1);
     printf("inverted hex8 and clockwise quad4 rejected\n");
 }
 

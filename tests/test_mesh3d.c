@@ -144,7 +144,7 @@ static void test_quality(void **state)
         for (int e = 0; e < M->nelem && (c == 0 || c == 4 || c == 11); e++) {
             double X[24];
             elem_coords(M, e, X);
-            if (asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL) < 0) bad++;
+            if (asp_hex8(X, u, &m, NULL, NULL, fe, NULL, NULL, NULL) < 0) bad++;
         }
         printf("t = %-5g a_max = %-6g: %6d nodes, worst scaled Jacobian %.3f%s\n",
                cases[c][0], cases[c][1], M->nnode, worst,
