@@ -41,6 +41,31 @@ static const double HEX_XI[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1},
 /* 2-point Gauss abscissa 1/√3 (weights 1). */
 static double gauss_pt(void) { return 1.0 / sqrt(3.0); }
 
+/* DB = w M B for a 6x6 M and one Gauss point's B [6][ndof]. */
+static void times_B(const double *M, const double *Bq, int ndof, double wq, double *DB)
+{
+    for (int a = 0; a < NV; a++)
+        for (int j = 0; j < ndof; j++) {
+            double v = 0.0;
+            for (int b = 0; b < NV; b++)
+                v += M[a * NV + b] * Bq[b * ndof + j];
+            DB[a * ndof + j] = v * wq;
+        }
+}
+
+/* K += Bᵀ DB on the upper triangle (j >= i), or strictly below it. */
+static void add_BtX(const double *Bq, const double *DB, int ndof, double *K, int lower)
+{
+    for (int i = 0; i < ndof; i++)
+        for (int a = 0; a < NV; a++) {
+            double bai = Bq[a * ndof + i];
+            if (bai == 0.0) continue;
+            int j0 = lower ? 0 : i, j1 = lower ? i : ndof;
+            for (int j = j0; j < j1; j++)
+                K[i * ndof + j] += bai * DB[a * ndof + j];
+        }
+}
+
 /* Material update at every Gauss point and accumulation of fe and Ke.
  * B: [nqp][6][ndof], w: [nqp] (quadrature weight × det J [× 2πr]). */
 static int integrate(int nqp, int ndof, const double *B, const double *w,
@@ -89,61 +114,25 @@ static int integrate(int nqp, int ndof, const double *B, const double *w,
                 fe[j] += f * w[q];
             }
         if (!Ke) continue;
-        for (int a = 0; a < NV; a++)
-            for (int j = 0; j < ndof; j++) {
-                double v = 0.0;
-                for (int b = 0; b < NV; b++)
-                    v += D[a * NV + b] * Bq[b * ndof + j];
-                DB[a * ndof + j] = v * w[q];
-            }
-        /* upper triangle of the symmetric part (and of Kp where Dp = D) */
-        int same = !Kp || !memcmp(D, Dp, sizeof D);
-        for (int i = 0; i < ndof; i++)
-            for (int a = 0; a < NV; a++) {
-                double bai = Bq[a * ndof + i];
-                if (bai == 0.0) continue;
-                for (int j = i; j < ndof; j++)
-                    Ke[i * ndof + j] += bai * DB[a * ndof + j];
-                if (Kp && same)
-                    for (int j = i; j < ndof; j++)
-                        Kp[i * ndof + j] += bai * DB[a * ndof + j];
-            }
-        if (!same) {
-            for (int a = 0; a < NV; a++)
-                for (int j = 0; j < ndof; j++) {
-                    double v = 0.0;
-                    for (int b = 0; b < NV; b++)
-                        v += Dp[a * NV + b] * Bq[b * ndof + j];
-                    DB[a * ndof + j] = v * w[q];
-                }
-            for (int i = 0; i < ndof; i++)
-                for (int a = 0; a < NV; a++) {
-                    double bai = Bq[a * ndof + i];
-                    if (bai == 0.0) continue;
-                    for (int j = i; j < ndof; j++)
-                        Kp[i * ndof + j] += bai * DB[a * ndof + j];
-                }
+        /* upper triangle of the symmetric part; Kp collects Bᵀ (Dp - D) B
+         * where they differ (midpoint points that turned), and the
+         * symmetric part is added to it at the end */
+        times_B(D, Bq, ndof, w[q], DB);
+        add_BtX(Bq, DB, ndof, Ke, 0);
+        if (Kp && memcmp(D, Dp, sizeof D)) {
+            for (int k = 0; k < NV * NV; k++) Dp[k] -= D[k];
+            times_B(Dp, Bq, ndof, w[q], DB);
+            add_BtX(Bq, DB, ndof, Kp, 0);
         }
         if (!skew) continue;
         /* skew part Bᵀ W B, kept below the diagonal until the end */
-        for (int a = 0; a < NV; a++)
-            for (int j = 0; j < ndof; j++) {
-                double v = 0.0;
-                for (int b = 0; b < NV; b++)
-                    v += W[a * NV + b] * Bq[b * ndof + j];
-                DB[a * ndof + j] = v * w[q];
-            }
-        for (int i = 1; i < ndof; i++)
-            for (int a = 0; a < NV; a++) {
-                double bai = Bq[a * ndof + i];
-                if (bai == 0.0) continue;
-                for (int j = 0; j < i; j++)
-                    Ke[i * ndof + j] += bai * DB[a * ndof + j];
-            }
+        times_B(W, Bq, ndof, w[q], DB);
+        add_BtX(Bq, DB, ndof, Ke, 1);
     }
     if (Kp)
         for (int i = 0; i < ndof; i++)
-            for (int j = 0; j < i; j++) Kp[i * ndof + j] = Kp[j * ndof + i];
+            for (int j = i; j < ndof; j++)
+                Kp[j * ndof + i] = Kp[i * ndof + j] += Ke[i * ndof + j];
     /* Ke = symmetric (upper) + skew (lower holds its (i > j) entries) */
     if (Ke)
         for (int i = 0; i < ndof; i++)
