@@ -56,6 +56,7 @@ void asp_shear_options_default(asp_shear_options *o)
     o->junction = ASP_JUNCTION_FOOTPRINT;
     o->max_increments = 200;
     o->keep_fields = 0;
+    o->return_map = ASP_RETURN_RADIAL;
 }
 
 /* ---- the stick-law springs (called from assemble) ------------------------ */
@@ -451,6 +452,9 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
               "max-increments = %d: must be in [3, 100000]", o->max_increments);
     STC_CHECK(o->junction == ASP_JUNCTION_FOOTPRINT || o->junction == ASP_JUNCTION_NODES,
               STC_EINVAL, "junction = %d: must be footprint or nodes", (int)o->junction);
+    STC_CHECK(o->return_map == ASP_RETURN_MIDPOINT || o->return_map == ASP_RETURN_RADIAL,
+              STC_EINVAL, "ramp return map = %d: must be 0 (midpoint) or 1 (radial)",
+              (int)o->return_map);
     STC_CHECK(s->dim == 3, STC_EINVAL,
               "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
     STC_CHECK(!s->shear, STC_EINVAL, "shear: a ramp was already run on this solver");
@@ -544,6 +548,7 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     initial_slip(s);
     s->shear = 1;
     s->opt.no_separation = 1; /* thesis §3.2.3.3: the contact stays closed */
+    for (int k = 0; k < 2; k++) s->mat[k].midpoint = o->return_map == ASP_RETURN_MIDPOINT;
     s->ux = s->ux_conv = 0.0;
     s->k_fresh = 0;
     asp_slide_params sp;

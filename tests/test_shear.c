@@ -285,6 +285,8 @@ static void test_cli_errors(void **state)
         {"--delta 0.5 --criterion sideways", "criterion = 'sideways'"},
         {"--delta 0.5 --tau-c -3", "tau-c = '-3'"},
         {"--delta 0.5 --junction rings", "junction = 'rings'"},
+        {"--delta 0.5 --ramp-return-map euler", "ramp-return-map = 'euler'"},
+        {"--delta 0.5 --return-map euler", "return-map = 'euler'"},
         {"--delta 0.5 --shear --alpha 2", "alpha = '2'"},
         {"--delta 0.5,1 --shear", "one interference"},
         {"--delta 0.5 --load 2", "--load conflicts"},

@@ -213,6 +213,10 @@ typedef struct asp_shear_options {
     int max_increments;  /* accepted ramp increments before giving up; default 200 */
     int keep_fields;     /* 1: keep snapshots for asp_solver_write_shear_fields
                             (memory: ~2 copies of the state); default 0 */
+    asp_return_map return_map; /* plastic integration during the ramp; default
+                                  ASP_RETURN_RADIAL: with the ramp's long
+                                  increments the midpoint rule can be far off
+                                  (docs/tangential-step.md §14) */
 } asp_shear_options;
 
 void asp_shear_options_default(asp_shear_options *o);

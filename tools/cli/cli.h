@@ -107,7 +107,10 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
         {"load", "X", "load control: normal load P = X Pc_su instead of --delta, then shear"}, \
         {"junction", "footprint|nodes",                                                        \
          "contact growth under shear: edge advance from the gaps (default) or F_z/p_m of "   \
-         "the nodes that touch; the two bracket the mesh-converged answer"}
+         "the nodes that touch; the two bracket the mesh-converged answer"},                 \
+        {"ramp-return-map", "radial|midpoint",                                                 \
+         "plastic integration during the ramp (default radial: the midpoint rule, used in "   \
+         "the normal step, can be far off over the ramp's long increments)"}
 
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;

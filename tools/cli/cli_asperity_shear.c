@@ -42,6 +42,11 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
         else if (!strcmp(value, "nodes")) sa->so.junction = ASP_JUNCTION_NODES;
         else return bad(key, value, "footprint or nodes");
         sa->on = 1;
+    } else if (!strcmp(key, "ramp-return-map")) {
+        if (!strcmp(value, "radial")) sa->so.return_map = ASP_RETURN_RADIAL;
+        else if (!strcmp(value, "midpoint")) sa->so.return_map = ASP_RETURN_MIDPOINT;
+        else return bad(key, value, "radial or midpoint");
+        sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
             return bad(key, value, "a number in (0, 1) (stiffness ratio KT_i/KT_1; BKE: 0.1)");
