@@ -127,7 +127,8 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
     for (int a = 0; a < NV; a++) s1[a] = str[a] - x * nh[a];
     /* the end stress more than 60° from the flow direction: a rotation the
      * midpoint does not follow (its tangent grows as 1 / (s_1·n̂)) */
-    if (tdot(s1, nh) < 0.5 * k) return 0;
+    double sn = tdot(s1, nh);
+    if (sn < 0.5 * k) return 0;
     for (int a = 0; a < NV; a++) {
         sig[a] = s1[a] + (a < 3 ? p : 0.0);
         upd->eps_p[a] += (a < 3 ? 1.0 : 2.0) * x / (2.0 * m->mu) * nh[a];
@@ -135,9 +136,9 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
     }
     upd->epbar += sqrt(2.0 / 3.0) * x / (2.0 * m->mu);
     if (D) {
-        double sn = tdot(s1, nh), r = x / mn, sd = tdot(s0, ds);
-        double ps[NV], pd[NV], w[NV], ns1 = tdot(nh, s1), nds = tdot(nh, ds);
-        for (int a = 0; a < NV; a++) ps[a] = s1[a] - nh[a] * ns1, pd[a] = ds[a] - nh[a] * nds;
+        double r = x / mn, sd = tdot(s0, ds);
+        double ps[NV], pd[NV], w[NV], nds = tdot(nh, ds);
+        for (int a = 0; a < NV; a++) ps[a] = s1[a] - nh[a] * sn, pd[a] = ds[a] - nh[a] * nds;
         double g = beta > 0.0 && sd > 1e-12 * k * sqrt(tdot(ds, ds)) ? beta / sd : 0.0;
         double dps = tdot(ds, ps);
         for (int a = 0; a < NV; a++) w[a] = s1[a] - r * ((1.0 + beta) * ps[a] - g * s0[a] * dps);

@@ -627,25 +627,6 @@ static double norm_sel(const asp_solver *s, const double *v, int want_fixed)
     return sqrt(a);
 }
 
-/* K_jj += f |K_jj| on the free DOFs (the fixed have identity rows), the
- * diagonal saved in skew_r first; f = 0 puts it back. */
-static const double SHIFTS[4] = {1e-6, 1e-4, 1e-2, 1.0};
-
-static void shift_diagonal(asp_solver *s, double f)
-{
-    const int *Kp = s->K->p, *Ki = s->K->i;
-    double *Kx = s->K->x;
-    for (int j = 0; j < s->ndof; j++) {
-        if (s->fixed[j]) continue;
-        for (int k = Kp[j + 1] - 1; k >= Kp[j]; k--)
-            if (Ki[k] == j) {
-                if (f > 0.0) s->skew_r[j] = Kx[k], Kx[k] += f * fabs(Kx[k]);
-                else Kx[k] = s->skew_r[j];
-                break;
-            }
-    }
-}
-
 static stc_status factorize(asp_solver *s, nstat *ns)
 {
     apply_constraints(s);
@@ -655,19 +636,6 @@ static stc_status factorize(asp_solver *s, nstat *ns)
     if (s->serial_factor) omp_set_max_active_levels(0), openblas_set_num_threads(1);
     double t0 = omp_get_wtime();
     cholmod_factorize(s->K, s->L, &s->cc);
-    /* safety net: when K is not the tangent (midpoint return) the factor
-     * is only a preconditioner (skew_correct, gmres), so a K that does not
-     * factorize is shifted by a fraction of its diagonal until it does.
-     * K is SPD by construction there (j2's Dp); when the symmetric part of
-     * the tangent was factorized instead, this was needed (it can be
-     * indefinite: in the plane of n̂ and s_1 it has a negative eigenvalue
-     * ~ |s_1 ⊥ n̂|²/4).  Not reached in the runs of docs §14. */
-    for (int t = 0; s->cc.status == CHOLMOD_NOT_POSDEF && s->skew && t < 4; t++) {
-        shift_diagonal(s, SHIFTS[t]);
-        cholmod_factorize(s->K, s->L, &s->cc);
-        shift_diagonal(s, 0.0);
-        s->n_shifted++;
-    }
     s->t_fact += omp_get_wtime() - t0;
     if (s->serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
     ns->facts++;
@@ -765,10 +733,12 @@ static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
  * their free-free blocks. */
 enum { SKEW_SWEEPS = 3 };
 static double dot(const double *a, const double *b, int n);
+static int precondition(asp_solver *s, const double *r, double *z);
 static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax);
 static stc_status krylov_alloc(asp_solver *s);
+static stc_status gmres_alloc(asp_solver *s);
 
-/* r = b - (K + W) du on the free DOFs (0 on the fixed); returns |r|. */
+/* r = b - (K + Kd + W) du on the free DOFs (0 on the fixed); returns |r|. */
 static double skew_residual(const asp_solver *s, const double *bx, const double *du, double *r)
 {
     sym_matvec(s->K, du, r, s->ndof);
@@ -784,26 +754,22 @@ static double skew_residual(const asp_solver *s, const double *bx, const double 
 static stc_status skew_correct(asp_solver *s, cholmod_dense *b, double *du)
 {
     if (!s->skew) return STC_OK;
+    STC_CALL(krylov_alloc(s));
     int n = s->ndof;
-    double *r = s->skew_r, *bx = b->x;
+    double *r = s->skew_r, *z = s->kv + n, *bx = b->x; /* gmres uses kv[0, n) */
     double rn = skew_residual(s, bx, du, r), tol = 1e-10 * sqrt(dot(bx, bx, n));
     for (int sweep = 0; sweep < SKEW_SWEEPS && rn > tol; sweep++) {
-        memcpy(s->kb2->x, r, (size_t)n * sizeof *r);
-        STC_CHECK(cholmod_solve2(CHOLMOD_A, s->L, s->kb2, NULL, &s->kx, NULL, &s->ky, &s->ke,
-                                 &s->cc),
-                  STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
-        const double *z = s->kx->x;
-        for (int i = 0; i < n; i++)
-            if (!s->fixed[i]) du[i] += z[i];
+        STC_CHECK(!precondition(s, r, z), STC_ESOLVER, "CHOLMOD solve failed (status %d)",
+                  s->cc.status);
+        for (int i = 0; i < n; i++) du[i] += z[i]; /* z is 0 on the fixed DOFs */
         double r1 = skew_residual(s, bx, du, r);
         if (r1 < 0.5 * rn) {
             rn = r1;
             continue;
         }
         /* not contracting: undo, and GMRES preconditioned by the factor */
-        for (int i = 0; i < n; i++)
-            if (!s->fixed[i]) du[i] -= z[i];
-        STC_CALL(krylov_alloc(s));
+        for (int i = 0; i < n; i++) du[i] -= z[i];
+        STC_CALL(gmres_alloc(s));
         int k = gmres(s, bx, r, 0.0, s->opt.krylov_max);
         if (k >= 0) memcpy(du, r, (size_t)n * sizeof *du);
         break; /* else: keep the best correction so far */
@@ -967,15 +933,23 @@ static int gmres(asp_solver *s, const double *bx, double *du, double tol, int km
     return k;
 }
 
+/* GMRES basis, allocated the first time a tangent has a skew part. */
+static stc_status gmres_alloc(asp_solver *s)
+{
+    if (s->gv) return STC_OK;
+    int m = s->opt.krylov_max < KRYLOV_MAX_CAP ? s->opt.krylov_max : KRYLOV_MAX_CAP;
+    s->gv = malloc((size_t)(m + 2) * (size_t)s->ndof * sizeof *s->gv);
+    STC_CHECK(s->gv, STC_ENOMEM, "solver: out of memory for the GMRES basis");
+    return STC_OK;
+}
+
 static stc_status krylov_alloc(asp_solver *s)
 {
     if (s->kv) return STC_OK;
     size_t n = (size_t)s->ndof;
     s->kv = malloc(4 * n * sizeof *s->kv);
     s->kb = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
-    int m = s->opt.krylov_max < KRYLOV_MAX_CAP ? s->opt.krylov_max : KRYLOV_MAX_CAP;
-    s->gv = malloc((size_t)(m + 2) * n * sizeof *s->gv);
-    STC_CHECK(s->kv && s->kb && s->gv, STC_ENOMEM, "solver: out of memory for the PCG vectors");
+    STC_CHECK(s->kv && s->kb, STC_ENOMEM, "solver: out of memory for the PCG vectors");
     return STC_OK;
 }
 
@@ -1007,6 +981,7 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
      * limit only, 11 + 939 with this rule; a factorization costs ~45) */
     if (s->have_factor && krylov_pays(s) && 2 * s->k_last <= s->opt.krylov_max) {
         STC_CALL(krylov_alloc(s));
+        if (s->skew) STC_CALL(gmres_alloc(s));
         /* one right-hand side: the triangular solves are memory bound and
          * OpenBLAS's threads only spin (3D level 0, loaded machine: 55 ms
          * per solve threaded, 13.5 ms serial) */
@@ -1167,11 +1142,10 @@ static stc_status alloc_state(asp_solver *s)
     s->ubc = calloc(n, sizeof *s->u), s->cvec = calloc(n, sizeof *s->u);
     s->du_scr = malloc(n * sizeof *s->u), s->u0_scr = malloc(n * sizeof *s->u);
     s->b_scr = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
-    s->kb2 = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
     s->skew_r = malloc(n * sizeof *s->u);
     STC_CHECK(s->u && s->u_conv && s->du_last && s->fint && s->sig && s->st_old && s->st_new &&
                   s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->b_scr &&
-                  s->kb2 && s->skew_r,
+                  s->skew_r,
               STC_ENOMEM, "solver: out of memory for %zu DOFs", n);
     return STC_OK;
 }
@@ -1307,7 +1281,7 @@ void asp_solver_destroy(asp_solver **sp)
     if (s->L) cholmod_free_factor(&s->L, &s->cc);
     if (s->K) cholmod_free_sparse(&s->K, &s->cc);
     free(s->kv), cholmod_free_dense(&s->kb, &s->cc), cholmod_free_dense(&s->kx, &s->cc);
-    cholmod_free_dense(&s->kb2, &s->cc), free(s->skew_r);
+    free(s->skew_r);
     free(s->du_scr), free(s->u0_scr), cholmod_free_dense(&s->b_scr, &s->cc);
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
@@ -1333,7 +1307,6 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->time_assembly_s = s->t_asm;
     info->time_factorize_s = s->t_fact;
     info->time_pcg_s = s->t_pcg;
-    info->shifted_factorizations = s->n_shifted;
 }
 
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y)

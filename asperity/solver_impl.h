@@ -47,7 +47,6 @@ struct asp_solver {
                              the midpoint return's, j2.c); all zero under radial return */
     double *Kd;           /* [nnz(K)] symmetric part of the tangent minus K (same) */
     int skew;             /* Kk or Kd is not zero: K is not the tangent */
-    int n_shifted;        /* factorizations that needed a diagonal shift */
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
     int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
@@ -62,7 +61,6 @@ struct asp_solver {
     double *kv;           /* [4][ndof] PCG vectors r, z, p, q (lazily allocated) */
     double *gv;           /* GMRES: [krylov_max + 2][ndof] basis and work (lazily) */
     double *skew_r;       /* [ndof] residual of the skew corrections */
-    cholmod_dense *kb2;   /* right-hand side of the skew corrections */
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
     double t_asm, t_fact, t_pcg; /* cumulative wall time: element loop, factorizations, PCG, s */

@@ -115,9 +115,6 @@ typedef struct asp_info {
     /* where the time went since create (wall, s): element loops (tangent and
      * residual), numeric factorizations, PCG iterations (solves + mat-vecs) */
     double time_assembly_s, time_factorize_s, time_pcg_s;
-    int shifted_factorizations; /* since create: factorizations of the midpoint
-                                   tangent's symmetric part that needed a
-                                   diagonal shift (asperity/solver.c) */
 } asp_info;
 
 /* Response at one interference. */

@@ -229,7 +229,6 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
     cj_int(j, "increments", r->pt.increments);
     cj_int(j, "newton_iterations", r->pt.newton_iterations);
     cj_int(j, "factorizations", r->pt.factorizations);
-    cj_int(j, "shifted_factorizations", in->shifted_factorizations);
     cj_int(j, "krylov_iterations", r->pt.krylov_iterations);
     cj_int(j, "assemblies", r->pt.assemblies);
     cj_int(j, "active_set_passes", r->pt.active_set_passes);

@@ -179,7 +179,6 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_num(&j, "time_assembly_s", in->time_assembly_s); /* normal step + ramp */
     cj_num(&j, "time_factorize_s", in->time_factorize_s);
     cj_num(&j, "time_pcg_s", in->time_pcg_s);
-    cj_int(&j, "shifted_factorizations", in->shifted_factorizations);
     cj_num(&j, "fields_Q080_Q_over_Q_max", q08); /* null without --out */
     cj_bool(&j, "converged", ok);
     cj_str(&j, "reason", r->reason);
