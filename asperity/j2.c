@@ -98,8 +98,9 @@ static void tangent(const asp_j2 *m, double theta, double beta,
  * the caller, in the degenerate cases: no real root, or an end stress
  * more than 60° from n̂ (a rotation by more than ~120° in one increment;
  * reached at the start of the shear ramp at 48 ωc, where the tangent's
- * 1 / (s_1·n̂) had turned Newton's step into NaN).  Tangent, with M = ∂m/∂s_t, m = s_0 + s_t, P = I - n̂n̂, r = x/|m|,
- * the elastic fraction β (∂β from |s_0| = k) and s_1·ds_1 = 0 for ∂x:
+ * 1 / (s_1·n̂) had turned Newton's step into NaN).  Tangent, with
+ * M = ∂m/∂s_t, m = s_0 + s_t, P = I - n̂n̂, r = x/|m|, the elastic
+ * fraction β (∂β from |s_0| = k) and s_1·ds_1 = 0 for ∂x:
  * ds_1 = [I - r P M - n̂ ⊗ w / (s_1·n̂)] ds_t, w = s_1 - r Mᵀ P s_1,
  * M = (1 + β) I - β Δs ⊗ s_0 / (s_0·Δs); checked against central
  * differences in test_j2. */

@@ -1286,7 +1286,8 @@ void asp_solver_destroy(asp_solver **sp)
     cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
     cholmod_finish(&s->cc);
     asp_mesh_destroy(&s->mesh);
-    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos), free(s->Kk), free(s->Kd), free(s->gv);
+    free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos);
+    free(s->Kk), free(s->Kd), free(s->gv);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
