@@ -304,8 +304,29 @@ def bench(cli):
               "%4d increments, %4d Newton its, %.2f s, %.1f MB"
               % (lev, j[0]["dofs"], 100 * err, 100 * ers, j[-1]["increments"],
                  j[-1]["newton_iterations"], w, m))
+    return_map_table(cli)
     target_curve(cli)
     return 0
+
+
+def return_map_table(cli):
+    """Work against the increment error: P at 60 wc (slip, axisymmetric
+    level 1) for 1..16 load steps per node entry, midpoint rule and radial
+    return, against the midpoint rule at 16 (docs/tangential-step.md 14)."""
+    print("Return map vs load increment: P at 60 wc, slip, level 1, against the midpoint "
+          "rule at 16 steps per node entry")
+    runs = {}
+    for rm in ("midpoint", "radial"):
+        for spn in (1, 2, 4, 8, 16):
+            runs[rm, spn] = run(cli, ["--delta", "60", "--contact", "slip", "--mesh", "1",
+                                      "--return-map", rm, "--steps-per-node", str(spn)])
+    one = lambda j: j[0] if isinstance(j, list) else j  # one delta: an object
+    ref = one(runs["midpoint", 16][0])["P_N"]
+    for (rm, spn), (j, w, m) in runs.items():
+        j = one(j)
+        print("  %-8s %2d steps/node: P = %.5g N (%+.2f %%), %3d increments, %4d Newton its, "
+              "%.2f s" % (rm, spn, j["P_N"], 100 * (j["P_N"] / ref - 1), j["increments"],
+                          j["newton_iterations"], w))
 
 
 def target_curve(cli):
