@@ -67,8 +67,27 @@ class Report:
         self.out("| %s | %s | %s | %s |" % (name, value, limit, st))
 
 
+def converged(f3, f4, f5):
+    """Mesh-converged estimate from the three finest levels (h halves).
+    Richardson when the differences fall with an order in [0.8, 4] (bilinear
+    elements with a nodal contact edge: 1-2 expected); else the three levels
+    do not follow one power law and the finest value is taken, with
+    |f5 - f4| as its uncertainty.  Returns (order or nan,
+    value, uncertainty, how)."""
+    p, fx = richardson(f3, f4, f5)
+    if p == p and 0.8 <= p <= 4.0:
+        return p, fx, abs(fx - f5), "Richardson, levels 3-5"
+    return p, f5, abs(f5 - f4), "finest level (levels 3-5 not asymptotic)"
+
+
 def hertz_section(cli, rep):
     rep.out("## 1. Hertz (R = 10.09 mm, E = 74 GPa, nu = 0.32, slip, elastic)")
+    rep.out("")
+    rep.out("Reference = the mesh-converged answer of the same model, from levels 3-5. The "
+            "contact-radius estimate (three-node edge fit) has an error that oscillates with "
+            "where the nodes sit relative to the edge (a/R = 0.003, levels 1-5: -0.11, +0.05, "
+            "+0.19, +0.12, +0.09 % vs Hertz), so a Richardson extrapolation over the coarse "
+            "levels 1-3 is not in its asymptotic range (order 0.2 there, +1.2 % overshoot).")
     rep.out("")
     rep.out("| check | value | limit | |")
     rep.out("|---|---|---|---|")
@@ -76,29 +95,35 @@ def hertz_section(cli, rep):
         delta = aR * aR * 10.09
         Ph, ah = hertz(10.09, 74000.0, 0.32, delta)
         P, a, rows = [], [], []
-        for lev in (1, 2, 3):
+        for lev in (1, 2, 3, 4, 5):
             j, w, m = run(cli, HERTZ + ["--delta-mm", repr(delta), "--mesh", str(lev)])
             P.append(j["P_N"]), a.append(j["a_mm"]), rows.append((lev, j, w, m))
-        pP, Pinf = richardson(*P)
-        pa, ainf = richardson(*a)
+        pP, Pinf, uP, howP = converged(*P[2:])
+        pa, ainf, ua, howa = converged(*a[2:])
         for lev, j, w, m in rows:
-            rep.out("| a/R = %g, level %d: P = %.6g N (%+.3f %% vs extrapolated, %+.3f %% vs Hertz), "
-                    "a = %.5g mm (%+.3f %% vs extrap.), %d DOFs, %.2f s | | | info |"
+            rep.out("| a/R = %g, level %d: P = %.6g N (%+.3f %% vs reference, %+.3f %% vs Hertz), "
+                    "a = %.5g mm (%+.3f %% vs reference, %+.3f %% vs Hertz), %d DOFs, %.2f s "
+                    "| | | info |"
                     % (aR, lev, j["P_N"], 100 * (j["P_N"] / Pinf - 1), 100 * (j["P_N"] / Ph - 1),
-                       j["a_mm"], 100 * (j["a_mm"] / ainf - 1), j["dofs"], w))
-        rep.check("a/R = %g: observed order of P (levels 1-3)" % aR, "%.2f" % pP, "> 0", pP > 0)
+                       j["a_mm"], 100 * (j["a_mm"] / ainf - 1), 100 * (j["a_mm"] / ah - 1),
+                       j["dofs"], w))
+        rep.out("| a/R = %g: reference P = %.6g N +- %.2g %% (%s, order %.2f); a = %.5g mm "
+                "+- %.2g %% (%s, order %.2f) | | | info |"
+                % (aR, Pinf, 100 * uP / Pinf, howP, pP, ainf, 100 * ua / ainf, howa, pa))
+        p13, _ = richardson(*P[:3])
+        rep.check("a/R = %g: observed order of P (levels 1-3)" % aR, "%.2f" % p13, "> 0", p13 > 0)
         rep.check("a/R = %g: level-1 P discretization error" % aR,
                   "%+.3f %%" % (100 * (P[0] / Pinf - 1)), "0.3 %", abs(P[0] / Pinf - 1) < 0.003)
         rep.check("a/R = %g: level-1 a discretization error" % aR,
                   "%+.3f %%" % (100 * (a[0] / ainf - 1)), "1 %", abs(a[0] / ainf - 1) < 0.01)
         lim = 0.005 if aR <= 0.003 else 0.01
-        rep.check("a/R = %g: extrapolated P vs Hertz" % aR, "%+.3f %%" % (100 * (Pinf / Ph - 1)),
+        rep.check("a/R = %g: reference P vs Hertz" % aR, "%+.3f %%" % (100 * (Pinf / Ph - 1)),
                   "%g %%" % (100 * lim), abs(Pinf / Ph - 1) < lim)
-        rep.check("a/R = %g: extrapolated a vs Hertz" % aR, "%+.3f %%" % (100 * (ainf / ah - 1)),
+        rep.check("a/R = %g: reference a vs Hertz" % aR, "%+.3f %%" % (100 * (ainf / ah - 1)),
                   "1 %", abs(ainf / ah - 1) < 0.01)
     rep.out("")
     rep.out("The remainder against Hertz grows linearly with a/R (half-space vs hemisphere with "
-            "its base fixed at depth R): see the two extrapolated values above.")
+            "its base fixed at depth R): see the two reference values above.")
     rep.out("")
 
 
