@@ -57,6 +57,7 @@ void asp_shear_options_default(asp_shear_options *o)
     o->max_increments = 200;
     o->keep_fields = 0;
     o->return_map = ASP_RETURN_RADIAL;
+    o->ramp_refine = 1.0;
 }
 
 /* ---- the stick-law springs (called from assemble) ------------------------ */
@@ -455,6 +456,8 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
     STC_CHECK(o->return_map == ASP_RETURN_MIDPOINT || o->return_map == ASP_RETURN_RADIAL,
               STC_EINVAL, "ramp return map = %d: must be 0 (midpoint) or 1 (radial)",
               (int)o->return_map);
+    STC_CHECK(o->ramp_refine >= 1.0 && o->ramp_refine <= 64.0, STC_EINVAL,
+              "ramp refine = %g: must be in [1, 64]", o->ramp_refine);
     STC_CHECK(s->dim == 3, STC_EINVAL,
               "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
     STC_CHECK(!s->shear, STC_EINVAL, "shear: a ramp was already run on this solver");
@@ -556,6 +559,8 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     sp.criterion = o->criterion == ASP_SHEAR_CRIT_STIFFNESS ? ASP_SLIDE_STIFFNESS : ASP_SLIDE_SHEAR;
     sp.alpha = o->alpha;
     sp.max_increments = o->max_increments;
+    sp.bend /= o->ramp_refine;
+    sp.du_max_frac /= o->ramp_refine;
     /* shear criterion: inception when the whole contact is at its shear
      * limit (slipping, or stuck and saturated: mark_saturated) and stays there
      * over the confirmation increments while the tangential stiffness is
@@ -579,6 +584,7 @@ static void fill_result(const ramp *r, asp_slide *det, asp_shear_result *res)
     res->mu_s = sr.mu_s;
     res->mu_s_preload = sr.mu_s_preload;
     res->slip_frac = sr.slip_frac;
+    res->KT_after = sr.KT_after;
     res->index = sr.index;
     res->increments = sr.increments;
     res->converged = sr.state == ASP_SLIDE_INCEPTION;

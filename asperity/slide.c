@@ -183,6 +183,9 @@ static asp_slide_state finish(asp_slide *d, asp_slide_state st, int i, const cha
     r->mu_s_preload = r->Q_max / d->su.P0;
     r->slip_frac = d->frac[i];
     r->KT_ratio = i >= 1 && d->KT1 != 0.0 ? KT(d, i) / d->KT1 : 1.0;
+    int l = d->n - 1;
+    r->KT_after = l > i && d->KT1 != 0.0
+                      ? (d->Q[l] - d->Q[i]) / (d->ux[l] - d->ux[i]) / d->KT1 : r->KT_ratio;
     r->n_contact = d->nc[i];
     snprintf(r->reason, sizeof r->reason, fmt, v);
     return st;
@@ -236,10 +239,14 @@ static asp_slide_state evaluate(asp_slide *d)
                           "stiffness criterion: KT_i/KT_1 <= alpha = %g (BKE 2007)", p->alpha);
     } else {
         int i = shear_inception(d);
-        if (i >= 0)
+        if (i >= 0 && (d->Q[last] - d->Q[i]) / (d->ux[last] - d->ux[i]) <= p->flat_tol * d->KT1)
             return finish(d, ASP_SLIDE_INCEPTION, i,
                           "shear criterion: whole contact at its shear limit (fraction >= "
                           "1 - %g) and Q stopped rising (WSP 2012)", p->slip_tol);
+        if (i >= 0) /* full_tol > flat_tol: see KT_after */
+            return finish(d, ASP_SLIDE_INCEPTION, i,
+                          "shear criterion: whole contact at its shear limit (fraction >= "
+                          "1 - %g), Q still rising past it (WSP 2012; KT_after)", p->slip_tol);
         if ((i = plastic_plateau(d)) >= 0)
             return finish(d, ASP_SLIDE_INCEPTION, i,
                           "Q stopped rising (plastic plateau) with only %.3f of the contact "

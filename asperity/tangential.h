@@ -166,6 +166,9 @@ typedef struct asp_slide_result {
     double mu_s_preload; /* Q_max / P0 */
     double slip_frac;    /* slipping area fraction there */
     double KT_ratio;     /* KT_i / KT_1 there (secant stiffnesses) */
+    double KT_after;     /* secant (Q_last - Q_i) / (ux_last - ux_i) / KT_1 from
+                            there to the last point pushed (the confirmation
+                            increments); KT_ratio if none */
     int n_contact;       /* contact nodes there */
     int index;           /* index of that point in the ramp (0 = ux = 0) */
     int increments;      /* accepted increments pushed */

@@ -141,6 +141,10 @@ static void test_full_slip_plateau(void **state)
     assert_true(fabs(R.res.Q_max / (tc * M_PI * R.res.a0 * R.res.a0) - 1.0) < 0.03);
     /* the plateau is flat: the last increment changed Q by < 1 % */
     assert_true(fabs(l->Q - R.pts[R.n - 2].Q) < 0.01 * R.res.Q_max);
+    /* and the flat plateau shows in the stiffness left after inception
+     * (measured 0.013; the thin hard coating of docs §15 leaves ~0.2) */
+    printf("# KT/KT_1 after inception %.4f\n", R.res.KT_after);
+    assert_true(fabs(R.res.KT_after) < 0.05);
 }
 
 /* μs = Q_max / P against the WSP fit (issue 4 acceptance 1: 5 %).
@@ -221,6 +225,10 @@ static void test_errors(void **state)
     assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "tau-c = -2"));
     asp_shear_options_default(&so);
+    so.ramp_refine = 0.5;
+    assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "ramp refine = 0.5"));
+    asp_shear_options_default(&so);
     assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "before the ramp"));
     asp_solver_destroy(&s);
@@ -287,6 +295,7 @@ static void test_cli_errors(void **state)
         {"--delta 0.5 --junction rings", "junction = 'rings'"},
         {"--delta 0.5 --ramp-return-map euler", "ramp-return-map = 'euler'"},
         {"--delta 0.5 --return-map euler", "return-map = 'euler'"},
+        {"--delta 0.5 --ramp-refine 0.5", "ramp-refine = '0.5'"},
         {"--delta 0.5 --shear --alpha 2", "alpha = '2'"},
         {"--delta 0.5,1 --shear", "one interference"},
         {"--delta 0.5 --load 2", "--load conflicts"},
@@ -323,6 +332,7 @@ static void test_cli_json(void **state)
                           "\"P_at_slide_N\"", "\"P_preload_N\"", "\"criterion\": \"stiffness\"",
                           "\"tau_c_MPa\"", "\"junction\": \"footprint\"",
                           "\"stick_radius_mm\"", "\"shear_increments\"",
+                          "\"KT_over_KT1_after_slide\"",
                           "\"factorizations\"", "\"converged\": true", "\"reason\"",
                           "\"delta_mm\"", "\"P_N\""};
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)

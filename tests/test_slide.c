@@ -28,7 +28,8 @@ static asp_slide_setup setup(void)
 /* A synthetic ramp: Q, P, slipping area fraction at ux. */
 typedef struct curve {
     int kind;       /* 0 Mindlin, 1 tanh, 2 knee+plateau, 3 softening, 4 linear,
-                       5 knee+plateau with a stuck core (plastic plateau) */
+                       5 knee+plateau with a stuck core (plastic plateau),
+                       6 knee, then still rising at 0.2 of the first slope */
     double Qm, us;  /* force scale (N), displacement scale (mm) */
 } curve;
 
@@ -53,6 +54,10 @@ static void eval(const curve *c, double ux, double *Q, double *P, double *frac)
     case 5:
         *Q = c->Qm * (1.0 - pow(1.0 - fmin(x, 1.0), 3.0));
         *frac = 0.6 * fmin(1.0, x);
+        break;
+    case 6: /* initial slope 3 Qm/us; past the knee 0.6 Qm/us */
+        *Q = c->Qm * (1.0 - pow(1.0 - fmin(x, 1.0), 3.0) + 0.6 * fmax(x - 1.0, 0.0));
+        *frac = fmin(1.0, x);
         break;
     case 3:
         *Q = c->Qm * x * exp(1.0 - x);
@@ -200,6 +205,30 @@ static void test_plastic_plateau(void **state)
     assert_non_null(strstr(o.r.reason, "plastic plateau"));
     assert_true(fabs(o.r.Q_max / c.Qm - 1.0) < 1e-3);
     assert_true(o.ux_last < 1.5 * c.us);
+}
+
+/* KT_after, the stiffness left past inception: ~0 on a flat plateau; on a
+ * Q that still rises once the whole contact is at its limit (the solver's
+ * full_tol 0.5, shear.c) it reads that slope, 0.2 KT_1 here. */
+static void test_rising_after(void **state)
+{
+    (void)state;
+    asp_slide_setup su = setup();
+    asp_slide_params p;
+    asp_slide_params_default(&p);
+    p.full_tol = 0.5;
+    curve c = {2, 0.7 * su.tau_c * M_PI * A * A, 2.0 * asp_slide_ux_elastic(&su)};
+    run_out f = run(&c, &p, c.Qm);
+    c.kind = 6;
+    run_out r = run(&c, &p, c.Qm);
+    printf("stiffness after inception: plateau %.4f, rising %.4f (%s)\n", f.r.KT_after,
+           r.r.KT_after, r.r.reason);
+    assert_int_equal(f.r.state, ASP_SLIDE_INCEPTION);
+    assert_int_equal(r.r.state, ASP_SLIDE_INCEPTION);
+    assert_true(fabs(f.r.KT_after) < 0.01);
+    assert_true(fabs(r.r.KT_after - 0.2) < 0.02);
+    assert_non_null(strstr(f.r.reason, "stopped rising"));
+    assert_non_null(strstr(r.r.reason, "still rising"));
 }
 
 static void test_softening(void **state)
@@ -355,7 +384,7 @@ int main(void)
         cmocka_unit_test(test_mindlin_shear),     cmocka_unit_test(test_mindlin_stiffness),
         cmocka_unit_test(test_asymptotic),        cmocka_unit_test(test_plateau),
         cmocka_unit_test(test_plastic_plateau),   cmocka_unit_test(test_softening),
-        cmocka_unit_test(test_gives_up),
+        cmocka_unit_test(test_gives_up),          cmocka_unit_test(test_rising_after),
         cmocka_unit_test(test_invalid),           cmocka_unit_test(test_find_delta_hertz),
         cmocka_unit_test(test_find_delta_kink),   cmocka_unit_test(test_find_delta_failures),
     };

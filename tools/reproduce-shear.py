@@ -227,8 +227,10 @@ def fig416(rn, out):
     fn = os.path.join(out, "fig4_16_20.csv")
     with open(fn, "w") as f:
         f.write("t_over_R,E_ratio,delta_over_omega_c_su,P_over_Pc_su,Qmax_over_Pc_su,mu_s,"
-                "ux_at_slide_over_omega_c_su,wall_s\n")
-        print("Figs. 4.16-4.20: Qmax/Pc_su (mu_s) per t/R, Eco/Esu, delta/omega_c_su")
+                "ux_at_slide_over_omega_c_su,KT_after_over_KT1,wall_s\n")
+        print("Figs. 4.16-4.20: Qmax/Pc_su (mu_s) per t/R, Eco/Esu, delta/omega_c_su; "
+              "* = Q still rising past inception (KT/KT1 after it > 0.05): mu_s there "
+              "depends on where inception is declared (docs/tangential-step.md 15)")
         for tr in GRID_TR:
             for er in GRID_ER:
                 line = []
@@ -237,10 +239,13 @@ def fig416(rn, out):
                     if not r:
                         line.append("   (failed)      ")
                         continue
-                    f.write("%g,%g,%g,%.6g,%.6g,%.6g,%.6g,%.3g\n" % (
+                    kt = r.get("KT_over_KT1_after_slide")
+                    f.write("%g,%g,%g,%.6g,%.6g,%.6g,%.6g,%s,%.3g\n" % (
                         tr, er, d, r["P_over_P_c"], r["Q_max_over_P_c"], r["mu_s"],
-                        r["ux_at_slide_over_omega_c"], total_wall(r)))
-                    line.append("%8.3f (%.3f)" % (r["Q_max_over_P_c"], r["mu_s"]))
+                        r["ux_at_slide_over_omega_c"], "%.4g" % kt if kt is not None else "",
+                        total_wall(r)))
+                    line.append("%8.3f (%.3f)%s" % (r["Q_max_over_P_c"], r["mu_s"],
+                                                    "*" if kt is not None and kt > 0.05 else " "))
                 print("  t/R %-5g Eco/Esu %g: %s" % (tr, er, "  ".join(line)))
     spec6_checks(rn)
 

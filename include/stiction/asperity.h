@@ -214,6 +214,9 @@ typedef struct asp_shear_options {
                                   ASP_RETURN_RADIAL: with the ramp's long
                                   increments the midpoint rule can be far off
                                   (docs/tangential-step.md §14) */
+    double ramp_refine;  /* divides the ramp increment targets (bend, the largest
+                            increment), for increment-convergence studies;
+                            in [1, 64], default 1 */
 } asp_shear_options;
 
 void asp_shear_options_default(asp_shear_options *o);
@@ -245,6 +248,12 @@ typedef struct asp_shear_result {
     double mu_s_preload; /* Q_max / P0 */
     double A_stick;      /* stick area at inception, mm² */
     double slip_frac;    /* at inception: area fraction at its shear limit (limit_frac) */
+    double KT_after;     /* secant tangential stiffness / KT_1 from inception to the
+                            end of the ramp (the confirmation increments).  Near 0:
+                            Q is flat past inception.  Well above 0: Q was still
+                            rising (stuck but saturated nodes, P relaxing), so μs
+                            depends on where inception is declared, not only on
+                            the Q(ux) curve (docs/tangential-step.md §15) */
     double tau_c;        /* τc used, MPa */
     double a0;           /* contact radius after the normal step, mm */
     asp_shear_criterion criterion;

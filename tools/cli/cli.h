@@ -110,7 +110,10 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
          "the nodes that touch; the two bracket the mesh-converged answer"},                 \
         {"ramp-return-map", "radial|midpoint",                                                 \
          "plastic integration during the ramp (default radial: the midpoint rule, used in "   \
-         "the normal step, can be far off over the ramp's long increments)"}
+         "the normal step, can be far off over the ramp's long increments)"},                \
+        {"ramp-refine", "K",                                                                   \
+         "divide the ramp increment targets by K in [1, 64] (increment-convergence studies; " \
+         "default 1)"}
 
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;

@@ -47,6 +47,11 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
         else if (!strcmp(value, "midpoint")) sa->so.return_map = ASP_RETURN_MIDPOINT;
         else return bad(key, value, "radial or midpoint");
         sa->on = 1;
+    } else if (!strcmp(key, "ramp-refine")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 1.0 && v <= 64.0))
+            return bad(key, value, "a factor in [1, 64] dividing the ramp increment targets");
+        sa->so.ramp_refine = v;
+        sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
             return bad(key, value, "a number in (0, 1) (stiffness ratio KT_i/KT_1; BKE: 0.1)");
@@ -160,10 +165,11 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
         cj_num(&j, "P_at_slide_N", r->P_slide);
         cj_num(&j, "stick_radius_mm", sqrt(r->A_stick / M_PI));
         cj_num(&j, "slip_fraction_at_slide", r->slip_frac);
+        cj_num(&j, "KT_over_KT1_after_slide", r->KT_after);
     } else {
         const char *k[] = {"Q_max_N", "Q_max_over_P_c", "mu_s", "mu_s_preload", "ux_at_slide_mm",
                            "ux_at_slide_over_omega_c", "P_at_slide_N", "stick_radius_mm",
-                           "slip_fraction_at_slide"};
+                           "slip_fraction_at_slide", "KT_over_KT1_after_slide"};
         for (size_t i = 0; i < sizeof k / sizeof *k; i++) cj_null(&j, k[i]);
     }
     cj_num(&j, "P_preload_N", r->P0);
