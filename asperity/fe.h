@@ -59,6 +59,10 @@ typedef struct asp_mesh_spec {
                        level log2(n / 6) also scales the shells); 0 = 6 2^level */
     int coarsen;    /* 3D: 2:1 angular coarsenings of the shells with hanging
                        nodes (mesh3d.c); 0 = the default count, < 0 = none */
+    double a_min;   /* 3D: smallest contact radius to resolve, mm: the core box is
+                       sized to it and the shells, whose sizes grow in proportion
+                       to the distance, carry n elements across every larger
+                       contact; 0 (or >= a_max) = core sized to a_max */
 } asp_mesh_spec;
 
 stc_status asp_mesh_axisym(const asp_mesh_spec *spec, asp_mesh **out); /* returns new */

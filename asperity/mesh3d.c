@@ -119,6 +119,7 @@ static const double M3_COARSEN_T[M3_NCOARSEN] = {6.0, 24.0};
 typedef struct m3_plan {
     double Rp, R, a;   /* outer radius R', substrate radius R, a_max, mm */
     double c, cw;      /* core half-width and depth */
+    double c_ref;      /* the a_max core's half-width (coarsening thresholds) */
     double W, ri;      /* interface sphere: centre (0, 0, W), radius ri */
     double kappa;      /* rate at which the shells round off (ray_beta) */
     double zs;         /* skeleton depth max(0, c_w - c) (skel_pos) */
@@ -215,18 +216,20 @@ static stc_status plan_make(const asp_mesh_spec *spec, m3_plan *p)
     p->a = spec->a_max;
     /* a fractional level between the integer ones scales every size alike */
     double lv = spec->n > 0.0 ? log2(spec->n / M3_N0) : spec->level;
-    double n = M3_N0 * pow(2.0, lv), h = spec->a_max / n, sl = pow(sqrt(2.0), lv);
+    double a_core = spec->a_min > 0.0 && spec->a_min < spec->a_max ? spec->a_min : spec->a_max;
+    double n = M3_N0 * pow(2.0, lv), h = a_core / n, sl = pow(sqrt(2.0), lv);
     double q = 1.0 + 0.3 / sl;                             /* core row growth */
     double qs = M3_SHELL_Q / sl;                           /* q_s - 1 at the core */
     double hmax = 0.15 * p->Rp / sl;
     double to_ref = 1.0 / (2.0 * p->Rp); /* lengths near P scale by 2 R' */
     p->m = (int)ceil(M3_FINE_LAT * n - 1e-9);
     p->c = p->m * h * to_ref;
+    p->c_ref = p->c * spec->a_max / a_core;
     p->coated = spec->t > 0.0;
     enum { CAP = 4096 };
     p->d = malloc(CAP * sizeof *p->d);
     STC_CHECK(p->d, STC_ENOMEM, "mesh3d: out of memory");
-    p->L = make_rows(h, spec->t, M3_FINE_DEP * spec->a_max, q, p->d, CAP, &p->lint);
+    p->L = make_rows(h, spec->t, M3_FINE_DEP * a_core, q, p->d, CAP, &p->lint);
     STC_CHECK(p->L > 0, STC_EINVAL, "mesh3d: t/a_max = %g needs too many rows",
               spec->t / spec->a_max);
     for (int l = 0; l <= p->L; l++) p->d[l] *= to_ref;
@@ -251,7 +254,7 @@ static stc_status plan_make(const asp_mesh_spec *spec, m3_plan *p)
     int S = 0;
     while (p->rho[S] < 1.0 && S < capS) {
         double r = p->rho[S];
-        double step = fmin(r * qs * pow(r / p->c, M3_SHELL_G),
+        double step = fmin(r * qs * pow(fmax(r / p->c_ref, 1.0), M3_SHELL_G),
                            hmax * (1.0 + r * r) / (2.0 * p->Rp));
         p->rho[++S] = r + step;
     }
@@ -438,7 +441,7 @@ static void plan_levels(m3_plan *p)
     p->lev[0] = 0;
     for (int k = 1; k <= p->S; k++) {
         int g = 0;
-        while (g < p->G && p->rho[k] >= M3_COARSEN_T[g] * p->c) g++;
+        while (g < p->G && p->rho[k] >= M3_COARSEN_T[g] * p->c_ref) g++;
         if (g > p->lev[k - 1] + 1) g = p->lev[k - 1] + 1;
         if (k >= p->S - 1) g = p->lev[k - 1];
         p->lev[k] = g;

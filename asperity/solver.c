@@ -119,6 +119,7 @@ void asp_options_default(asp_options *o)
     o->threads = 0;
     o->surface_layers = -1;
     o->shell_coarsen = -1;
+    o->grade_3d = 0;
 }
 
 static stc_status check_options(const asp_options *o)
@@ -130,6 +131,8 @@ static stc_status check_options(const asp_options *o)
                   (o->elements_per_contact >= 3.0 && o->elements_per_contact <= 384.0),
               STC_EINVAL, "elements per contact = %g: must be 0 (from the level) or in [3, 384]",
               o->elements_per_contact);
+    STC_CHECK(o->grade_3d == 0 || o->grade_3d == 1, STC_EINVAL,
+              "grade-3d = %d: must be 0 or 1", o->grade_3d);
     STC_CHECK(o->shell_coarsen >= -1 && o->shell_coarsen <= 2, STC_EINVAL,
               "shell coarsenings = %d: must be -1 (default) or in [0, 2]", o->shell_coarsen);
     STC_CHECK(o->surface_layers >= -1 && o->surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS,
@@ -1204,11 +1207,16 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
                                       : base + (ASP_MESH_DEFAULT - s->opt.mesh_level);
     /* asp_mesh_spec.coarsen: 0 = default, < 0 = none */
     int crs = s->opt.shell_coarsen < 0 ? 0 : s->opt.shell_coarsen == 0 ? -1 : s->opt.shell_coarsen;
-    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->level, s->opt.elements_per_contact, crs};
+    asp_mesh_spec spec = {s->par.R, t, s->a_max, s->level, s->opt.elements_per_contact, crs, 0.0};
     double n = s->opt.elements_per_contact > 0.0 ? s->opt.elements_per_contact
                                                  : 6.0 * (1 << s->level);
     if (s->opt.geom == ASP_GEOM_3D) {
-        s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
+        if (s->opt.grade_3d && s->a_min < s->a_max && t <= 0.8 * s->a_min) {
+            spec.a_min = s->a_min;
+            s->graded = 1;
+        } else {
+            s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
+        }
         STC_CALL(asp_mesh_half3d(&spec, &s->mesh));
     } else {
         STC_CALL(asp_mesh_axisym_nl(&spec, s->a_min, n, asp_surface_layers(&s->opt), &s->mesh));
@@ -1368,6 +1376,7 @@ static double step_limit(const asp_solver *s, int *aimed)
      * 0.4 % of the finest mesh at level 1) */
     double a = fmin(fmax(s->pt.a, 0.0), sqrt(2.0 * s->Rp * s->delta));
     double hc = a < s->a_min ? s->h0 : s->h;
+    if (s->graded) hc = fmin(fmax(a * s->h / s->a_max, s->h0), s->h); /* shells: h ∝ a */
     double spn = steps_per_node(s);
     if (!elastic) lim = fmin(lim, a * hc / (spn * s->Rp));
     /* stick: the contact grows by at most about one surface element */

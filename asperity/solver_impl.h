@@ -107,6 +107,7 @@ struct asp_solver {
     double pt0_a;                 /* contact radius at the start of the ramp, mm */
     asp_foot_line fline[3];       /* nodes on the lines +x, -x, +y (asp_contact_footprint) */
     double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
+    int graded;                   /* 3D: core sized to a_min, shells h ∝ distance */
     double rate_sat;              /* d|t|/dux below which a stuck node is saturated, MPa/mm */
     unsigned char *cyield;        /* [ncand] 1: stuck but saturated in the last increment
                                      (the junction shears in the body; shear.c) */

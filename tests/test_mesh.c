@@ -89,7 +89,7 @@ static void test_uncoated_levels(void **state)
     (void)state;
     int n[4];
     for (int l = 0; l < 4; l++) {
-        asp_mesh_spec s = {10.0, 0.0, 0.1, l, 0.0, 0};
+        asp_mesh_spec s = {10.0, 0.0, 0.1, l, 0.0, 0, 0.0};
         check_mesh(&s, &n[l]);
         if (l) assert_true(n[l] > 2 * n[l - 1]); /* refinement adds elements */
     }
@@ -99,8 +99,9 @@ static void test_coated(void **state)
 {
     (void)state;
     int n;
-    asp_mesh_spec thin = {10.0, 0.01, 0.18, 1, 0.0, 0}, thick = {10.0, 0.5, 0.1, 1, 0.0, 0};
-    asp_mesh_spec mid = {10.0, 0.25, 0.05, 0, 0.0, 0};
+    asp_mesh_spec thin = {10.0, 0.01, 0.18, 1, 0.0, 0, 0.0};
+    asp_mesh_spec thick = {10.0, 0.5, 0.1, 1, 0.0, 0, 0.0};
+    asp_mesh_spec mid = {10.0, 0.25, 0.05, 0, 0.0, 0, 0.0};
     check_mesh(&thin, &n);
     check_mesh(&thick, &n);
     check_mesh(&mid, &n);
@@ -111,7 +112,7 @@ static void test_small_contact(void **state)
     (void)state;
     int n;
     for (double a = 0.002; a < 1.0; a *= 4.0) {
-        asp_mesh_spec s = {10.0, 0.0, a, 1, 0.0, 0};
+        asp_mesh_spec s = {10.0, 0.0, a, 1, 0.0, 0, 0.0};
         check_mesh(&s, &n);
     }
 }
@@ -120,7 +121,7 @@ static void test_invalid(void **state)
 {
     (void)state;
     asp_mesh *m = NULL;
-    asp_mesh_spec s = {10.0, 0.0, -1.0, 1, 0.0, 0};
+    asp_mesh_spec s = {10.0, 0.0, -1.0, 1, 0.0, 0, 0.0};
     assert_int_equal(asp_mesh_axisym(&s, &m), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "a_max = -1"));
     s.a_max = 0.1, s.level = 9;
@@ -136,7 +137,7 @@ static void test_invalid(void **state)
 static void test_elements_per_contact(void **state)
 {
     (void)state;
-    asp_mesh_spec s = {10.0, 0.0, 0.1, 0, 0.0, 0};
+    asp_mesh_spec s = {10.0, 0.0, 0.1, 0, 0.0, 0, 0.0};
     asp_mesh *a = NULL, *b = NULL;
     assert_int_equal(asp_mesh_axisym_graded(&s, 0.02, &a), STC_OK);
     assert_int_equal(asp_mesh_axisym_n(&s, 0.02, 6.0, &b), STC_OK);
@@ -166,7 +167,7 @@ static void test_inverted(void **state)
 {
     (void)state;
     asp_mesh *m = NULL;
-    asp_mesh_spec s = {10.0, 0.0, 0.1, 0, 0.0, 0};
+    asp_mesh_spec s = {10.0, 0.0, 0.1, 0, 0.0, 0, 0.0};
     double w;
     assert_int_equal(asp_mesh_axisym(&s, &m), STC_OK);
     int t = m->conn[1];

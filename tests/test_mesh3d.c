@@ -61,7 +61,7 @@ static double hex_volume(const double X[24])
 
 static asp_mesh *make_c(double t, double a, int level, int coarsen)
 {
-    asp_mesh_spec s = {R, t, a, level, 0.0, coarsen};
+    asp_mesh_spec s = {R, t, a, level, 0.0, coarsen, 0.0};
     asp_mesh *M = NULL;
     stc_status st = asp_mesh_half3d(&s, &M);
     if (st != STC_OK) fail_msg("asp_mesh_half3d: %s", stc_errmsg());
@@ -311,7 +311,7 @@ static void write_vtk(const asp_mesh *M, const char *path)
 static void test_speed_and_dump(void **state)
 {
     (void)state;
-    asp_mesh_spec s = {R, 0.05, 0.1, 1, 0.0, 0};
+    asp_mesh_spec s = {R, 0.05, 0.1, 1, 0.0, 0, 0.0};
     asp_mesh *M = NULL;
     double t0 = now();
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_OK);
@@ -455,12 +455,62 @@ static void test_hanging(void **state)
 
 static void expect_bad(double Rr, double t, double a, int level, const char *needle)
 {
-    asp_mesh_spec s = {Rr, t, a, level, 0.0, 0};
+    asp_mesh_spec s = {Rr, t, a, level, 0.0, 0, 0.0};
     asp_mesh *M = (asp_mesh *)&s; /* must be reset to NULL on failure */
     stc_error_clear();
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_EINVAL);
     assert_null(M);
     if (!strstr(stc_errmsg(), needle)) fail_msg("'%s' lacks '%s'", stc_errmsg(), needle);
+}
+
+/* Lengths of the surface edges (both ends ASP_NODE_TOP) whose midpoint lies
+ * at lateral distance [r0, r1] from the axis: min and max. */
+static void top_edges(const asp_mesh *M, double r0, double r1, double *emin, double *emax)
+{
+    *emin = 1e30, *emax = 0.0;
+    for (int e = 0; e < M->nelem; e++) {
+        const int *c = M->conn + 8 * e;
+        for (int k = 0; k < 8; k++) {
+            int n0 = c[k], n1 = c[(k & 4) | ((k + 1) & 3)];
+            if (!(M->flags[n0] & M->flags[n1] & ASP_NODE_TOP)) continue;
+            const double *x0 = M->x + 3 * n0, *x1 = M->x + 3 * n1;
+            double rm = hypot(0.5 * (x0[0] + x1[0]), 0.5 * (x0[1] + x1[1]));
+            if (rm < r0 || rm > r1) continue;
+            double d[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]}, L = norm3(d);
+            *emin = fmin(*emin, L), *emax = fmax(*emax, L);
+        }
+    }
+}
+
+/* asp_mesh_spec.a_min (the graded core of a 3D load curve): the surface
+ * edges near the axis are ~a_min/6, those around r = a_max ~a_max/6 (the
+ * shells grow in proportion to the distance), the quality holds, and
+ * a_min = 0 or >= a_max gives exactly the uniform-core mesh. */
+static void test_graded_core(void **state)
+{
+    (void)state;
+    double a = 0.3, amin = 0.03;
+    asp_mesh_spec s = {R, 0.0, a, 0, 0.0, 0, amin};
+    asp_mesh *G = NULL, *U = NULL, *U2 = NULL;
+    assert_int_equal(asp_mesh_half3d(&s, &G), STC_OK);
+    s.a_min = 0.0;
+    assert_int_equal(asp_mesh_half3d(&s, &U), STC_OK);
+    s.a_min = 2.0 * a;
+    assert_int_equal(asp_mesh_half3d(&s, &U2), STC_OK);
+    assert_int_equal(U->nnode, U2->nnode);
+    for (int i = 0; i < 3 * U->nnode; i++) assert_true(U->x[i] == U2->x[i]);
+    double c0, c1, r0, r1, q;
+    top_edges(G, 0.0, 0.5 * amin, &c0, &c1);
+    top_edges(G, 0.9 * a, 1.1 * a, &r0, &r1);
+    assert_int_equal(asp_mesh_quality(G, &q), STC_OK);
+    printf("graded core a_min = %g, a_max = %g: %d nodes (uniform core %d); edges near the "
+           "axis [%.2f, %.2f] a_min/6, at r = a_max [%.2f, %.2f] a_max/6; worst quality %.3f\n",
+           amin, a, G->nnode, U->nnode, c0 / (amin / 6), c1 / (amin / 6), r0 / (a / 6),
+           r1 / (a / 6), q);
+    assert_true(c0 > 0.7 * amin / 6 && c1 < 1.3 * amin / 6);
+    assert_true(r0 > 0.4 * a / 6 && r1 < 1.6 * a / 6);
+    assert_true(q > 0.3);
+    asp_mesh_destroy(&G), asp_mesh_destroy(&U), asp_mesh_destroy(&U2);
 }
 
 static void test_invalid(void **state)
@@ -471,7 +521,7 @@ static void test_invalid(void **state)
     expect_bad(10.0, 0.0, 0.0, 1, "a_max = 0");
     expect_bad(10.0, 0.0, 0.1, -1, "level = -1");
     expect_bad(10.0, 0.0, 8.0, 1, "does not fit"); /* a_max = 6 fits since the 1.0 a_max core */
-    asp_mesh_spec s = {10.0, 0.0, 0.1, 1, 0.0, 3};
+    asp_mesh_spec s = {10.0, 0.0, 0.1, 1, 0.0, 3, 0.0};
     asp_mesh *M = NULL;
     assert_int_equal(asp_mesh_half3d(&s, &M), STC_EINVAL);
     assert_null(M);
@@ -490,6 +540,7 @@ int main(void)
         cmocka_unit_test(test_speed_and_dump),
         cmocka_unit_test(test_uncoarsened),
         cmocka_unit_test(test_hanging),
+        cmocka_unit_test(test_graded_core),
         cmocka_unit_test(test_invalid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

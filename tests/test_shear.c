@@ -295,6 +295,7 @@ static void test_cli_errors(void **state)
         {"--delta 0.5 --junction rings", "junction = 'rings'"},
         {"--delta 0.5 --ramp-return-map euler", "ramp-return-map = 'euler'"},
         {"--delta 0.5 --return-map euler", "return-map = 'euler'"},
+        {"--delta 0.5 --grade-3d=perhaps", "grade-3d = 'perhaps'"},
         {"--delta 0.5 --ramp-refine 0.5", "ramp-refine = '0.5'"},
         {"--delta 0.5 --shear --alpha 2", "alpha = '2'"},
         {"--delta 0.5,1 --shear", "one interference"},

@@ -22,7 +22,7 @@ static asp_mesh *make(int dim, double t, int level)
     asp_mesh *m = NULL;
     /* uncoarsened shells: the whole-hemisphere sums below need every
      * surface face on the sphere (hanging nodes sit on flat coarse faces) */
-    asp_mesh_spec s = {R, t, A_MAX, level, 0.0, -1};
+    asp_mesh_spec s = {R, t, A_MAX, level, 0.0, -1, 0.0};
     assert_int_equal(dim == 2 ? asp_mesh_axisym(&s, &m) : asp_mesh_half3d(&s, &m), STC_OK);
     return m;
 }

@@ -101,6 +101,17 @@ typedef struct asp_options {
                                 asperity/mesh3d.c); default -1 */
     asp_return_map return_map; /* plastic integration over an increment;
                                   default ASP_RETURN_MIDPOINT */
+    int grade_3d;            /* 3D: 1 = size the core box to the smallest contact a
+                                load curve resolves (at 0.8 ωc, as the axisymmetric
+                                mesh) and let the shells grow in proportion to the
+                                distance out to a_max, so every contact radius of
+                                the curve gets about n elements across.  Needs a
+                                coating within the small core's depth (t <= 0.8
+                                a_min), else the uniform core is kept.  Slip curve
+                                1:60:12, level 0: within 0.40 % of the converged
+                                curve at every point (uniform core: -6 % at 6 ωc),
+                                2.1x the DOFs (docs/tangential-step.md §17);
+                                default 0 */
 } asp_options;
 
 void asp_options_default(asp_options *o);

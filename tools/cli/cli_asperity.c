@@ -39,6 +39,9 @@ static const cli_opt opts[] = {
     {"shell-coarsen", "N",
      "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
      "(default 1: from 6 a_max on)"},
+    {"grade-3d", NULL,
+     "3D load curve: core sized to the smallest contact, shells growing with the distance "
+     "(n elements across every contact of the curve; 2x the DOFs)"},
     {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
     {"krylov", "off|auto|on",
      "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
@@ -111,6 +114,11 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 3.0 && v <= 384.0))
             return bad(key, value, "a number in [3, 384]");
         a->o.elements_per_contact = v;
+    } else if (!strcmp(key, "grade-3d")) {
+        int f;
+        stc_status st = cli_parse_flag(key, value, &f);
+        if (st) return st;
+        a->o.grade_3d = f;
     } else if (!strcmp(key, "shell-coarsen")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 2)
