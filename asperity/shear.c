@@ -461,6 +461,9 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
     STC_CHECK(s->dim == 3, STC_EINVAL,
               "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
     STC_CHECK(!s->shear, STC_EINVAL, "shear: a ramp was already run on this solver");
+    STC_CHECK(!s->graded, STC_EINVAL,
+              "shear: grade-3d (the graded 3D core) is not validated for the tangential step "
+              "(penalty size, footprint lines); run the ramp without it");
     STC_CHECK(s->delta > 0.0 && s->pt.n_contact > 0, STC_EINVAL,
               "shear: delta = %g mm: load the flat (asp_solver_load) before the ramp", s->delta);
     return STC_OK;

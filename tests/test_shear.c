@@ -232,6 +232,13 @@ static void test_errors(void **state)
     assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "before the ramp"));
     asp_solver_destroy(&s);
+    /* the graded 3D core (a load curve's mesh, here to ~20 ωc) is refused
+     * for the ramp */
+    o.grade_3d = 1;
+    assert_int_equal(asp_solver_create(&p, &o, 2e-2, &s), STC_OK);
+    assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "grade-3d"));
+    asp_solver_destroy(&s);
 }
 
 /* ---- load control ---------------------------------------------------------- */

@@ -101,7 +101,8 @@ typedef struct asp_options {
                                 asperity/mesh3d.c); default -1 */
     asp_return_map return_map; /* plastic integration over an increment;
                                   default ASP_RETURN_MIDPOINT */
-    int grade_3d;            /* 3D: 1 = size the core box to the smallest contact a
+    int grade_3d;            /* 3D, normal loading only (refused by the shear ramp):
+                                1 = size the core box to the smallest contact a
                                 load curve resolves (at 0.8 ωc, as the axisymmetric
                                 mesh) and let the shells grow in proportion to the
                                 distance out to a_max, so every contact radius of
