@@ -24,8 +24,8 @@
  * so a reversal within one increment stays smooth).  Measured: the load
  * at 60 ωc moved by 0.13 % from 4 to 16 steps per node entry.  The
  * tangent is not symmetric (n̂ ⊗ ∂x/∂ε is not its transpose); the solver
- * factorizes its symmetric part and keeps Newton quadratic with the skew
- * part (solver.c: skew_correct, gmres).
+ * factorizes an SPD approximation of it (asp_j2_update_pc's Dp) and keeps
+ * Newton quadratic with the remainder (solver.c: skew_correct, gmres).
  *
  * Voigt order [xx, yy, zz, xy, yz, zx], engineering shear strains
  * γ = 2ε.  Stress shear slots hold tensor components.  Hence:

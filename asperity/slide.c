@@ -154,10 +154,13 @@ void asp_slide_destroy(asp_slide **d)
 }
 
 /* Secant stiffness of increment i (from point i-1 to i), i >= 1. */
-static double KT(const asp_slide *d, int i)
+/* Secant tangential stiffness between ramp points i < l. */
+static double secant(const asp_slide *d, int i, int l)
 {
-    return (d->Q[i] - d->Q[i - 1]) / (d->ux[i] - d->ux[i - 1]);
+    return (d->Q[l] - d->Q[i]) / (d->ux[l] - d->ux[i]);
 }
+
+static double KT(const asp_slide *d, int i) { return secant(d, i - 1, i); }
 
 static int peak_index(const asp_slide *d, int upto)
 {
@@ -184,8 +187,7 @@ static asp_slide_state finish(asp_slide *d, asp_slide_state st, int i, const cha
     r->slip_frac = d->frac[i];
     r->KT_ratio = i >= 1 && d->KT1 != 0.0 ? KT(d, i) / d->KT1 : 1.0;
     int l = d->n - 1;
-    r->KT_after = l > i && d->KT1 != 0.0
-                      ? (d->Q[l] - d->Q[i]) / (d->ux[l] - d->ux[i]) / d->KT1 : r->KT_ratio;
+    r->KT_after = l > i && d->KT1 != 0.0 ? secant(d, i, l) / d->KT1 : r->KT_ratio;
     r->n_contact = d->nc[i];
     snprintf(r->reason, sizeof r->reason, fmt, v);
     return st;
@@ -239,7 +241,7 @@ static asp_slide_state evaluate(asp_slide *d)
                           "stiffness criterion: KT_i/KT_1 <= alpha = %g (BKE 2007)", p->alpha);
     } else {
         int i = shear_inception(d);
-        if (i >= 0 && (d->Q[last] - d->Q[i]) / (d->ux[last] - d->ux[i]) <= p->flat_tol * d->KT1)
+        if (i >= 0 && secant(d, i, last) <= p->flat_tol * d->KT1)
             return finish(d, ASP_SLIDE_INCEPTION, i,
                           "shear criterion: whole contact at its shear limit (fraction >= "
                           "1 - %g) and Q stopped rising (WSP 2012)", p->slip_tol);

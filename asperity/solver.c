@@ -1375,8 +1375,10 @@ static double step_limit(const asp_solver *s, int *aimed)
      * Newton is slow, biased it by -1.5 % on mesh level 0; with 4: within
      * 0.4 % of the finest mesh at level 1) */
     double a = fmin(fmax(s->pt.a, 0.0), sqrt(2.0 * s->Rp * s->delta));
-    double hc = a < s->a_min ? s->h0 : s->h;
-    if (s->graded) hc = fmin(fmax(a * s->h / s->a_max, s->h0), s->h); /* shells: h ∝ a */
+    /* element size at the contact edge: two zones (axisymmetric), or
+     * growing with the distance (graded 3D shells) */
+    double hc = s->graded ? fmin(fmax(a * s->h / s->a_max, s->h0), s->h)
+                          : a < s->a_min ? s->h0 : s->h;
     double spn = steps_per_node(s);
     if (!elastic) lim = fmin(lim, a * hc / (spn * s->Rp));
     /* stick: the contact grows by at most about one surface element */

@@ -5,11 +5,12 @@
 # t/R = 0.025, Eco/Esu = 2, stick; the 3D half model's Hertz point (levels
 # 0-1); the slip load curve to 60 wc (levels 0-2 and 3D level 0), raw and
 # sawtooth-free (P_smooth) load against the finest level; P at 60 wc against
-# the load increment for the midpoint rule and the radial return; the issue-3 target
-# curve (1:60:12 wc, P_smooth within 0.5 % of level 3 in < 1 s) for levels
-# 0-2 and --elements-per-contact 8, its robustness for n = 6..12 (error,
-# mid-curve bias, run and CPU time), and the same curve in 3D (level 0,
-# automatic and 4 steps per node entry: < 30 s target); then the Newton-Krylov table
+# the load increment for the midpoint rule and the radial return; the issue-3
+# target curve (1:60:12 wc, P_smooth within 0.5 % of level 3 in < 1 s) for
+# levels 0-2 and --elements-per-contact 8, its robustness for n = 6..12
+# (error, mid-curve bias, run and CPU time), and the same curve in 3D (level
+# 0, automatic and 4 steps per node entry, and with --grade-3d: < 30 s
+# target); then the Newton-Krylov table
 # (tools/bench-krylov.py).
 # Called as: 20-asperity.sh CLI RESULTS_DIR.
 set -eu

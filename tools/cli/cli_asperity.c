@@ -140,9 +140,7 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
             return bad(key, value, "an integer in [1, 1000]");
         a->o.krylov_max = (int)l;
     } else if (!strcmp(key, "return-map")) {
-        if (!strcmp(value, "midpoint")) a->o.return_map = ASP_RETURN_MIDPOINT;
-        else if (!strcmp(value, "radial")) a->o.return_map = ASP_RETURN_RADIAL;
-        else return bad(key, value, "midpoint or radial");
+        return cli_parse_return_map(key, value, &a->o.return_map);
     } else if (!strcmp(key, "steps-per-node")) {
         double v;
         if (!strcmp(value, "auto")) a->o.steps_per_node = 0.0;

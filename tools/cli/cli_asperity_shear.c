@@ -18,6 +18,14 @@ static stc_status bad(const char *key, const char *value, const char *what)
     return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s", key, value, what);
 }
 
+stc_status cli_parse_return_map(const char *key, const char *value, asp_return_map *rm)
+{
+    if (!strcmp(value, "midpoint")) *rm = ASP_RETURN_MIDPOINT;
+    else if (!strcmp(value, "radial")) *rm = ASP_RETURN_RADIAL;
+    else return bad(key, value, "midpoint or radial");
+    return STC_OK;
+}
+
 void cli_shear_args_default(cli_shear_args *sa)
 {
     memset(sa, 0, sizeof *sa);
@@ -43,9 +51,8 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
         else return bad(key, value, "footprint or nodes");
         sa->on = 1;
     } else if (!strcmp(key, "ramp-return-map")) {
-        if (!strcmp(value, "radial")) sa->so.return_map = ASP_RETURN_RADIAL;
-        else if (!strcmp(value, "midpoint")) sa->so.return_map = ASP_RETURN_MIDPOINT;
-        else return bad(key, value, "radial or midpoint");
+        stc_status st = cli_parse_return_map(key, value, &sa->so.return_map);
+        if (st) return st;
         sa->on = 1;
     } else if (!strcmp(key, "ramp-refine")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 1.0 && v <= 64.0))
