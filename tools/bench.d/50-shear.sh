@@ -2,7 +2,7 @@
 # make bench fragment (issue 4 item 4): work-precision of mu_s (error vs the
 # finest 3D level run, wall time, DOFs, Newton iterations, factorizations,
 # ramp increments, peak memory) at omega/omega_c = 3 and 12 (homogeneous WSP
-# sphere) and delta = 10 omega_c_su, t/R = 0.025, Eco/Esu = 2 (stick); at
+# sphere) and delta = 1 and 10 omega_c_su, t/R = 0.025, Eco/Esu = 2 (stick); at
 # level 0 also with --junction nodes, the other side of the junction bracket,
 # and with the outer shells uncoarsened (--shell-coarsen 0: the time saved).
 # Called as: 50-shear.sh CLI RESULTS_DIR.
