@@ -300,7 +300,12 @@ static void carea_dump(const asp_solver *s)
  * below the last contact node at 12 and 24 ωc, where the flattened profile
  * is not that shape.)  r ascending; g0 the gaps when the ramp started, g
  * now, <= 0 for nodes in contact.  Never below a0: the contact does not
- * recede under no-separation. */
+ * recede under no-separation.  (The profile does not translate on a coarse
+ * mesh: WSP 3 ωc at 6 elements per contact, a node 16 % past a0 closed
+ * while the one beyond kept 97.5 % of its gap, so once a node has closed
+ * this reads less than the contact holds; the caller keeps the maximum
+ * over the ramp, or with rows each row holds its last closed node,
+ * asp_contact_footprint.) */
 double asp_contact_edge_advance(const double *r, const double *g0, const double *g, int nr,
                                 double a0)
 {
@@ -328,62 +333,133 @@ static double cand_gap(const asp_solver *s, int k)
     return s->Rp - s->delta - (s->mesh->x[3 * n + 2] + s->u[3 * n + 2]);
 }
 
-stc_status asp_contact_foot_init(asp_solver *s)
+/* Distinct values of v[0..n) (sorted in place), merged within tol; returns
+ * their count. */
+static int distinct(double *v, int n, double tol)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_foot);
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (m == 0 || v[i] - v[m - 1] > tol) v[m++] = v[i];
+    return m;
+}
+
+/* The nodes of one line: candidates within tol of offset `off` across it, on
+ * its side of the axis, ordered by the distance along it. */
+static stc_status foot_line(asp_solver *s, asp_foot_line *fl, int dir, double off, double tol,
+                            double *tmp)
 {
     const asp_mesh *m = s->mesh;
-    double tol = 1e-9 * s->Rp;
-    for (int line = 0; line < 3; line++) {
-        asp_foot_line *fl = &s->fline[line];
-        free(fl->k), free(fl->r), free(fl->g0), free(fl->g);
-        fl->n = 0;
-        double *tmp = malloc((size_t)s->ncand * 2 * sizeof *tmp);
-        fl->k = malloc((size_t)s->ncand * sizeof *fl->k);
-        fl->r = malloc((size_t)s->ncand * sizeof *fl->r);
-        fl->g0 = malloc((size_t)s->ncand * sizeof *fl->g0);
-        fl->g = malloc((size_t)s->ncand * sizeof *fl->g);
-        if (!tmp || !fl->k || !fl->r || !fl->g0 || !fl->g) {
-            free(tmp);
-            return STC_FAIL(STC_ENOMEM, "shear: out of memory for the contact footprint");
-        }
-        for (int k = 0; k < s->ncand; k++) {
-            int n = s->cand[k];
-            double x = m->x[3 * n], y = m->x[3 * n + 1];
-            int on = line < 2 ? y == 0.0 && (line == 0 ? x >= 0.0 : x <= 0.0)
-                              : fabs(x) <= tol && y >= 0.0;
-            if (!on) continue;
-            tmp[2 * fl->n] = line == 0 ? x : line == 1 ? -x : y;
-            tmp[2 * fl->n + 1] = k;
-            fl->n++;
-        }
-        qsort(tmp, (size_t)fl->n, 2 * sizeof *tmp, cmp_foot);
-        for (int i = 0; i < fl->n; i++) {
-            fl->r[i] = tmp[2 * i], fl->k[i] = (int)tmp[2 * i + 1];
-            fl->g0[i] = cand_gap(s, fl->k[i]);
-        }
-        free(tmp);
+    fl->dir = dir, fl->off = off, fl->n = 0;
+    fl->k = malloc((size_t)s->ncand * sizeof *fl->k);
+    fl->r = malloc((size_t)s->ncand * sizeof *fl->r);
+    fl->g0 = malloc((size_t)s->ncand * sizeof *fl->g0);
+    fl->g = malloc((size_t)s->ncand * sizeof *fl->g);
+    if (!fl->k || !fl->r || !fl->g0 || !fl->g)
+        return STC_FAIL(STC_ENOMEM, "shear: out of memory for the contact footprint");
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        double x = m->x[3 * n], y = m->x[3 * n + 1];
+        int on = dir < 2 ? fabs(y - off) <= tol && (dir == 0 ? x >= 0.0 : x <= 0.0)
+                         : fabs(x - off) <= tol && y >= 0.0;
+        if (!on) continue;
+        tmp[2 * fl->n] = dir == 0 ? x : dir == 1 ? -x : y;
+        tmp[2 * fl->n + 1] = k;
+        fl->n++;
+    }
+    qsort(tmp, (size_t)fl->n, 2 * sizeof *tmp, cmp_foot);
+    for (int i = 0; i < fl->n; i++) {
+        fl->r[i] = tmp[2 * i], fl->k[i] = (int)tmp[2 * i + 1];
+        fl->g0[i] = cand_gap(s, fl->k[i]);
     }
     return STC_OK;
 }
 
+/* Drop line fl unless it crosses the edge: a node in contact when the ramp
+ * starts and an open one past it (rows off the axis also catch shell nodes
+ * that happen to lie at their offset).  The axis lines always stay. */
+static void keep_if_crossing(asp_solver *s, asp_foot_line *fl)
+{
+    int L = -1;
+    for (int q = 0; q < fl->n; q++)
+        if (!(fl->g0[q] > 0.0)) L = q;
+    if (fl->off == 0.0 || (L >= 0 && L + 1 < fl->n)) return;
+    free(fl->k), free(fl->r), free(fl->g0), free(fl->g);
+    memset(fl, 0, sizeof *fl);
+    s->nfline--;
+}
+
+stc_status asp_contact_foot_init(asp_solver *s, double rows)
+{
+    const asp_mesh *m = s->mesh;
+    asp_contact_foot_free(s);
+    double tol = 0.02 * s->h, reach = rows * s->pt0_a + tol;
+    double *tmp = malloc((size_t)s->ncand * 3 * sizeof *tmp), *v = tmp + 2 * s->ncand;
+    STC_CHECK(tmp, STC_ENOMEM, "shear: out of memory for the contact footprint");
+    stc_status st = STC_OK;
+    enum { PER_DIR = ASP_FOOT_MAXLINES / 3 };
+    for (int dir = 0; dir < 3 && st == STC_OK; dir++) {
+        /* offsets of the node rows within `reach` of the axis */
+        int nv = 0;
+        for (int k = 0; k < s->ncand; k++) {
+            const double *x = m->x + 3 * s->cand[k];
+            double o = dir < 2 ? x[1] : x[0];
+            if ((dir < 2 || x[1] >= 0.0) && fabs(o) <= reach) v[nv++] = fabs(o) <= tol ? 0.0 : o;
+        }
+        nv = distinct(v, nv, tol);
+        if (nv == 0) v[nv++] = 0.0;
+        for (int i = 0; i < nv && i < PER_DIR && st == STC_OK; i++) {
+            asp_foot_line *fl = &s->fline[s->nfline++];
+            st = foot_line(s, fl, dir, v[i], tol, tmp);
+            fl->hold = rows > 0.0;
+            if (st == STC_OK) keep_if_crossing(s, fl);
+        }
+    }
+    free(tmp);
+    return st;
+}
+
 void asp_contact_foot_free(asp_solver *s)
 {
-    for (int line = 0; line < 3; line++) {
+    for (int line = 0; line < s->nfline; line++) {
         asp_foot_line *fl = &s->fline[line];
         free(fl->k), free(fl->r), free(fl->g0), free(fl->g);
         memset(fl, 0, sizeof *fl);
     }
+    s->nfline = 0;
 }
 
-/* 3D half model: the contact extent along +x, -x (the line y = 0) and +y
- * (the line x = 0) from the preload radius a0 and the edge advance on each
- * line (asp_contact_edge_advance): the footprint of a sheared contact
- * (shear.c), whose edges move outward. */
+/* 3D half model: the contact extent along +x, -x and +y (ext[0..2]) from
+ * the preload radius a0 and the edge advance on each node line
+ * (asp_contact_edge_advance): the footprint of a sheared contact (shear.c),
+ * two half-ellipses whose edges move outward.  A line at offset o across
+ * its direction crosses the preload circle at sqrt(a0² - o²) and the
+ * ellipse at t, which gives the semi-axis t / sqrt(1 - o²/b²), b the other
+ * semi-axis; the lines of one direction are averaged. */
 void asp_contact_footprint(const asp_solver *s, double a0, double ext[3])
 {
-    for (int line = 0; line < 3; line++) {
+    double t[ASP_FOOT_MAXLINES];
+    for (int line = 0; line < s->nfline; line++) {
         const asp_foot_line *fl = &s->fline[line];
         for (int i = 0; i < fl->n; i++) fl->g[i] = cand_gap(s, fl->k[i]);
-        ext[line] = asp_contact_edge_advance(fl->r, fl->g0, fl->g, fl->n, a0);
+        double c0 = sqrt(fmax(a0 * a0 - fl->off * fl->off, 0.0));
+        t[line] = asp_contact_edge_advance(fl->r, fl->g0, fl->g, fl->n, c0);
+        for (int i = 0; fl->hold && i < fl->n; i++) /* r ascending: the last closed node */
+            if (!(fl->g[i] > 0.0)) t[line] = fmax(t[line], fl->r[i]);
+    }
+    for (int i = 0; i < 3; i++) ext[i] = a0;
+    for (int it = 0; it < 4; it++) {
+        double sum[3] = {0, 0, 0};
+        int cnt[3] = {0, 0, 0};
+        for (int line = 0; line < s->nfline; line++) {
+            const asp_foot_line *fl = &s->fline[line];
+            double b = fl->dir < 2 ? ext[2] : fl->off >= 0.0 ? ext[0] : ext[1];
+            double q = 1.0 - fl->off * fl->off / (b * b);
+            if (!(q > 0.05)) continue;
+            sum[fl->dir] += t[line] / sqrt(q);
+            cnt[fl->dir]++;
+        }
+        for (int i = 0; i < 3; i++) ext[i] = cnt[i] ? fmax(a0, sum[i] / cnt[i]) : a0;
     }
 }
 

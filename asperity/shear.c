@@ -58,6 +58,7 @@ void asp_shear_options_default(asp_shear_options *o)
     o->keep_fields = 0;
     o->return_map = ASP_RETURN_RADIAL;
     o->ramp_refine = 1.0;
+    o->foot_rows = 0.0;
 }
 
 /* ---- the stick-law springs (called from assemble) ------------------------ */
@@ -458,6 +459,9 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
               (int)o->return_map);
     STC_CHECK(o->ramp_refine >= 1.0 && o->ramp_refine <= 64.0, STC_EINVAL,
               "ramp refine = %g: must be in [1, 64]", o->ramp_refine);
+    STC_CHECK(o->foot_rows >= 0.0 && o->foot_rows <= 0.9, STC_EINVAL,
+              "foot rows = %g: must be in [0, 0.9] (fraction of the preload contact radius)",
+              o->foot_rows);
     STC_CHECK(s->dim == 3, STC_EINVAL,
               "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
     STC_CHECK(!s->shear, STC_EINVAL, "shear: a ramp was already run on this solver");
@@ -547,7 +551,7 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     STC_CALL(asp_fric_law_init(&s->fric, tau_c, lay.E, lay.nu, s->h, o->kappa));
     s->pt0_a = s->pt.a;
     for (int i = 0; i < 3; i++) s->foot[i] = s->pt.a;
-    STC_CALL(asp_contact_foot_init(s));
+    STC_CALL(asp_contact_foot_init(s, o->foot_rows));
     for (int k = 0; k < s->ncand; k++) s->cnew[k] = s->cs[k] == ASP_CS_OPEN;
     STC_CALL(full_areas(s));
     STC_CALL(node_areas(s, s->foot));

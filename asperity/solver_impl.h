@@ -25,10 +25,15 @@ typedef struct asp_ytrack {
  * candidate index, distance from the axis (ascending), gap when the ramp
  * started, and room for the gaps now. */
 typedef struct asp_foot_line {
+    int dir;    /* extent it reads: 0 lead (+x), 1 trail (-x), 2 side (+y) */
+    double off; /* the line's offset across it: y (lead, trail) or x (side), mm */
+    int hold;   /* 1: the reading is at least the last node in contact (rows) */
     int n;
     int *k;
     double *r, *g0, *g;
 } asp_foot_line;
+
+enum { ASP_FOOT_MAXLINES = 48 };
 
 struct asp_solver {
     stc_params par;
@@ -105,7 +110,8 @@ struct asp_solver {
     unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
     double foot[3];               /* contact extent +x, -x, +y during the ramp, mm */
     double pt0_a;                 /* contact radius at the start of the ramp, mm */
-    asp_foot_line fline[3];       /* nodes on the lines +x, -x, +y (asp_contact_footprint) */
+    asp_foot_line fline[ASP_FOOT_MAXLINES]; /* node lines across the edge (asp_contact_footprint) */
+    int nfline;
     double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
     int graded;                   /* 3D: core sized to a_min, shells h ∝ distance */
     double rate_sat;              /* d|t|/dux below which a stuck node is saturated, MPa/mm */
@@ -141,7 +147,8 @@ void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
 /* asp_contact.c: results at the converged state; the contact footprint of
  * the tangential step (shear.c). */
 void asp_contact_results(asp_solver *s, asp_point *pt);
-stc_status asp_contact_foot_init(asp_solver *s);     /* the lines' nodes and gaps at ux = 0 */
+/* the node lines across the edge within rows a0 of the axis, their gaps at ux = 0 */
+stc_status asp_contact_foot_init(asp_solver *s, double rows);
 void asp_contact_foot_free(asp_solver *s);
 /* contact extent along +x, -x, +y from a0 and the gaps ahead of the edges, mm */
 void asp_contact_footprint(const asp_solver *s, double a0, double ext[3]);

@@ -304,6 +304,7 @@ static void test_cli_errors(void **state)
         {"--delta 0.5 --return-map euler", "return-map = 'euler'"},
         {"--delta 0.5 --grade-3d=perhaps", "grade-3d = 'perhaps'"},
         {"--delta 0.5 --ramp-refine 0.5", "ramp-refine = '0.5'"},
+        {"--delta 0.5 --foot-rows 0.95", "foot-rows = '0.95'"},
         {"--delta 0.5 --shear --alpha 2", "alpha = '2'"},
         {"--delta 0.5,1 --shear", "one interference"},
         {"--delta 0.5 --load 2", "--load conflicts"},

@@ -90,7 +90,8 @@ typedef struct cli_shear_args {
     asp_shear_options so;  /* --criterion, --alpha, --tau-c, --junction */
 } cli_shear_args;
 void cli_shear_args_default(cli_shear_args *sa);
-/* --shear, --criterion, --alpha, --tau-c, --load, --junction; STC_EUNSUPPORTED for others. */
+/* --shear, --criterion, --alpha, --tau-c, --load, --junction, --ramp-return-map,
+ * --ramp-refine, --foot-rows; STC_EUNSUPPORTED for others. */
 stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value);
 /* Normal step to delta[0] (× omega_c_su unless in_mm) or to --load, then the
  * ramp; prints, writes DIR/shear.csv and fields_Q0/Q080/Qmax; exit code. */
@@ -113,7 +114,10 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
          "the normal step, can be far off over the ramp's long increments)"},                \
         {"ramp-refine", "K",                                                                   \
          "divide the ramp increment targets by K in [1, 64] (increment-convergence studies; " \
-         "default 1)"}
+         "default 1)"},                                                                       \
+        {"foot-rows", "F",                                                                     \
+         "experimental junction footprint: read the edge advance on every node row within "  \
+         "F a0 of the axis and average them (default 0: the three axis lines only)"}
 
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;

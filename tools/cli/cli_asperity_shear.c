@@ -59,6 +59,11 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
             return bad(key, value, "a factor in [1, 64] dividing the ramp increment targets");
         sa->so.ramp_refine = v;
         sa->on = 1;
+    } else if (!strcmp(key, "foot-rows")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 0.0 && v <= 0.9))
+            return bad(key, value, "a fraction in [0, 0.9] of the preload contact radius");
+        sa->so.foot_rows = v;
+        sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
             return bad(key, value, "a number in (0, 1) (stiffness ratio KT_i/KT_1; BKE: 0.1)");
