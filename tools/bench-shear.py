@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """make bench, combined loading (issue 4 item 4): work-precision of mu_s.
 
-bench-shear.py CLI [MESHES]     (MESHES default "0,0:nodes,0:c0,1": 3D mesh
+bench-shear.py CLI [MESHES]     (MESHES default "0,n6.6,0:nodes,0:c0,1": 3D mesh
                                  levels, or nX for X elements across a_max,
                                  e.g. "0,n8.5,1"; a ":nodes" suffix runs the
                                  junction rule --junction nodes instead of
@@ -42,6 +42,10 @@ CASES = [
 # issue 4's target: one point at the default mesh within 2 % of the finest
 # mesh's mu_s, in under 60 s on this 2-core machine
 TARGET_ERR, TARGET_S = 2.0, 60.0
+# level 0 with its surface nodes moved by about half an element relative to
+# the contact edge (a_max/a0 ~ 1.2 elements is one period): level-0 mu_s
+# swings by ~+-10 % with where the nodes sit (docs/tangential-step.md §19)
+SHIFTED = "n6.6"
 
 
 def run(cli, args):
@@ -83,14 +87,14 @@ def main():
     if len(sys.argv) < 2:
         sys.exit("usage: bench-shear.py CLI [MESHES]")
     cli = sys.argv[1]
-    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,0:nodes,0:c0,1").split(",")
+    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,%s,0:nodes,0:c0,1" % SHIFTED).split(",")
     print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
     print("%-34s %7s %8s %9s %9s %8s %7s %7s %6s %8s %6s %6s %6s" % (
         "case", "mesh", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
         "peak MB", "asm s", "fac s", "pcg s"))
     met = []
     for name, args in CASES:
-        rows = []
+        rows, placed = [], {}
         for lev in levels:
             j, wall, extra = run(cli, args + mesh_args(lev))
             rows.append((lev, j, wall, extra))
@@ -106,12 +110,19 @@ def main():
                 j.get("newton_iterations", "-"), j.get("factorizations", "-"),
                 j.get("shear_increments", "-"), extra, j.get("time_assembly_s", math.nan),
                 j.get("time_factorize_s", math.nan), j.get("time_pcg_s", math.nan)))
-            if lev == "0" and fin_lev != "0" and abs(err) <= TARGET_ERR and wall < TARGET_S:
-                met.append("%s (%+.2f %%, %.0f s)" % (name, err, wall))
+            if lev in ("0", SHIFTED) and fin_lev not in ("0", SHIFTED):
+                ok = abs(err) <= TARGET_ERR and (lev != "0" or wall < TARGET_S)
+                placed[lev] = (ok, err, wall)
+        # the target must hold wherever the nodes sit: level 0 and, when run,
+        # the same mesh shifted by about half an element at the contact edge
+        if "0" in placed and all(ok for ok, e, w in placed.values()):
+            met.append("%s (%s)" % (name, ", ".join("%s %+.2f %%" % (l, e)
+                                                    for l, (ok, e, w) in placed.items())))
     print("(wall s: the whole process: mesh, normal step and ramp; asm / fac / pcg s: where the "
           "solver's time went: element loops, Cholesky factorizations, Krylov iterations)")
-    print("target (default mesh within %g %% of the finest, < %g s): %s" % (
-        TARGET_ERR, TARGET_S, "met by " + "; ".join(met) if met else "NOT met"))
+    print("target (level 0 within %g %% of the finest in < %g s, and %s within %g %% too): %s"
+          % (TARGET_ERR, TARGET_S, SHIFTED, TARGET_ERR,
+             "met by " + "; ".join(met) if met else "NOT met"))
 
 
 if __name__ == "__main__":

@@ -3,10 +3,12 @@
 # finest 3D level run, wall time, DOFs, Newton iterations, factorizations,
 # ramp increments, peak memory) at omega/omega_c = 3 and 12 (homogeneous WSP
 # sphere) and delta = 1 and 10 omega_c_su, t/R = 0.025, Eco/Esu = 2 (stick); at
-# level 0 also with --junction nodes, the other side of the junction bracket,
-# and with the outer shells uncoarsened (--shell-coarsen 0: the time saved).
+# level 0 also with its surface nodes shifted by about half an element at the
+# contact edge (n6.6: the node-placement spread, docs/tangential-step.md §19),
+# with --junction nodes, the other side of the junction bracket, and with the
+# outer shells uncoarsened (--shell-coarsen 0: the time saved).
 # Called as: 50-shear.sh CLI RESULTS_DIR.
 set -eu
 CLI=$1
 OUT=$2
-python3 "$(dirname "$0")/../bench-shear.py" "$CLI" "${STICTION_SHEAR_LEVELS:-0,0:nodes,0:c0,1}" | tee "$OUT/bench-shear.txt"
+python3 "$(dirname "$0")/../bench-shear.py" "$CLI" "${STICTION_SHEAR_LEVELS:-0,n6.6,0:nodes,0:c0,1}" | tee "$OUT/bench-shear.txt"
