@@ -351,12 +351,6 @@ static stc_status foot_line(asp_solver *s, asp_foot_line *fl, int dir, double of
 {
     const asp_mesh *m = s->mesh;
     fl->dir = dir, fl->off = off, fl->n = 0;
-    fl->k = malloc((size_t)s->ncand * sizeof *fl->k);
-    fl->r = malloc((size_t)s->ncand * sizeof *fl->r);
-    fl->g0 = malloc((size_t)s->ncand * sizeof *fl->g0);
-    fl->g = malloc((size_t)s->ncand * sizeof *fl->g);
-    if (!fl->k || !fl->r || !fl->g0 || !fl->g)
-        return STC_FAIL(STC_ENOMEM, "shear: out of memory for the contact footprint");
     for (int k = 0; k < s->ncand; k++) {
         int n = s->cand[k];
         double x = m->x[3 * n], y = m->x[3 * n + 1];
@@ -368,6 +362,13 @@ static stc_status foot_line(asp_solver *s, asp_foot_line *fl, int dir, double of
         fl->n++;
     }
     qsort(tmp, (size_t)fl->n, 2 * sizeof *tmp, cmp_foot);
+    size_t n = fl->n > 0 ? (size_t)fl->n : 1;
+    fl->k = malloc(n * sizeof *fl->k);
+    fl->r = malloc(n * sizeof *fl->r);
+    fl->g0 = malloc(n * sizeof *fl->g0);
+    fl->g = malloc(n * sizeof *fl->g);
+    if (!fl->k || !fl->r || !fl->g0 || !fl->g)
+        return STC_FAIL(STC_ENOMEM, "shear: out of memory for the contact footprint");
     for (int i = 0; i < fl->n; i++) {
         fl->r[i] = tmp[2 * i], fl->k[i] = (int)tmp[2 * i + 1];
         fl->g0[i] = cand_gap(s, fl->k[i]);
@@ -376,8 +377,7 @@ static stc_status foot_line(asp_solver *s, asp_foot_line *fl, int dir, double of
 }
 
 /* Drop line fl unless it crosses the edge: a node in contact when the ramp
- * starts and an open one past it (rows off the axis also catch shell nodes
- * that happen to lie at their offset).  The axis lines always stay. */
+ * starts and an open one past it.  The axis lines always stay. */
 static void keep_if_crossing(asp_solver *s, asp_foot_line *fl)
 {
     int L = -1;
@@ -399,16 +399,21 @@ stc_status asp_contact_foot_init(asp_solver *s, double rows)
     stc_status st = STC_OK;
     enum { PER_DIR = ASP_FOOT_MAXLINES / 3 };
     for (int dir = 0; dir < 3 && st == STC_OK; dir++) {
-        /* offsets of the node rows within `reach` of the axis */
+        /* offsets of the rows of contact nodes within `reach` of the axis */
         int nv = 0;
         for (int k = 0; k < s->ncand; k++) {
+            if (s->cs[k] == ASP_CS_OPEN) continue;
             const double *x = m->x + 3 * s->cand[k];
             double o = dir < 2 ? x[1] : x[0];
             if ((dir < 2 || x[1] >= 0.0) && fabs(o) <= reach) v[nv++] = fabs(o) <= tol ? 0.0 : o;
         }
         nv = distinct(v, nv, tol);
         if (nv == 0) v[nv++] = 0.0;
-        for (int i = 0; i < nv && i < PER_DIR && st == STC_OK; i++) {
+        /* more rows than room: every stride-th one counted from the axis row */
+        int i0 = 0, stride = (nv + PER_DIR - 1) / PER_DIR;
+        while (i0 < nv - 1 && v[i0] < 0.0) i0++;
+        for (int i = 0; i < nv && st == STC_OK; i++) {
+            if ((i - i0) % stride) continue;
             asp_foot_line *fl = &s->fline[s->nfline++];
             st = foot_line(s, fl, dir, v[i], tol, tmp);
             fl->hold = rows > 0.0;

@@ -33,7 +33,7 @@ typedef struct asp_foot_line {
     double *r, *g0, *g;
 } asp_foot_line;
 
-enum { ASP_FOOT_MAXLINES = 48 };
+enum { ASP_FOOT_MAXLINES = 96 }; /* 32 per direction */
 
 struct asp_solver {
     stc_params par;
@@ -110,7 +110,7 @@ struct asp_solver {
     unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
     double foot[3];               /* contact extent +x, -x, +y during the ramp, mm */
     double pt0_a;                 /* contact radius at the start of the ramp, mm */
-    asp_foot_line fline[ASP_FOOT_MAXLINES]; /* node lines across the edge (asp_contact_footprint) */
+    asp_foot_line fline[ASP_FOOT_MAXLINES]; /* node lines across the edge (footprint) */
     int nfline;
     double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
     int graded;                   /* 3D: core sized to a_min, shells h ∝ distance */
