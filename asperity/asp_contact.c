@@ -306,13 +306,19 @@ static void carea_dump(const asp_solver *s)
  * this reads less than the contact holds; the caller keeps the maximum
  * over the ramp, or with rows each row holds its last closed node,
  * asp_contact_footprint.) */
+/* Index of the last node in contact (gap <= 0) of a line, -1 if none. */
+static int last_closed(const double *g, int n)
+{
+    int L = -1;
+    for (int i = 0; i < n; i++)
+        if (!(g[i] > 0.0)) L = i;
+    return L;
+}
+
 double asp_contact_edge_advance(const double *r, const double *g0, const double *g, int nr,
                                 double a0)
 {
-    int L = -1;
-    for (int i = 0; i < nr; i++)
-        if (!(g[i] > 0.0)) L = i;
-    int j = L + 1;
+    int L = last_closed(g, nr), j = L + 1;
     if (L < 0 || j >= nr) return L < 0 ? a0 : fmax(a0, r[L]);
     if (!(r[j] > a0) || !(g0[j] > 0.0)) return a0;
     double f = fmin(1.0, g[j] / g0[j]);
@@ -380,9 +386,7 @@ static stc_status foot_line(asp_solver *s, asp_foot_line *fl, int dir, double of
  * starts and an open one past it.  The axis lines always stay. */
 static void keep_if_crossing(asp_solver *s, asp_foot_line *fl)
 {
-    int L = -1;
-    for (int q = 0; q < fl->n; q++)
-        if (!(fl->g0[q] > 0.0)) L = q;
+    int L = last_closed(fl->g0, fl->n);
     if (fl->off == 0.0 || (L >= 0 && L + 1 < fl->n)) return;
     free(fl->k), free(fl->r), free(fl->g0), free(fl->g);
     memset(fl, 0, sizeof *fl);
@@ -449,8 +453,8 @@ void asp_contact_footprint(const asp_solver *s, double a0, double ext[3])
         for (int i = 0; i < fl->n; i++) fl->g[i] = cand_gap(s, fl->k[i]);
         double c0 = sqrt(fmax(a0 * a0 - fl->off * fl->off, 0.0));
         t[line] = asp_contact_edge_advance(fl->r, fl->g0, fl->g, fl->n, c0);
-        for (int i = 0; fl->hold && i < fl->n; i++) /* r ascending: the last closed node */
-            if (!(fl->g[i] > 0.0)) t[line] = fmax(t[line], fl->r[i]);
+        int L = fl->hold ? last_closed(fl->g, fl->n) : -1;
+        if (L >= 0) t[line] = fmax(t[line], fl->r[L]); /* r ascending */
     }
     for (int i = 0; i < 3; i++) ext[i] = a0;
     for (int it = 0; it < 4; it++) {

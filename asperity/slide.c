@@ -153,13 +153,13 @@ void asp_slide_destroy(asp_slide **d)
     *d = NULL;
 }
 
-/* Secant stiffness of increment i (from point i-1 to i), i >= 1. */
 /* Secant tangential stiffness between ramp points i < l. */
 static double secant(const asp_slide *d, int i, int l)
 {
     return (d->Q[l] - d->Q[i]) / (d->ux[l] - d->ux[i]);
 }
 
+/* Secant stiffness of increment i (from point i-1 to i), i >= 1. */
 static double KT(const asp_slide *d, int i) { return secant(d, i - 1, i); }
 
 static int peak_index(const asp_slide *d, int upto)
