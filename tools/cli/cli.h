@@ -80,6 +80,7 @@ void cj_done(cli_json *j); /* final newline */
 /* Subcommand entry points, registered in main.c */
 int cli_formulas(const cli_cmd *cmd, int argc, char **argv);
 int cli_asperity(const cli_cmd *cmd, int argc, char **argv);
+int cli_halfspace(const cli_cmd *cmd, int argc, char **argv);
 
 /* --- asperity --shear (cli_asperity_shear.c) --- */
 #include "stiction/asperity.h"

@@ -12,6 +12,8 @@ static const cli_cmd commands[] = {
     {"surface", "rough surfaces: synth, stats, predict (stiction surface --help)", cli_surface},
     {"asperity", "FE model of one coated asperity under normal load (P, A, first yield)",
      cli_asperity},
+    {"halfspace", "elastic half-space reference: sphere on a rigid flat, full-slip junction growth",
+     cli_halfspace},
     {NULL, NULL, NULL},
 };
 
