@@ -25,6 +25,7 @@
 #include "cli_util.h"
 #include "stiction/asperity.h"
 #include "stiction/formulas.h"
+#include "stiction/halfspace.h"
 
 enum { MAXPT = 256 };
 
@@ -39,7 +40,7 @@ typedef struct shared {
     stc_status st;
 } shared;
 
-static shared R, RN; /* the default junction rule (footprint) and ASP_JUNCTION_NODES */
+static shared R, RN, RE; /* the default junction rule (footprint), ASP_JUNCTION_NODES, elastic */
 
 static void wsp_params(stc_params *p)
 {
@@ -61,7 +62,9 @@ static int keep(void *ctx, const asp_shear_point *pt)
     return 0;
 }
 
-static int run_case(shared *r, asp_junction junction)
+/* elastic = 1: the same δ and τc (Y/√3 of the WSP sphere), but the sphere
+ * stays elastic (Y just below E), for the half-space reference. */
+static int run_case_mat(shared *r, asp_junction junction, int elastic)
 {
     asp_options o;
     asp_shear_options so;
@@ -75,6 +78,10 @@ static int run_case(shared *r, asp_junction junction)
     asp_shear_options_default(&so);
     so.junction = junction;
     double delta = 0.5 * r->c.omega_c;
+    if (elastic) {
+        so.tau_c = r->m.Y / sqrt(3.0);
+        r->p.Y_su = r->p.Y_co = 0.95 * r->p.E_su;
+    }
     if (asp_solver_create(&r->p, &o, delta, &s) != STC_OK) return -1;
     if (asp_solver_load(s, delta, &r->pt) != STC_OK) return asp_solver_destroy(&s), -1;
     r->st = asp_solver_shear(s, &so, keep, r, &r->res);
@@ -85,6 +92,8 @@ static int run_case(shared *r, asp_junction junction)
     asp_solver_destroy(&s);
     return 0;
 }
+
+static int run_case(shared *r, asp_junction junction) { return run_case_mat(r, junction, 0); }
 
 static int run_shared(void **state)
 {
@@ -128,7 +137,10 @@ static void test_mindlin_stiffness(void **state)
  * normal step (Σ = π a0² to 3e-4) grown under shear (junction rule
  * footprint, shear.c).  Measured: last point Q / (τc A) - 1 = -0.04 % (the
  * areas are updated after the increment), Q_max / (τc π a0²) - 1 = +2.85 %
- * (contact growth; +0.8 % with the nodes rule, test_junction_bracket). */
+ * (contact growth; +0.8 % with the nodes rule, test_junction_bracket).
+ * The 3 % bound on the growth guards the reading, it is not the physics: the
+ * half-space reference puts the elastic growth alone at +4.9 % here
+ * (test_elastic_growth_bem), which the footprint reads as +2.6 %. */
 static void test_full_slip_plateau(void **state)
 {
     (void)state;
@@ -378,6 +390,41 @@ static void test_cli_json(void **state)
     assert_int_equal(system(rm), 0);
 }
 
+/* Junction growth of the ELASTIC sphere against the half-space boundary
+ * elements (surface/halfspace.c; docs/tangential-step.md §20): a rigid flat
+ * sheared in full slip at τc with no separation grows the contact on the
+ * trailing side only (the Cerruti coupling lifts the surface behind the
+ * traction toward the flat), by +4.9 % in area and +7.5 % along -x at 0.5 ωc
+ * of the WSP sphere (512 cells).  The FE footprint reads the growth low
+ * (two half-ellipses cannot hold the fuller trailing lobe, and the trailing
+ * edge lags): measured -2.3 … -1.9 % in area at 6, 6.6, 7.3 and 12 elements
+ * per contact, so 3 % is the bound here; the trailing extent must grow by
+ * more than half the reference and the leading one by less than a fifth of
+ * the trailing one. */
+static void test_elastic_growth_bem(void **state)
+{
+    (void)state;
+    assert_int_equal(run_case_mat(&RE, ASP_JUNCTION_FOOTPRINT, 1), 0);
+    assert_int_equal(RE.st, STC_OK);
+    assert_true(RE.res.converged);
+    const asp_shear_point *l = &RE.pts[RE.n - 1];
+    double tc = RE.res.tau_c, a0 = RE.res.a0, delta = 0.5 * RE.c.omega_c;
+    double fe = RE.res.Q_max / (tc * M_PI * a0 * a0) - 1.0;
+    srf_slide_result b;
+    assert_int_equal(srf_halfspace_sphere_slide(RE.p.R, delta, RE.m.E, RE.m.nu, tc, 128, 1.3, 2,
+                                                &b),
+                     STC_OK);
+    double bem = b.A / b.A0 - 1.0, a0b = sqrt(b.A0 / M_PI);
+    printf("# elastic growth: FE %+.2f %% (lead %+.1f, trail %+.1f, side %+.1f %%), "
+           "half-space %+.2f %% (lead %+.1f, trail %+.1f, side %+.1f %%, cell %.1f %%)\n",
+           100 * fe, 100 * (l->a_lead / a0 - 1), 100 * (l->a_trail / a0 - 1),
+           100 * (l->a_side / a0 - 1), 100 * bem, 100 * (b.a_lead / a0b - 1),
+           100 * (b.a_trail / a0b - 1), 100 * (b.a_side / a0b - 1), 100 * b.h / a0b);
+    assert_true(fabs(fe - bem) < 0.03);
+    assert_true(l->a_trail / a0 - 1 > 0.5 * (b.a_trail / a0b - 1));
+    assert_true(l->a_lead - a0 < 0.2 * (l->a_trail - a0));
+}
+
 int main(void)
 {
     const struct CMUnitTest ramp[] = {
@@ -387,6 +434,7 @@ int main(void)
         cmocka_unit_test(test_wsp_mu),
         cmocka_unit_test(test_equilibrium),
         cmocka_unit_test(test_junction_bracket),
+        cmocka_unit_test(test_elastic_growth_bem),
     };
     const struct CMUnitTest other[] = {
         cmocka_unit_test(test_errors),
