@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Elastic junction growth of the FE tangential step against the elastic
+half-space boundary elements (`stiction halfspace`; docs/tangential-step.md
+§20).
+
+validate-growth.py CLI OUT.csv [--omegas 0.5,1,3] [--n 6,6.6] [--cells 256]
+
+The WSP sphere (E = 74 GPa, nu = 0.33, R' = 10.5 mm) kept elastic (Y-su just
+below E) with tau_c = 325/sqrt(3) MPa, the shear strength of the WSP check,
+at delta = omega x omega_c of the WSP sphere (Y = 325 MPa): slip normal step,
+then the ramp to full slip with no separation.  The growth is
+Q_max / (tau_c pi a0^2) - 1 for the FE (a0 its preload radius) and A / A0 - 1
+for the half-space.  FE runs at several --elements-per-contact values (the
+node placement moves with it, docs §19), one thread each, one at a time.
+Writes OUT.csv (via OUT.csv.tmp) and exits 1 if a run fails or an FE growth
+is more than 3 % (of the area) from the reference (the bound of
+tests/test_shear.c test_elastic_growth_bem).
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+TAU = 325.0 / math.sqrt(3.0)
+BASE = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33"]
+TOL = 0.03
+
+
+def run(cmd):
+    t0 = time.time()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.time() - t0
+    if p.returncode != 0:
+        return None, wall, (p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1]
+    j = json.loads(p.stdout)
+    return (j[0] if isinstance(j, list) else j), wall, ""
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cli")
+    ap.add_argument("out")
+    ap.add_argument("--omegas", default="0.5,1,3")
+    ap.add_argument("--n", default="6,6.6")
+    ap.add_argument("--cells", default="256")
+    a = ap.parse_args()
+    # omega_c of the WSP sphere (Y = 325 MPa), from the closed forms
+    f, _, why = run([a.cli, "formulas", "--json", "--Y-su", "325"] + BASE)
+    if f is None:
+        print("formulas failed: " + why)
+        return 1
+    wc = f["omega_c_mm"]
+    cols = ["omega_over_omega_c", "delta_mm", "model", "elements_per_contact", "growth_pct",
+            "error_pct", "mu_s", "a_lead_over_a0", "a_trail_over_a0", "a_side_over_a0",
+            "dofs", "wall_s", "reason"]
+    rows, ok = [], True
+    for w in [float(x) for x in a.omegas.split(",")]:
+        d = w * wc
+        b, wall, why = run([a.cli, "halfspace", "--json", "--delta-mm", "%.10g" % d,
+                            "--tau-c", "%.10g" % TAU, "--cells", a.cells, "--steps", "2"] + BASE)
+        if b is None:
+            rows.append({"omega_over_omega_c": w, "model": "half-space", "reason": why})
+            print("omega %g: half-space FAILED: %s" % (w, why))
+            ok = False
+            continue
+        ref = b["area_growth"]
+        rows.append({"omega_over_omega_c": w, "delta_mm": "%.6g" % d, "model": "half-space",
+                     "growth_pct": "%+.2f" % (100 * ref), "mu_s": "%.5f" % b["mu_s"],
+                     "a_lead_over_a0": "%.4f" % b["a_lead_over_a0"],
+                     "a_trail_over_a0": "%.4f" % b["a_trail_over_a0"],
+                     "a_side_over_a0": "%.4f" % b["a_side_over_a0"], "wall_s": "%.1f" % wall})
+        print("omega %g: half-space growth %+.2f %% (trail %+.1f %%, %s cells, %.1f s)"
+              % (w, 100 * ref, 100 * (b["a_trail_over_a0"] - 1), a.cells, wall), flush=True)
+        for n in a.n.split(","):
+            j, wall, why = run([a.cli, "asperity", "--shear", "--model", "3d", "--contact", "slip",
+                                "--threads", "1", "--Y-su", "70000", "--tau-c", "%.10g" % TAU,
+                                "--delta-mm", "%.10g" % d, "--elements-per-contact", n,
+                                "--json"] + BASE)
+            good = j is not None and j.get("converged") and j.get("Q_max_N") is not None
+            r = {"omega_over_omega_c": w, "delta_mm": "%.6g" % d, "model": "FE",
+                 "elements_per_contact": n, "wall_s": "%.1f" % wall,
+                 "reason": (j or {}).get("reason", why)}
+            if good:
+                g = j["Q_max_N"] / (j["tau_c_MPa"] * math.pi * j["a_mm"] ** 2) - 1
+                r.update({"growth_pct": "%+.2f" % (100 * g), "error_pct": "%+.2f" % (100 * (g - ref)),
+                          "mu_s": "%.5f" % j["mu_s"], "dofs": j["dofs"]})
+                ok &= abs(g - ref) <= TOL
+                print("  FE n = %s: growth %+.2f %% (error %+.2f %%), mu_s %.4f, %d DOFs, %.0f s"
+                      % (n, 100 * g, 100 * (g - ref), j["mu_s"], j["dofs"], wall), flush=True)
+            else:
+                ok = False
+                print("  FE n = %s: FAILED: %s" % (n, r["reason"]))
+            rows.append(r)
+    with open(a.out + ".tmp", "w", newline="") as fh:
+        wr = csv.DictWriter(fh, fieldnames=cols)
+        wr.writeheader()
+        wr.writerows(rows)
+    os.replace(a.out + ".tmp", a.out)
+    print("elastic junction growth vs half-space (|error| <= 3 %%): %s" % ("ok" if ok else "FAIL"))
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
