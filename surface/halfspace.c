@@ -164,6 +164,7 @@ stc_status srf_halfspace_contact(srf_halfspace *hs, const double *h0, const doub
         scale = fmax(scale, fabs(h0[k]));
         if (p[k] < 0.0 && !(bond && bond[k])) p[k] = 0.0;
     }
+    if (!(scale > 0.0)) scale = 1.0; /* a flat start: judge the gaps in mm */
     double Gold = 1.0;
     int conj = 0, it;
     for (it = 0; it < maxit; it++) {

@@ -246,6 +246,35 @@ static void test_csv(void **state)
     assert_null(strstr(out, "nan"));
 }
 
+/* stiction halfspace: bad values name the option and its range; the JSON
+ * reports the reference (the WSP sphere at 0.5 wc on a coarse grid). */
+static void test_halfspace(void **state)
+{
+    (void)state;
+    const char *w = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325";
+    char args[256];
+    snprintf(args, sizeof args, "%s --delta 0.5 --cells 8", w);
+    expect_fail(args, "cells = 8", "[16, 4096]");
+    snprintf(args, sizeof args, "%s --delta 0.5 --cells 64.5", w);
+    expect_fail(args, "cells = 64.5", "whole number");
+    snprintf(args, sizeof args, "%s --delta 0.5 --span 9", w);
+    expect_fail(args, "span = 9", "[1.05, 4]");
+    snprintf(args, sizeof args, "%s --delta -1", w);
+    expect_fail(args, "delta = -1", "> 0");
+    snprintf(args, sizeof args, "%s --delta 0.5 --delta-mm 0.001", w);
+    expect_fail(args, "one of --delta and --delta-mm", NULL);
+    snprintf(args, sizeof args, "%s --delta 0.5 --t-over-R 0.01", w);
+    expect_fail(args, "t-over-R = 0.01", "homogeneous");
+    snprintf(args, sizeof args, "%s --delta 0.5 --cells 64 --json", w);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_true(fabs(jnum(out, "P0_N") / jnum(out, "P_hertz_N") - 1) < 1e-3);
+    assert_true(jnum(out, "area_growth") > 0.02 && jnum(out, "area_growth") < 0.08);
+    assert_true(jnum(out, "a_trail_over_a0") > jnum(out, "a_lead_over_a0"));
+    assert_true(fabs(jnum(out, "tau_c_MPa") - 325 / sqrt(3.0)) < 1e-6);
+    assert_true(jnum(out, "mu_s") > jnum(out, "mu_s_no_growth"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -253,7 +282,7 @@ int main(void)
         cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
-        cmocka_unit_test(test_csv),
+        cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),
     };
     return cmocka_run_group_tests_name("cli", tests, find_cli, cleanup);
 }
