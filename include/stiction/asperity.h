@@ -317,6 +317,42 @@ stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *p
 stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
                                 asp_point *out);
 
+/* Node-placement ensemble (docs/tangential-step.md §21).  One mesh reads the
+ * junction growth in whole node closures, so a single μs depends on where the
+ * surface nodes sit relative to the contact edge (±12 % at level 0, §19).
+ * asp_shear_placements runs the normal step to δ (mm) and the ramp on k
+ * meshes, elements_per_contact N_j = N_0 + j T / k (N_0 from o, T = a_max / a0
+ * from member 0's preload: the shift that moves the surface grid by one node
+ * spacing at the contact edge), i.e. k evenly spaced phases of the sawtooth,
+ * and averages them.  Members run concurrently, one thread each, at most
+ * o->threads (0: all cores) at a time.  o->geom must be ASP_GEOM_3D.
+ * STC_OK when every member reached inception; otherwise STC_ENOCONV naming the
+ * first failed member (the others' results are kept, the means are not an
+ * answer). */
+enum { ASP_PLACEMENTS_MAX = 8 };
+
+typedef struct asp_placement_member {
+    double elements_per_contact;
+    asp_point pt;            /* end of the normal step */
+    asp_shear_result res;    /* the ramp */
+    stc_status status;
+    char message[256];       /* why it failed */
+} asp_placement_member;
+
+typedef struct asp_placement_result {
+    int k, n_ok;             /* members, members that reached inception */
+    double mu_s;             /* mean of the members' μs */
+    double mu_s_min, mu_s_max;
+    double mu_s_preload, Q_max, P_slide; /* means */
+    double period;           /* T = a_max / a0, in elements per contact */
+    double wall_s;
+    asp_placement_member m[ASP_PLACEMENTS_MAX];
+} asp_placement_result;
+
+stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
+                                const asp_shear_options *so, double delta, int k,
+                                asp_placement_result *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -88,6 +88,7 @@ typedef struct cli_shear_args {
     int on;                /* run the tangential step */
     int alpha_set;         /* --alpha given */
     double load;           /* --load X = P/Pc_su (> 0: load control), else 0 */
+    int placements;        /* --placements K: node-placement ensemble of K meshes (0/1: one) */
     asp_shear_options so;  /* --criterion, --alpha, --tau-c, --junction */
 } cli_shear_args;
 void cli_shear_args_default(cli_shear_args *sa);
@@ -116,6 +117,10 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
         {"ramp-refine", "K",                                                                   \
          "divide the ramp increment targets by K in [1, 64] (increment-convergence studies; " \
          "default 1)"},                                                                       \
+        {"placements", "K",                                                                    \
+         "run K meshes with the surface nodes shifted by 1/K of a node spacing at the "        \
+         "contact edge and average their mu_s (node-placement ensemble, K in [1, 8]; members " \
+         "run concurrently, one thread each; default 1)"},                                      \
         {"foot-rows", "F",                                                                     \
          "experimental junction footprint: read the edge advance on every node row within "  \
          "F a0 of the axis and average them (default 0: the three axis lines only)"}

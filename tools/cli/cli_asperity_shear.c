@@ -64,6 +64,12 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
             return bad(key, value, "a fraction in [0, 0.9] of the preload contact radius");
         sa->so.foot_rows = v;
         sa->on = 1;
+    } else if (!strcmp(key, "placements")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 1.0 && v <= ASP_PLACEMENTS_MAX) ||
+            v != floor(v))
+            return bad(key, value, "a whole number of meshes in [1, 8]");
+        sa->placements = (int)v;
+        sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
             return bad(key, value, "a number in (0, 1) (stiffness ratio KT_i/KT_1; BKE: 0.1)");
@@ -230,6 +236,143 @@ static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_
     else printf("NOT CONVERGED: no static friction coefficient\n");
 }
 
+/* ---- node-placement ensemble (--placements K) ---------------------------- */
+
+static const char *member_reason(const asp_placement_member *m)
+{
+    return m->status == STC_OK ? m->res.reason : m->message;
+}
+
+static int write_members_csv(const char *dir, const asp_placement_result *e)
+{
+    cli_out o;
+    FILE *f = cli_out_open(&o, dir, "placements.csv");
+    if (!f) return -1;
+    fprintf(f, "member,elements_per_contact,converged,mu_s,mu_s_preload,Q_max_N,P_at_slide_N,"
+               "P_preload_N,a0_mm,ux_at_slide_mm,shear_wall_s,reason\n");
+    for (int j = 0; j < e->k; j++) {
+        const asp_placement_member *m = &e->m[j];
+        int ok = m->status == STC_OK && m->res.converged;
+        fprintf(f, "%d,%.6g,%d,", j, m->elements_per_contact, ok);
+        if (ok)
+            fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.4g,", m->res.mu_s,
+                    m->res.mu_s_preload, m->res.Q_max, m->res.P_slide, m->pt.P, m->pt.a,
+                    m->res.ux_slide, m->res.wall_s);
+        else fprintf(f, ",,,,,,,,");
+        fputc('"', f);
+        for (const char *c = member_reason(m); *c; c++) fputc(*c == '"' ? '\'' : *c, f);
+        fprintf(f, "\"\n");
+    }
+    return cli_out_close(&o);
+}
+
+static void print_placements_json(const asp_placement_result *e, const stc_critical *c,
+                                   double delta, stc_status st)
+{
+    cli_json j;
+    int ok = st == STC_OK;
+    cj_init(&j, stdout);
+    cj_obj(&j, NULL);
+    cj_num(&j, "delta_mm", delta);
+    cj_num(&j, "delta_over_omega_c_su", delta / c->omega_c);
+    cj_int(&j, "placements", e->k);
+    cj_num(&j, "placement_period", e->period);
+    if (ok) {
+        cj_num(&j, "mu_s", e->mu_s);
+        cj_num(&j, "mu_s_min", e->mu_s_min);
+        cj_num(&j, "mu_s_max", e->mu_s_max);
+        cj_num(&j, "mu_s_spread", 0.5 * (e->mu_s_max - e->mu_s_min) / e->mu_s);
+        cj_num(&j, "mu_s_preload", e->mu_s_preload);
+        cj_num(&j, "Q_max_N", e->Q_max);
+        cj_num(&j, "Q_max_over_P_c", e->Q_max / c->P_c);
+        cj_num(&j, "P_at_slide_N", e->P_slide);
+    } else {
+        const char *k[] = {"mu_s", "mu_s_min", "mu_s_max", "mu_s_spread", "mu_s_preload",
+                           "Q_max_N", "Q_max_over_P_c", "P_at_slide_N"};
+        for (size_t i = 0; i < sizeof k / sizeof *k; i++) cj_null(&j, k[i]);
+    }
+    const asp_shear_result *r0 = &e->m[0].res;
+    cj_str(&j, "criterion", r0->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear");
+    cj_num(&j, "tau_c_MPa", r0->tau_c);
+    cj_str(&j, "junction", r0->junction == ASP_JUNCTION_NODES ? "nodes" : "footprint");
+    cj_arr(&j, "members");
+    for (int i = 0; i < e->k; i++) {
+        const asp_placement_member *m = &e->m[i];
+        int mok = m->status == STC_OK && m->res.converged;
+        cj_obj(&j, NULL);
+        cj_num(&j, "elements_per_contact", m->elements_per_contact);
+        cj_num(&j, "P_preload_N", m->pt.P);
+        cj_num(&j, "a_mm", m->pt.a);
+        if (mok) {
+            cj_num(&j, "mu_s", m->res.mu_s);
+            cj_num(&j, "Q_max_N", m->res.Q_max);
+            cj_num(&j, "P_at_slide_N", m->res.P_slide);
+            cj_num(&j, "ux_at_slide_mm", m->res.ux_slide);
+        } else {
+            cj_null(&j, "mu_s"), cj_null(&j, "Q_max_N"), cj_null(&j, "P_at_slide_N");
+            cj_null(&j, "ux_at_slide_mm");
+        }
+        cj_num(&j, "shear_wall_s", m->res.wall_s);
+        cj_bool(&j, "converged", mok);
+        cj_str(&j, "reason", member_reason(m));
+        cj_end_obj(&j);
+    }
+    cj_end_arr(&j);
+    cj_num(&j, "wall_s", e->wall_s);
+    cj_bool(&j, "converged", ok);
+    cj_str(&j, "reason", ok ? "every member reached inception" : stc_errmsg());
+    cj_end_obj(&j);
+    cj_done(&j);
+}
+
+static void print_placements_text(const asp_placement_result *e, const stc_critical *c,
+                                  stc_status st)
+{
+    printf("node-placement ensemble: %d meshes, elements per contact shifted by %.4g / %d "
+           "(one node spacing at the contact edge)\n\n", e->k, e->period, e->k);
+    printf("%8s %12s %10s %12s %12s %10s %8s\n", "member", "elem/contact", "a0 mm", "Q_max N",
+           "P slide N", "mu_s", "ramp s");
+    for (int j = 0; j < e->k; j++) {
+        const asp_placement_member *m = &e->m[j];
+        if (m->status == STC_OK && m->res.converged)
+            printf("%8d %12.5g %10.5g %12.6g %12.6g %10.5f %8.1f\n", j, m->elements_per_contact,
+                   m->pt.a, m->res.Q_max, m->res.P_slide, m->res.mu_s, m->res.wall_s);
+        else printf("%8d %12.5g  FAILED: %s\n", j, m->elements_per_contact, member_reason(m));
+    }
+    if (st == STC_OK)
+        printf("\nmu_s = %.5f (mean of %d; members %.5f … %.5f, half range %.2f %% of the mean), "
+               "Q_max/Pc = %.5g, %.1f s\n", e->mu_s, e->k, e->mu_s_min, e->mu_s_max,
+               50.0 * (e->mu_s_max - e->mu_s_min) / e->mu_s, e->Q_max / c->P_c, e->wall_s);
+    else printf("\nNOT CONVERGED: no static friction coefficient\n");
+}
+
+static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
+                          const cli_shear_args *sa, const stc_critical *c, double dmm, int json,
+                          const char *out)
+{
+    asp_placement_result *e = malloc(sizeof *e);
+    if (!e) return cli_fail(cmd, STC_ENOMEM);
+    stc_status st = asp_shear_placements(p, o, &sa->so, dmm, sa->placements, e);
+    if (st == STC_EINVAL || (st != STC_OK && e->k == 0)) {
+        free(e);
+        return cli_fail(cmd, st);
+    }
+    char why[512];
+    snprintf(why, sizeof why, "%s", st == STC_OK ? "" : stc_errmsg());
+    if (json) print_placements_json(e, c, dmm, st);
+    else print_placements_text(e, c, st);
+    int rc = CLI_EXIT_OK;
+    if (st != STC_OK) {
+        fprintf(stderr, "stiction %s: %s\n", cmd, why);
+        rc = CLI_EXIT_FAIL;
+    } else if (out && write_members_csv(out, e) != 0) {
+        fprintf(stderr, "stiction %s: cannot write the results into '%s'\n", cmd, out);
+        rc = CLI_EXIT_FAIL;
+    }
+    free(e);
+    return rc;
+}
+
 /* ---- run ----------------------------------------------------------------- */
 
 static int check_args(const char *cmd, const stc_params *p, asp_options *o,
@@ -253,6 +396,11 @@ static int check_args(const char *cmd, const stc_params *p, asp_options *o,
     if (sa->load <= 0.0 && ndelta != 1) {
         fprintf(stderr, "stiction %s: delta: --shear needs one interference (--delta X or "
                         "--delta-mm X) or --load X, got %d values\n", cmd, ndelta);
+        return CLI_EXIT_USAGE;
+    }
+    if (sa->placements > 1 && sa->load > 0.0) {
+        fprintf(stderr, "stiction %s: placements = %d: the ensemble runs at a given --delta, "
+                        "not under --load\n", cmd, sa->placements);
         return CLI_EXIT_USAGE;
     }
     if (delta_mm > 0.01 * p->R) {
@@ -286,6 +434,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
         fprintf(stderr, "stiction %s: out = '%s': cannot create directory\n", cmd, out);
         return CLI_EXIT_FAIL;
     }
+    if (sa->placements > 1) return run_placements(cmd, p, o, sa, &c, dmm, json, out);
     asp_solver *sv;
     if ((s = asp_solver_create(p, o, dmax, &sv))) return cli_fail(cmd, s);
     asp_info in;

@@ -1,0 +1,109 @@
+/* Node-placement ensemble of the combined-loading run (include/stiction/asperity.h,
+ * asp_shear_placements; docs/tangential-step.md §21).
+ *
+ * A single mesh reads the junction growth in steps of whole node closures:
+ * where the surface nodes sit relative to the contact edge moves a level-0 μs
+ * by up to ±12 % (§19), while the preload is smooth.  The members here are the
+ * same model on meshes with elements_per_contact N_j = N_0 + j T / k,
+ * j = 0 … k-1, where T = a_max / a0 is the shift that moves the surface grid by
+ * one node spacing at the preload contact edge (h = a_max / N, so the edge sits
+ * at a0 N / a_max spacings from the axis): the members sample the node-entry
+ * sawtooth at k evenly spaced phases of one period, and their mean is the
+ * stratified average over it.  Member 0's normal step gives a0; the other
+ * members then run concurrently with it, one thread each. */
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "solver_impl.h"
+#include "stc_check.h"
+
+/* OpenBLAS extension (solver.c): concurrent members each factorize on one
+ * thread. */
+void openblas_set_num_threads(int num_threads);
+int openblas_get_num_threads(void);
+
+/* Normal step of one member (its solver is kept for the ramp). */
+static void member_load(const stc_params *p, const asp_options *o, double delta,
+                        asp_placement_member *m, asp_solver **sv)
+{
+    asp_options mo = *o;
+    mo.elements_per_contact = m->elements_per_contact;
+    mo.threads = 1;
+    *sv = NULL;
+    m->status = asp_solver_create(p, &mo, delta, sv);
+    if (m->status == STC_OK) m->status = asp_solver_load(*sv, delta, &m->pt);
+    if (m->status != STC_OK) snprintf(m->message, sizeof m->message, "%s", stc_errmsg());
+}
+
+static void member_shear(const asp_shear_options *so, asp_placement_member *m,
+                         asp_solver **sv)
+{
+    if (m->status == STC_OK) {
+        m->status = asp_solver_shear(*sv, so, NULL, NULL, &m->res);
+        if (m->status != STC_OK) snprintf(m->message, sizeof m->message, "%s", m->res.reason);
+    }
+    asp_solver_destroy(sv);
+}
+
+stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
+                                const asp_shear_options *so, double delta, int k,
+                                asp_placement_result *out)
+{
+    memset(out, 0, sizeof *out);
+    STC_CHECK(k >= 1 && k <= ASP_PLACEMENTS_MAX, STC_EINVAL,
+              "placements = %d: must be in [1, %d]", k, ASP_PLACEMENTS_MAX);
+    STC_CHECK(o && o->geom == ASP_GEOM_3D, STC_EINVAL,
+              "placements: the tangential step needs the 3D model");
+    STC_CHECK(delta > 0.0, STC_EINVAL, "placements: delta = %g mm: must be > 0", delta);
+    double t0 = omp_get_wtime();
+    asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
+    asp_placement_member *m = out->m;
+    out->k = k;
+    m[0].elements_per_contact = o->elements_per_contact > 0.0
+                                    ? o->elements_per_contact
+                                    : 6.0 * (1 << (o->mesh_level >= 0 ? o->mesh_level : 0));
+    member_load(p, o, delta, &m[0], &sv[0]);
+    if (m[0].status != STC_OK) {
+        asp_solver_destroy(&sv[0]);
+        return STC_FAIL(m[0].status, "placements: member 0 (elements per contact %g): %s",
+                        m[0].elements_per_contact, m[0].message);
+    }
+    asp_info in;
+    asp_solver_info(sv[0], &in);
+    out->period = in.a_max / m[0].pt.a;
+    for (int j = 1; j < k; j++)
+        m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
+    int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
+    if (nt > k) nt = k;
+    int bt = openblas_get_num_threads();
+    if (nt > 1) openblas_set_num_threads(1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+    for (int j = 0; j < k; j++) {
+        if (j > 0) member_load(p, o, delta, &m[j], &sv[j]);
+        member_shear(so, &m[j], &sv[j]);
+    }
+    if (nt > 1) openblas_set_num_threads(bt);
+    out->mu_s_min = INFINITY, out->mu_s_max = -INFINITY;
+    for (int j = 0; j < k; j++) {
+        if (m[j].status != STC_OK || !m[j].res.converged) continue;
+        const asp_shear_result *r = &m[j].res;
+        out->n_ok++;
+        out->mu_s += r->mu_s, out->mu_s_preload += r->mu_s_preload;
+        out->Q_max += r->Q_max, out->P_slide += r->P_slide;
+        out->mu_s_min = fmin(out->mu_s_min, r->mu_s);
+        out->mu_s_max = fmax(out->mu_s_max, r->mu_s);
+    }
+    out->wall_s = omp_get_wtime() - t0;
+    if (out->n_ok < k) {
+        int j = 0;
+        while (m[j].status == STC_OK && m[j].res.converged) j++;
+        return STC_FAIL(STC_ENOCONV, "placements: %d of %d members did not reach inception; "
+                        "member %d (elements per contact %g): %s", k - out->n_ok, k, j,
+                        m[j].elements_per_contact, m[j].message);
+    }
+    out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
+    return STC_OK;
+}
