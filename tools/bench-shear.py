@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """make bench, combined loading (issue 4 item 4): work-precision of mu_s.
 
-bench-shear.py CLI [MESHES]     (MESHES default "0,n6.6,0:nodes,0:c0,1": 3D mesh
+bench-shear.py CLI [MESHES]     (MESHES default "0,n6.6,0:rows:p2,0:nodes,0:c0,1": 3D mesh
                                  levels, or nX for X elements across a_max,
                                  e.g. "0,n8.5,1"; a ":nodes" suffix runs the
                                  junction rule --junction nodes instead of
@@ -10,7 +10,10 @@ bench-shear.py CLI [MESHES]     (MESHES default "0,n6.6,0:nodes,0:c0,1": 3D mesh
                                  converged mu_s, docs/tangential-step.md §11;
                                  ":c0" / ":c2" run the mesh with no / two
                                  2:1 coarsenings of the outer shells instead
-                                 of the default one, §13)
+                                 of the default one, §13; ":rows" reads the
+                                 growth on every node row, --foot-rows 0.6,
+                                 §19; ":pK" averages K node placements,
+                                 --placements K, §21)
 
 For the homogeneous WSP sphere at omega/omega_c = 3 and 12 and for two coated
 cases (delta = 1 and 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step):
@@ -76,8 +79,12 @@ def mesh_args(m):
             extra += ["--junction", "nodes"]
         elif mod.startswith("c") and mod[1:].isdigit():
             extra += ["--shell-coarsen", mod[1:]]
+        elif mod == "rows":
+            extra += ["--foot-rows", "0.6"]
+        elif mod.startswith("p") and mod[1:].isdigit():
+            extra += ["--placements", mod[1:]]
         else:
-            sys.exit("bench-shear.py: mesh modifier '%s': must be nodes or cN" % mod)
+            sys.exit("bench-shear.py: mesh modifier '%s': must be nodes, cN, rows or pK" % mod)
     if m.startswith("n"):
         return ["--elements-per-contact", m[1:]] + extra
     return ["--mesh", m] + extra
@@ -87,7 +94,8 @@ def main():
     if len(sys.argv) < 2:
         sys.exit("usage: bench-shear.py CLI [MESHES]")
     cli = sys.argv[1]
-    levels = (sys.argv[2] if len(sys.argv) > 2 else "0,%s,0:nodes,0:c0,1" % SHIFTED).split(",")
+    levels = (sys.argv[2] if len(sys.argv) > 2
+              else "0,%s,0:rows:p2,0:nodes,0:c0,1" % SHIFTED).split(",")
     print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
     print("%-34s %7s %8s %9s %9s %8s %7s %7s %6s %8s %6s %6s %6s" % (
         "case", "mesh", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
@@ -105,6 +113,12 @@ def main():
                 print("%-34s %7s   failed after %.1f s: %s" % (name, lev, wall, extra))
                 continue
             err = 100 * (j["mu_s"] / fin - 1) if fin else math.nan
+            if "members" in j:  # an ensemble: its members' spread instead of the time split
+                print("%-34s %7s %8s %9.5f %+8.3f%% %8.1f   members %s (half range %.2f %%), "
+                      "peak MB %.0f" % (name, lev, "-", j["mu_s"], err, wall,
+                                        " ".join("%.5f" % m["mu_s"] for m in j["members"]),
+                                        100 * j["mu_s_spread"], extra))
+                continue
             print("%-34s %7s %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f %6.1f %6.1f %6.1f" % (
                 name, lev, j.get("dofs", -1), j["mu_s"], err, wall,
                 j.get("newton_iterations", "-"), j.get("factorizations", "-"),
