@@ -17,13 +17,13 @@ is more than 3 % (of the area) from the reference (the bound of
 tests/test_shear.c test_elastic_growth_bem).
 """
 import argparse
-import csv
 import json
 import math
-import os
 import subprocess
 import sys
 import time
+
+from wsp_case import write_csv
 
 TAU = 325.0 / math.sqrt(3.0)
 BASE = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33"]
@@ -95,11 +95,7 @@ def main():
                 ok = False
                 print("  FE n = %s: FAILED: %s" % (n, r["reason"]))
             rows.append(r)
-    with open(a.out + ".tmp", "w", newline="") as fh:
-        wr = csv.DictWriter(fh, fieldnames=cols)
-        wr.writeheader()
-        wr.writerows(rows)
-    os.replace(a.out + ".tmp", a.out)
+    write_csv(a.out, cols, rows)
     print("elastic junction growth vs half-space (|error| <= 3 %%): %s" % ("ok" if ok else "FAIL"))
     return 0 if ok else 1
 

@@ -8,19 +8,19 @@ validate-shear.py CLI OUT.csv [--levels 0,1] [--omegas 0.5,1,3,6,12,24,48,72]
 E = 74 GPa, nu = 0.33, Y = 325 MPa, R' = 10.5 mm, slip normal step, shear
 criterion, 3D model.  One `stiction asperity --shear --json` run per
 (level, omega), one at a time (each uses the machine's threads).  Writes
-OUT.csv (written to OUT.csv.tmp, renamed at the end) with mu_s, the fit, the
+OUT.csv (OUT.csv.part holds the rows done so far; OUT.csv appears at the end) with mu_s, the fit, the
 error, Q_max/Pc, ux at slide, wall time, DOFs, Newton iterations and
 factorizations; a failed run is a row with its reason and no numbers.
 Exit status 1 if any run failed or missed the 5 % band.
 """
 import argparse
-import csv
 import json
+import os
 import subprocess
 import sys
 import time
 
-from wsp_case import WSP, wsp_mu as wsp_fit
+from wsp_case import WSP, write_csv, wsp_mu as wsp_fit
 TOL = 0.05  # issue 4, acceptance 1
 
 
@@ -71,12 +71,9 @@ def main():
             print("level %d omega/omega_c %5g: mu_s %s fit %.4f error %s %% wall %.0f s %s" %
                   (lv, w, r["mu_s"] or "-", fit, r["error_pct"] or "-", wall,
                    "" if good else "FAILED: " + r["reason"]), flush=True)
-            with open(a.out + ".tmp", "w", newline="") as f:
-                wr = csv.DictWriter(f, fieldnames=cols)
-                wr.writeheader()
-                wr.writerows(rows)
-    import os
-    os.replace(a.out + ".tmp", a.out)
+            write_csv(a.out + ".part", cols, rows)  # what is done so far
+    write_csv(a.out, cols, rows)
+    os.remove(a.out + ".part")
     print("WSP check (|error| <= 5 %%): %s" % ("ok" if ok else "FAIL"))
     return 0 if ok else 1
 

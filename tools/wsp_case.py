@@ -2,8 +2,11 @@
 check (issue 4), shared by validate-shear.py, bench-shear.py and
 reproduce-shear.py: E = 74 GPa, nu = 0.33, Y = 325 MPa, R' = 10.5 mm, slip
 normal step (thesis section 4.1.3), as `stiction asperity` arguments, and the
-WSP fit (the same formula as stc_wsp_mu in asperity/formulas.c)."""
+WSP fit (the same formula as stc_wsp_mu in asperity/formulas.c); and the
+atomic CSV writer of the validate scripts."""
+import csv
 import math
+import os
 
 WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
        "--Y-su", "325", "--contact", "slip"]
@@ -12,3 +15,13 @@ WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
 def wsp_mu(w):
     """Wu, Shi & Polycarpou (2012) fit, thesis eq. 4.1: mu_s at omega/omega_c = w."""
     return 0.3 / math.tanh(0.57 * w ** 0.41)
+
+
+def write_csv(path, cols, rows):
+    """rows (dicts) under the header cols into path, via path.tmp and a rename,
+    so a reader never sees half a table."""
+    with open(path + ".tmp", "w", newline="") as f:
+        wr = csv.DictWriter(f, fieldnames=cols)
+        wr.writeheader()
+        wr.writerows(rows)
+    os.replace(path + ".tmp", path)
