@@ -461,6 +461,10 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     else print_text(&pt, &in, &r, &c, &l, st);
     if (!ok) {
         fprintf(stderr, "stiction %s: %s\n", cmd, r.reason);
+        /* the ramp points reached are kept for the diagnosis (no μs is claimed) */
+        if (out && l.n > 0 && write_csv(out, &l, &c) == 0)
+            fprintf(stderr, "stiction %s: the %d ramp points reached are in %s/shear.csv\n", cmd,
+                    l.n, out);
         rc = CLI_EXIT_FAIL;
     } else if (out && (rc != CLI_EXIT_OK || write_csv(out, &l, &c) != 0)) {
         fprintf(stderr, "stiction %s: cannot write the results into '%s'\n", cmd, out);
