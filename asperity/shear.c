@@ -636,6 +636,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
         if (++cuts > s->opt.max_cutbacks) {
             char why[512];
             snprintf(why, sizeof why, "%s", stc_errmsg());
+            if (asp_slide_mechanism(det, why)) break; /* sliding in the material */
             st = STC_FAIL(STC_ENOCONV, "shear: cut-back limit (%d halvings) reached at ux = %g "
                                        "mm: %s", s->opt.max_cutbacks, s->ux_conv, why);
             goto done;

@@ -295,6 +295,21 @@ asp_slide_state asp_slide_push(asp_slide *d, double ux, double Q, double P, doub
     return evaluate(d);
 }
 
+int asp_slide_mechanism(asp_slide *d, const char *why)
+{
+    const asp_slide_params *p = &d->par;
+    int last = d->n - 1;
+    if (d->res.state != ASP_SLIDE_RUNNING || p->criterion != ASP_SLIDE_SHEAR || last < 2)
+        return 0;
+    if (d->frac[last] < 1.0 - p->slip_tol || !(KT(d, last) <= p->full_tol * d->KT1)) return 0;
+    double kt = KT(d, last) / d->KT1;
+    finish(d, ASP_SLIDE_INCEPTION, last, "mechanism", 0.0);
+    snprintf(d->res.reason, sizeof d->res.reason,
+             "whole contact at its shear limit, no equilibrium past it (plastic mechanism; "
+             "KT/KT_1 = %.3g): %.50s", kt, why);
+    return 1;
+}
+
 /* Target change of KT/KT_1 per increment. */
 static double bend_target(const asp_slide *d, int last)
 {

@@ -198,6 +198,16 @@ double asp_slide_next(const asp_slide *d);
 
 void asp_slide_get(const asp_slide *d, asp_slide_result *res);
 
+/* The solver found no equilibrium past the last point pushed (cut-back limit).
+ * Under the shear criterion, if that point has the whole contact at its shear
+ * limit and the last increment's secant stiffness is at most full_tol KT_1,
+ * the asperity can carry no more tangential load there: a plastic mechanism
+ * (perfect plasticity under a contact at τc; the tangent lost positive
+ * definiteness).  That point is then declared inception (Q_max the largest Q
+ * up to it) and 1 is returned; otherwise 0 and nothing changes.  `why` (the
+ * solver's message) is quoted in the reason. */
+int asp_slide_mechanism(asp_slide *d, const char *why);
+
 /* ---- load control (slide.c) ------------------------------------------- */
 
 /* P(δ) callback: fills *P (N).  Returns STC_OK or a failure (with a message

@@ -231,6 +231,53 @@ static void test_rising_after(void **state)
     assert_non_null(strstr(r.r.reason, "still rising"));
 }
 
+/* The ramp's solver finds no equilibrium past a point (cut-back limit):
+ * with the whole contact at its limit and Q nearly flat there, that point is
+ * inception (a plastic mechanism), Q_max the largest Q so far; with part of
+ * the contact stuck, or Q still rising steeply, or under the stiffness
+ * criterion, nothing is declared.  The ramp of docs/tangential-step.md §21
+ * (WSP 3 wc, N = 12, rows): limit fractions 0.95 / 0.97 / 1.00, Q 25.48 /
+ * 25.57 / 25.63 N, KT/KT_1 0.006 over the last increment. */
+static void test_mechanism(void **state)
+{
+    (void)state;
+    asp_slide_setup su = setup();
+    asp_slide_params p;
+    asp_slide_params_default(&p);
+    p.full_tol = 0.5;
+    double P0 = su.P0, k1 = 1e4;
+    const double fr[4][2] = {{0.95, 0.97}, {0.97, 1.0}, {0.97, 1.0}, {0.97, 1.0}};
+    const double dq[4] = {0.006, 0.006, 0.8, 0.006}; /* last KT / KT_1 */
+    for (int c = 0; c < 4; c++) {
+        asp_slide *d = NULL;
+        asp_slide_params q = p;
+        if (c == 3) q.criterion = ASP_SLIDE_STIFFNESS, q.alpha = 1e-3;
+        assert_int_equal(asp_slide_create(&q, &su, &d), STC_OK);
+        double du = 1e-5;
+        asp_slide_push(d, du, k1 * du, P0, 0.0, 10);           /* KT_1 = k1 */
+        asp_slide_push(d, 2 * du, k1 * du * 1.5, P0, fr[c][0], 11);
+        asp_slide_push(d, 3 * du, k1 * du * (1.5 + dq[c]), P0, fr[c][1], 12);
+        int got = asp_slide_mechanism(d, "CHOLMOD factorization: matrix not positive definite");
+        asp_slide_result r;
+        asp_slide_get(d, &r);
+        printf("mechanism case %d: %d, %s\n", c, got, r.reason);
+        if (c == 1) {
+            assert_int_equal(got, 1);
+            assert_int_equal(r.state, ASP_SLIDE_INCEPTION);
+            assert_int_equal(r.index, 3);
+            assert_true(fabs(r.Q_max - k1 * du * (1.5 + dq[c])) < 1e-12);
+            assert_true(fabs(r.mu_s - r.Q_max / P0) < 1e-15);
+            assert_non_null(strstr(r.reason, "plastic mechanism"));
+            assert_non_null(strstr(r.reason, "not positive"));
+            assert_int_equal(asp_slide_mechanism(d, "again"), 0); /* once */
+        } else {
+            assert_int_equal(got, 0);
+            assert_int_equal(r.state, ASP_SLIDE_RUNNING);
+        }
+        asp_slide_destroy(&d);
+    }
+}
+
 static void test_softening(void **state)
 {
     (void)state;
@@ -383,7 +430,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mindlin_shear),     cmocka_unit_test(test_mindlin_stiffness),
         cmocka_unit_test(test_asymptotic),        cmocka_unit_test(test_plateau),
-        cmocka_unit_test(test_plastic_plateau),   cmocka_unit_test(test_softening),
+        cmocka_unit_test(test_plastic_plateau),   cmocka_unit_test(test_mechanism),
+        cmocka_unit_test(test_softening),
         cmocka_unit_test(test_gives_up),          cmocka_unit_test(test_rising_after),
         cmocka_unit_test(test_invalid),           cmocka_unit_test(test_find_delta_hertz),
         cmocka_unit_test(test_find_delta_kink),   cmocka_unit_test(test_find_delta_failures),
