@@ -78,10 +78,6 @@
 #include "stc_check.h"
 #include "stiction/formulas.h"
 
-/* OpenBLAS extension (cblas.h of OpenBLAS is not on the default include
- * path here); OpenBLAS is the one BLAS the project links. */
-void openblas_set_num_threads(int num_threads);
-int openblas_get_num_threads(void);
 
 /* Increments per surface node entering the contact past yield (step_limit;
  * asp_options.steps_per_node overrides).  Stick: 1 (P at 10 ωc, t/R 0.025,

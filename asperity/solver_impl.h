@@ -35,6 +35,13 @@ typedef struct asp_foot_line {
 
 enum { ASP_FOOT_MAXLINES = 96 }; /* 32 per direction */
 
+/* OpenBLAS extension (cblas.h of OpenBLAS is not on the default include
+ * path here); OpenBLAS is the one BLAS the project links.  solver.c
+ * serializes small factorizations with it, placements.c runs concurrent
+ * members on one BLAS thread each. */
+void openblas_set_num_threads(int num_threads);
+int openblas_get_num_threads(void);
+
 struct asp_solver {
     stc_params par;
     asp_options opt;

@@ -261,8 +261,6 @@ stc_status srf_halfspace_sphere_slide(double R, double delta, double E, double n
     double dA = h * h;
     for (size_t k = 0; k < nn; k++)
         if (p[k] > 0.0) c[k] = 1, out->P0 += p[k] * dA, out->A0 += dA;
-    double s0;
-    extents(c, n, h, &out->a0_lead, &s0, &out->a0_side);
     for (int step = 1; step <= steps; step++) {
         double tq = tau_c * step / steps;
         for (int sweep = 0;; sweep++) {

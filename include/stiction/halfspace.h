@@ -63,7 +63,6 @@ typedef struct srf_slide_result {
     double P, A;                  /* at full slip */
     double a_lead, a_trail, a_side; /* contact extents along +x, −x, +y at full slip, mm
                                        (outer cell edges) */
-    double a0_lead, a0_side;      /* the same at the preload */
     double tension;               /* total tensile (negative) load on bonded cells, N */
     double h;                     /* cell size, mm */
     int iterations;               /* CG iterations in all */

@@ -45,11 +45,8 @@ typedef struct {
 static stc_status set_num(const char *key, const char *value, double lo, int lo_incl, double hi,
                           double *v)
 {
-    char *end;
-    double x = strtod(value, &end);
-    if (end == value || *end)
-        return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': not a number", key, value);
-    return (*v = x, stc_check_range(key, x, lo, lo_incl, hi, 1));
+    stc_status s = stc_parse_double(key, value, v);
+    return s != STC_OK ? s : stc_check_range(key, *v, lo, lo_incl, hi, 1);
 }
 
 static stc_status set_int(const char *key, const char *value, int lo, int hi, int *v)
