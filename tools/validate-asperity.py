@@ -405,10 +405,11 @@ def target_3d(cli, fin, smooth):
         l = j[-1]
         print("  steps %s:\n    %6d DOFs, at 1 wc %.1f %%, from 6 wc on: max |P_smooth/P_3 - 1| %.2f %%, "
               "max |P/P_3 - 1| %.2f %%, "
-              "%3d increments, %3d factorizations, %4d PCG its, %3d element loops, run %.1f s, "
-              "CPU %.1f s, %.0f MB%s%s"
+              "%3d increments, %3d factorizations, %4d PCG its, %3d element loops, run %.1f s "
+              "(element loops %.1f, factorizations %.1f, PCG %.1f s), CPU %.1f s, %.0f MB%s%s"
               % (name, l["dofs"], 100 * e1, 100 * ers, 100 * err, l["increments"], l["factorizations"],
-                 l["krylov_iterations"], l["assemblies"], w, LAST_CPU[0], m,
+                 l["krylov_iterations"], l["assemblies"], w, l["time_assembly_s"],
+                 l["time_factorize_s"], l["time_pcg_s"], LAST_CPU[0], m,
                  "  (time target met: < 30 s)" if w < 30.0 else "",
                  "  (accuracy target met: all points within 0.5 %)"
                  if max(e1, ers) < 0.005 else ""))

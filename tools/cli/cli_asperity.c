@@ -171,6 +171,7 @@ typedef struct {
     asp_point pt;
     double P_smooth; /* N, NaN if no estimate (asp_solver_P_smooth) */
     asp_yield y[2];
+    double t_split[3]; /* cumulative s: element loops, factorizations, PCG */
     stc_status st;
     char reason[256];
 } arow;
@@ -239,6 +240,9 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
     cj_int(j, "assemblies", r->pt.assemblies);
     cj_int(j, "active_set_passes", r->pt.active_set_passes);
     cj_num(j, "wall_s", r->pt.wall_s);
+    cj_num(j, "time_assembly_s", r->t_split[0]);
+    cj_num(j, "time_factorize_s", r->t_split[1]);
+    cj_num(j, "time_pcg_s", r->t_split[2]);
     cj_end_obj(j);
 }
 
@@ -319,6 +323,11 @@ static int run(const char *cmd, const stc_params *p, aopts *a)
         r->st = asp_solver_load(sv, a->delta[n] * scale, &r->pt);
         if (r->st) snprintf(r->reason, sizeof r->reason, "%s", stc_errmsg());
         for (int k = 0; k < 2; k++) asp_solver_yield(sv, k, &r->y[k]);
+        asp_info now;
+        asp_solver_info(sv, &now);
+        r->t_split[0] = now.time_assembly_s;
+        r->t_split[1] = now.time_factorize_s;
+        r->t_split[2] = now.time_pcg_s;
         if (r->st) {
             fprintf(stderr, "stiction %s: %s\n", cmd, r->reason);
             rc = CLI_EXIT_FAIL;
