@@ -296,10 +296,10 @@ int asp_hex8(const double *X, const double *u, const asp_j2 *m,
     memset(B, 0, sizeof B);
     for (int q = 0; q < NQ; q++)
         for (int a = 0; a < 8; a++) {
-            for (int k = 0; k < 3; k++)
-                for (int i = 0; i < 3; i++) /* Hughes eq. 4.5.25 */
-                    B[q][k][3 * a + i] = (k == i ? d[q][a][i] : 0.0) +
-                                         (bm[a][i] - d[q][a][i]) / 3.0;
+            for (int i = 0; i < 3; i++) { /* Hughes eq. 4.5.25 */
+                double v = (bm[a][i] - d[q][a][i]) / 3.0;
+                for (int k = 0; k < 3; k++) B[q][k][3 * a + i] = (k == i ? d[q][a][i] : 0.0) + v;
+            }
             for (int s = 0; s < 3; s++) {
                 int i = SH[s][0], j = SH[s][1];
                 B[q][3 + s][3 * a + i] = d[q][a][j];

@@ -59,6 +59,10 @@ struct asp_solver {
                              the midpoint return's, j2.c); all zero under radial return */
     double *Kd;           /* [nnz(K)] symmetric part of the tangent minus K (same) */
     int skew;             /* Kk or Kd is not zero: K is not the tangent */
+    double kforce;        /* > 0: the reaction the Krylov forcing term scales with, N */
+    int *sk_k, *sk_j, nsk; /* the entries k (in column j) where Kk or Kd is not zero */
+    int ncolor, *cptr, *celem; /* element colours (no shared node within one):
+                                  celem[cptr[c] .. cptr[c+1]); ncolor 0: none */
     cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
     int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
@@ -84,6 +88,8 @@ struct asp_solver {
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
+    double *kel;          /* [nelem][nde (nde + 1) / 2] elastic Ke, upper triangles */
+    double *kglob;        /* [nnz(K)] the elastic K (build_elastic_K), NULL until built */
     unsigned char *fixed;         /* [ndof] Dirichlet flag */
     double *ubc;                  /* [ndof] prescribed values of the fixed DOFs */
     double *cvec;                 /* [ndof] scratch: constraint defect */

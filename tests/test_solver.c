@@ -429,7 +429,7 @@ static void test_hanging_nodes(void **state)
 
 /* Coated stick run with the Newton steps solved by a factorization each
  * (krylov off) or by PCG preconditioned with the last factor (on). */
-static void krylov_run(asp_krylov mode, asp_point *pt, asp_yield y[2])
+static void krylov_run(asp_krylov mode, asp_contact_law contact, asp_point *pt, asp_yield y[2])
 {
     stc_params p;
     asp_options o;
@@ -437,7 +437,7 @@ static void krylov_run(asp_krylov mode, asp_point *pt, asp_yield y[2])
     stc_params_default(&p);
     p.t_over_R = 0.025, p.E_ratio = 2.0;
     asp_options_default(&o);
-    o.contact = ASP_CONTACT_STICK, o.mesh_level = 0, o.threads = 1, o.krylov = mode;
+    o.contact = contact, o.mesh_level = 0, o.threads = 1, o.krylov = mode;
     stc_material su, co;
     stc_critical c;
     stc_params_materials(&p, &su, &co);
@@ -450,16 +450,18 @@ static void krylov_run(asp_krylov mode, asp_point *pt, asp_yield y[2])
 
 /* Newton-Krylov changes the cost, not the answer: the stick positions come
  * from the iterates (path dependent), so an inexact step would show.
- * Measured: the same 48 Newton iterations, answers equal to 3e-14,
- * 48 -> 12 factorizations (516 PCG iterations; PCG forced on: on this
- * axisymmetric mesh auto would factorize, factorizations being cheap). */
+ * Measured: the same 42 Newton iterations, answers equal to 5e-10,
+ * 42 -> 7 factorizations (385 PCG iterations; PCG forced on: on this
+ * axisymmetric mesh auto would factorize, factorizations being cheap).
+ * Slip, with the forcing term: P to 1e-14, Newton 62 -> 68,
+ * factorizations 62 -> 2 (482 PCG iterations). */
 static void test_krylov(void **state)
 {
     (void)state;
     asp_point pd, pk;
     asp_yield yd[2], yk[2];
-    krylov_run(ASP_KRYLOV_OFF, &pd, yd);
-    krylov_run(ASP_KRYLOV_ON, &pk, yk);
+    krylov_run(ASP_KRYLOV_OFF, ASP_CONTACT_STICK, &pd, yd);
+    krylov_run(ASP_KRYLOV_ON, ASP_CONTACT_STICK, &pk, yk);
     printf("# krylov: P %+.2e, a %+.2e, delta_c1 %+.2e relative; Newton %d -> %d, "
            "factorizations %d -> %d, PCG iterations %d\n",
            pk.P / pd.P - 1, pk.a / pd.a - 1, yk[1].delta / yd[1].delta - 1, pd.newton_iterations,
@@ -473,6 +475,18 @@ static void test_krylov(void **state)
     assert_int_equal(pd.krylov_iterations, 0);
     assert_true(pk.krylov_iterations > 0);
     assert_true(pk.factorizations * 2 < pd.factorizations);
+    /* slip: the Krylov solves stop at a forcing term that tightens with the
+     * residual (solver.c, KRYLOV_FORCE); the converged answer must stay */
+    krylov_run(ASP_KRYLOV_OFF, ASP_CONTACT_SLIP, &pd, yd);
+    krylov_run(ASP_KRYLOV_ON, ASP_CONTACT_SLIP, &pk, yk);
+    printf("# krylov, slip (forcing term): P %+.2e, a %+.2e relative; Newton %d -> %d, "
+           "factorizations %d -> %d, PCG iterations %d\n",
+           pk.P / pd.P - 1, pk.a / pd.a - 1, pd.newton_iterations, pk.newton_iterations,
+           pd.factorizations, pk.factorizations, pk.krylov_iterations);
+    assert_true(fabs(pk.P / pd.P - 1) < 1e-6);
+    assert_true(fabs(pk.a / pd.a - 1) < 1e-6);
+    assert_int_equal(pk.increments, pd.increments);
+    assert_true(pk.krylov_iterations > 0);
     stc_params p;
     asp_options o;
     asp_solver *s = NULL;
