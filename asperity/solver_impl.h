@@ -41,6 +41,13 @@ enum { ASP_FOOT_MAXLINES = 96 }; /* 32 per direction */
  * members on one BLAS thread each. */
 void openblas_set_num_threads(int num_threads);
 int openblas_get_num_threads(void);
+/* Single-precision BLAS, Fortran interface (solver.c's float preconditioner;
+ * the C interface's header would pull in complex.h, whose I clashes) */
+void strsv_(const char *uplo, const char *trans, const char *diag, const int *n,
+            const float *a, const int *lda, float *x, const int *incx);
+void sgemv_(const char *trans, const int *m, const int *n, const float *alpha,
+            const float *a, const int *lda, const float *x, const int *incx,
+            const float *beta, float *y, const int *incy);
 
 struct asp_solver {
     stc_params par;
@@ -76,6 +83,10 @@ struct asp_solver {
     cholmod_dense *kb;    /* PCG: preconditioner right-hand side */
     double *kv;           /* [4][ndof] PCG vectors r, z, p, q (lazily allocated) */
     double *gv;           /* GMRES: [krylov_max + 2][ndof] basis and work (lazily) */
+    float *fx;            /* single-precision copy of the supernodal factor's values */
+    size_t fx_size;       /* its allocated length; fx_ok: it matches the factor */
+    int fx_ok;
+    float *fy;            /* [2 ndof] its solve's work vectors */
     double *skew_r;       /* [ndof] residual of the skew corrections */
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
