@@ -952,25 +952,6 @@ static double dot(const double *a, const double *b, int n)
  * come from the iterates), and a floor at 1e-2 rtol |reaction| cost 25 %
  * more Newton iterations and 50 % more line-search evaluations. */
 #define KRYLOV_ABS 1e-3
-/* Inexact Newton: each Krylov solve stops at min(0.1, |b| / |reaction|)
- * |b| if that is looser than the above (forcing term proportional to the
- * residual, which keeps Newton's quadratic rate: Dembo, Eisenstat &
- * Steihaug, SIAM J. Numer. Anal. 19 (1982) 400; Eisenstat & Walker, SIAM
- * J. Sci. Comput. 17 (1996) 16).  The early iterations of an increment,
- * far from the answer, no longer solve to 1e-6; the last ones still do,
- * and the converged states pass the same tests.  Only where the answer
- * does not depend on the iterates: the slip normal step (newton()).
- * Measured, 2 threads: 3D graded slip curve 1:30:6 at 4 elements per
- * contact, the same P to 8 digits, Newton 147 -> 158, factorizations
- * 33 -> 11, PCG iterations 1293 -> 1187, 21.4 -> 16.8 s.  Under stick the
- * stick positions come from the iterates: test_solver's stick case moved
- * P by -7.8e-5 and a by +1.4e-3 (Krylov against direct), the coated
- * t/R .025 Eco/Esu 2 δ = 10 ramp mu_s by -0.024 % (73.9 -> 63.0 s; the
- * WSP 3 ωc ramp kept mu_s to 10 digits, 22.4 -> 17.9 s), so the ramp and
- * the stick step keep the fixed tolerance.  (The floor at 1e-2 rtol of
- * the comment above was a fixed tolerance, not one that tightens with
- * the residual.) */
-#define KRYLOV_FORCE 0.1
 #define KRYLOV_ETA 1e-6
 /* GMRES keeps at most this many basis vectors (krylov_max above it: the
  * step is refactorized after KRYLOV_MAX_CAP iterations) */
@@ -1072,9 +1053,8 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax
     double *r = s->kv, *z = r + n, *p = z + n, *q = p + n;
     for (int i = 0; i < n; i++) r[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
     double rz = 0.0;
-    double bn = sqrt(dot(r, r, n)), rel = KRYLOV_ETA * bn;
+    double rel = KRYLOV_ETA * sqrt(dot(r, r, n));
     tol = tol > 0.0 ? fmin(tol, rel) : rel; /* no reaction yet: relative only */
-    if (s->kforce > 0.0) tol = fmax(tol, fmin(KRYLOV_FORCE, bn / s->kforce) * bn);
     for (int k = 0;; k++) {
         if (sqrt(dot(r, r, n)) <= tol) {
             for (int i = 0; i < n; i++)
@@ -1110,7 +1090,6 @@ static int gmres(asp_solver *s, const double *bx, double *du, double tol, int km
     double beta = sqrt(dot(V, V, n));
     double rel = KRYLOV_ETA * beta;
     tol = tol > 0.0 ? fmin(tol, rel) : rel;
-    if (s->kforce > 0.0) tol = fmax(tol, fmin(KRYLOV_FORCE, beta / s->kforce) * beta);
     int k = 0;
     if (beta > tol) {
         for (int i = 0; i < n; i++) V[i] /= beta;
@@ -1270,9 +1249,6 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
                 sym_matvec(s->K, c, du, s->ndof);
                 skew_matvec_add(s, c, du, 0);
             }
-            /* forcing only where the iterates leave no trace: stick
-             * positions are taken from them (stick normal step, ramp) */
-            s->kforce = !s->shear && o->contact == ASP_CONTACT_SLIP ? ref : 0.0;
             STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref));
             age = 0;
         } else {

@@ -66,7 +66,6 @@ struct asp_solver {
                              the midpoint return's, j2.c); all zero under radial return */
     double *Kd;           /* [nnz(K)] symmetric part of the tangent minus K (same) */
     int skew;             /* Kk or Kd is not zero: K is not the tangent */
-    double kforce;        /* > 0: the reaction the Krylov forcing term scales with, N */
     int *sk_k, *sk_j, nsk; /* the entries k (in column j) where Kk or Kd is not zero */
     int ncolor, *cptr, *celem; /* element colours (no shared node within one):
                                   celem[cptr[c] .. cptr[c+1]); ncolor 0: none */
