@@ -57,17 +57,18 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
     asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
     asp_placement_member *m = out->m;
     out->k = k;
-    m[0].elements_per_contact = o->elements_per_contact > 0.0
-                                    ? o->elements_per_contact
-                                    : 6.0 * (1 << (o->mesh_level >= 0 ? o->mesh_level : 0));
+    m[0].elements_per_contact = o->elements_per_contact; /* 0: the level's */
     member_load(p, o, delta, &m[0], &sv[0]);
+    asp_info in;
+    if (sv[0]) { /* the mesh resolves the level into elements per contact */
+        asp_solver_info(sv[0], &in);
+        m[0].elements_per_contact = in.elements_per_contact;
+    }
     if (m[0].status != STC_OK) {
         asp_solver_destroy(&sv[0]);
         return STC_FAIL(m[0].status, "placements: member 0 (elements per contact %g): %s",
                         m[0].elements_per_contact, m[0].message);
     }
-    asp_info in;
-    asp_solver_info(sv[0], &in);
     out->period = in.a_max / m[0].pt.a;
     for (int j = 1; j < k; j++)
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;

@@ -358,6 +358,15 @@ void asp_node_u(const asp_solver *s, const double *u, int n, double *out)
             for (int i = 0; i < d; i++) out[i] += w[b] * u[d * mm[b] + i];
 }
 
+/* Node coordinates of element e, X [nen][dim]. */
+static void element_X(const asp_solver *s, int e, double *X)
+{
+    const asp_mesh *m = s->mesh;
+    const int *c = m->conn + (size_t)s->nen * e;
+    for (int a = 0; a < s->nen; a++)
+        for (int i = 0; i < s->dim; i++) X[s->dim * a + i] = m->x[s->dim * c[a] + i];
+}
+
 /* Element e at s->u: fe, Ke (if want_K), stress and state; < 0 if inverted. */
 static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke, double *Kp)
 {
@@ -365,10 +374,8 @@ static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke, dou
     int d = s->dim, nen = s->nen;
     double X[24], ue[24];
     const int *c = m->conn + (size_t)nen * e;
-    for (int a = 0; a < nen; a++) {
-        for (int i = 0; i < d; i++) X[d * a + i] = m->x[d * c[a] + i];
-        asp_node_u(s, s->u, c[a], ue + d * a);
-    }
+    element_X(s, e, X);
+    for (int a = 0; a < nen; a++) asp_node_u(s, s->u, c[a], ue + d * a);
     size_t q0 = (size_t)e * s->nqp;
     const asp_j2 *mat = &s->mat[m->region[e]];
     return d == 2 ? asp_quad4_axi(X, ue, mat, s->st_old + q0, s->st_new + q0, fe,
@@ -545,9 +552,7 @@ static stc_status build_elastic_K(asp_solver *s)
     memset(s->K->x, 0, nnz * sizeof(double));
     for (int e = 0; e < m->nelem; e++) {
         double X[24], zero[24] = {0}, fe[24] = {0}, Ke[24 * 24];
-        const int *c = m->conn + (size_t)s->nen * e;
-        for (int a = 0; a < s->nen; a++)
-            for (int i = 0; i < d; i++) X[d * a + i] = m->x[d * c[a] + i];
+        element_X(s, e, X);
         const asp_j2 *mat = &s->mat[m->region[e]];
         int np = d == 2 ? asp_quad4_axi(X, zero, mat, NULL, NULL, NULL, Ke, NULL, NULL)
                         : asp_hex8(X, zero, mat, NULL, NULL, NULL, Ke, NULL, NULL);
@@ -562,16 +567,21 @@ static stc_status build_elastic_K(asp_solver *s)
 }
 
 /* One element's share: fe always; with want_K and plastic points, its
- * tangent minus its elastic Ke (already in K from kglob). */
+ * tangent minus its elastic Ke (already in K from kglob).  An element
+ * plastic at the last assembly with K is evaluated with its tangent at
+ * once; any other is evaluated without, and again (the same state update,
+ * now with D) only if it turned out plastic. */
 static int element_share(asp_solver *s, int e, int want_K, int atomic)
 {
     double fe[24], Ke[24 * 24], Kp[24 * 24];
-    int np = element(s, e, 0, fe, NULL, NULL);
-    if (np <= 0 || !want_K) {
+    int withK = want_K && s->eplastic[e];
+    int np = element(s, e, withK, fe, Ke, withK ? Kp : NULL);
+    if (np > 0 && want_K && !withK) np = element(s, e, 1, fe, Ke, Kp), withK = 1;
+    if (want_K && np >= 0) s->eplastic[e] = np > 0;
+    if (np <= 0 || !withK) {
         if (np >= 0) scatter(s, e, 0, fe, NULL, NULL, atomic, 1);
         return np;
     }
-    np = element(s, e, 1, fe, Ke, Kp); /* the same state update, now with D */
     int nde = s->nde;
     const double *k = s->kel + (size_t)e * (nde * (nde + 1) / 2);
     for (int i = 0; i < nde; i++)
@@ -957,7 +967,6 @@ static double dot(const double *a, const double *b, int n)
  * step is refactorized after KRYLOV_MAX_CAP iterations) */
 #define KRYLOV_MAX_CAP 100
 
-/* z = P L^-1 P r with the stored factor (P: zero the fixed DOFs). */
 /* ---- single-precision preconditioner ------------------------------------
  * A Krylov iteration is two triangular solves with the factor, which are
  * memory bound (3D: 2-12e6 entries read twice per iteration).  The
@@ -1028,6 +1037,8 @@ static void fsolve(const asp_solver *s, const double *b, double *out)
     for (int i = 0; i < n; i++) out[perm[i]] = y[i];
 }
 
+/* z = P K^-1 P r with the stored factor, its float copy where there is one
+ * (P: zero the fixed DOFs). */
 static int precondition(asp_solver *s, const double *r, double *z)
 {
     if (s->fx_ok) {
@@ -1355,9 +1366,10 @@ static stc_status alloc_state(asp_solver *s)
     s->du_scr = malloc(n * sizeof *s->u), s->u0_scr = malloc(n * sizeof *s->u);
     s->b_scr = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
     s->skew_r = malloc(n * sizeof *s->u);
+    s->eplastic = calloc((size_t)s->mesh->nelem, 1);
     STC_CHECK(s->u && s->u_conv && s->du_last && s->fint && s->sig && s->st_old && s->st_new &&
                   s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->b_scr &&
-                  s->skew_r,
+                  s->skew_r && s->eplastic,
               STC_ENOMEM, "solver: out of memory for %zu DOFs", n);
     return STC_OK;
 }
@@ -1436,6 +1448,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     s->nqp = s->dim == 2 ? ASP_QUAD4_NQP : ASP_HEX8_NQP;
     s->nde = s->dim * s->nen;
     s->ndof = s->dim * s->mesh->nnode;
+    s->n_contact = n;
     s->h = s->a_max / n; /* mesh.c: h = a_max / n, n = 6 2^level by default */
     s->h0 = s->a_min / n;
     return STC_OK;
@@ -1509,7 +1522,7 @@ void asp_solver_destroy(asp_solver **sp)
     free(s->cptr), free(s->celem), free(s->fx), free(s->fy);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
-    free(s->kel), free(s->kglob);
+    free(s->kel), free(s->kglob), free(s->eplastic);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
     asp_shear_release(s);
     free(s);
@@ -1525,6 +1538,7 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->mesh_quality = s->quality;
     info->h_contact = s->h;
     info->a_max = s->a_max;
+    info->elements_per_contact = s->n_contact;
     info->time_assembly_s = s->t_asm;
     info->time_factorize_s = s->t_fact;
     info->time_pcg_s = s->t_pcg;

@@ -58,6 +58,7 @@ struct asp_solver {
     int ndof;
     double omega_est;     /* closed-form first-yield estimate (smaller layer ωc), mm */
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
+    double n_contact;     /* elements across a_max (h = a_max / n_contact) */
 
     cholmod_common cc;
     cholmod_sparse *K;    /* upper triangle, fixed pattern: the matrix factorized, the
@@ -100,6 +101,7 @@ struct asp_solver {
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
     double *kel;          /* [nelem][nde (nde + 1) / 2] elastic Ke, upper triangles */
     double *kglob;        /* [nnz(K)] the elastic K (build_elastic_K), NULL until built */
+    unsigned char *eplastic; /* [nelem] plastic at the last assembly with K */
     unsigned char *fixed;         /* [ndof] Dirichlet flag */
     double *ubc;                  /* [ndof] prescribed values of the fixed DOFs */
     double *cvec;                 /* [ndof] scratch: constraint defect */

@@ -124,6 +124,7 @@ typedef struct asp_info {
     double mesh_quality; /* worst scaled Jacobian in (0, 1] */
     double h_contact;    /* element size at the contact, mm */
     double a_max;        /* contact radius the mesh was sized for, mm */
+    double elements_per_contact; /* a_max / h_contact: the option, or 6 2^level */
     /* where the time went since create (wall, s): element loops (tangent and
      * residual), numeric factorizations, PCG iterations (solves + mat-vecs) */
     double time_assembly_s, time_factorize_s, time_pcg_s;
