@@ -69,6 +69,17 @@ static void expect_fail(const char *args, const char *n1, const char *n2)
         fail_msg("'%s': message '%s' lacks '%s' / '%s'", args, err, n1, n2 ? n2 : "");
 }
 
+/* --placements: a whole number of meshes in [1, 8], and not with --load
+ * (all refused while parsing, before any mesh is built) */
+static void test_bad_placements(void **state)
+{
+    (void)state;
+    expect_fail("asperity --delta 3 --shear --placements 0", "placements = '0'", "[1, 8]");
+    expect_fail("asperity --delta 3 --shear --placements 9", "placements = '9'", "[1, 8]");
+    expect_fail("asperity --delta 3 --shear --placements 2.5", "placements = '2.5'", "[1, 8]");
+    expect_fail("asperity --shear --load 5 --placements 2", "placements = 2", "--load");
+}
+
 static void test_bad_common_values(void **state)
 {
     (void)state;
@@ -278,7 +289,8 @@ static void test_halfspace(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bad_common_values), cmocka_unit_test(test_bad_syntax),
+        cmocka_unit_test(test_bad_common_values),
+        cmocka_unit_test(test_bad_placements), cmocka_unit_test(test_bad_syntax),
         cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),

@@ -65,10 +65,10 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
         sa->so.foot_rows = v;
         sa->on = 1;
     } else if (!strcmp(key, "placements")) {
-        if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 1.0 && v <= ASP_PLACEMENTS_MAX) ||
-            v != floor(v))
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > ASP_PLACEMENTS_MAX)
             return bad(key, value, "a whole number of meshes in [1, 8]");
-        sa->placements = (int)v;
+        sa->placements = (int)l;
         sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
