@@ -185,6 +185,15 @@ void asp_solver_info(const asp_solver *s, asp_info *info);
  * increments used (0: no estimate). */
 int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
 
+/* Load on past the meshed maximum δ_max (same mesh), to 1.5 δ_max (at most
+ * the small-strain limit 0.01 R), so that asp_solver_P_smooth at the last
+ * points of a curve averages increments on both sides of them instead of
+ * one (at 60 ωc on mesh level 0 that halves its error, see solver.c).  Call
+ * it after the last point's results and fields are taken: the state is then
+ * past the curve.  A failure is returned like asp_solver_load's; the
+ * increments that converged before it stay in the estimate. */
+stc_status asp_solver_load_tail(asp_solver *s, asp_point *out);
+
 /* First yield of layer 0 (substrate) or 1 (coating). */
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);
 
