@@ -242,21 +242,29 @@ static void test_fields(void **state)
 /* Load curve past yield (slip, homogeneous) on meshes 0 and 1: the raw P
  * is a sawtooth (one tooth per surface node entering the contact), the
  * smoothed load asp_solver_P_smooth agrees across the two meshes. */
-static void curve_run(int level, int n, const double *d, double *P, double *Ps, int *incr)
+/* A one-thread solver of the default homogeneous sphere (slip) on mesh
+ * `level`, meshed for delta_max = dmax wc_su; *c gets its critical values. */
+static asp_solver *curve_solver(int level, double dmax, stc_critical *c)
 {
     stc_params p;
     asp_options o;
     asp_solver *s = NULL;
     stc_material su;
-    stc_critical c;
-    asp_point pt;
     stc_params_default(&p);
     stc_params_materials(&p, &su, NULL);
-    stc_critical_eval(&su, p.R, &c);
+    stc_critical_eval(&su, p.R, c);
     asp_options_default(&o);
     o.mesh_level = level;
     o.threads = 1;
-    assert_int_equal(asp_solver_create(&p, &o, d[n - 1] * c.omega_c, &s), STC_OK);
+    assert_int_equal(asp_solver_create(&p, &o, dmax * c->omega_c, &s), STC_OK);
+    return s;
+}
+
+static void curve_run(int level, int n, const double *d, double *P, double *Ps, int *incr)
+{
+    stc_critical c;
+    asp_point pt;
+    asp_solver *s = curve_solver(level, d[n - 1], &c);
     for (int i = 0; i < n; i++) {
         assert_int_equal(asp_solver_load(s, d[i] * c.omega_c, &pt), STC_OK);
         P[i] = pt.P / c.P_c;
@@ -306,20 +314,10 @@ static void test_smooth_tail(void **state)
     (void)state;
     enum { N = 12 };
     const double P3[2] = {80.02, 89.67}; /* N at 54.64 and 60 wc, level 3 */
-    stc_params p;
-    asp_options o;
-    asp_solver *s = NULL;
-    stc_material su;
     stc_critical c;
     asp_point pt;
     double one[2], two[2];
-    stc_params_default(&p);
-    stc_params_materials(&p, &su, NULL);
-    stc_critical_eval(&su, p.R, &c);
-    asp_options_default(&o);
-    o.mesh_level = 0;
-    o.threads = 1;
-    assert_int_equal(asp_solver_create(&p, &o, 60.0 * c.omega_c, &s), STC_OK);
+    asp_solver *s = curve_solver(0, 60.0, &c);
     for (int i = 0; i < N; i++)
         assert_int_equal(asp_solver_load(s, (1.0 + i * 59.0 / 11.0) * c.omega_c, &pt), STC_OK);
     for (int i = 0; i < 2; i++)
