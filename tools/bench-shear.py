@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """make bench, combined loading (issue 4 item 4): work-precision of mu_s.
 
-bench-shear.py CLI [MESHES]     (MESHES default "0,n6.6,0:rows:p2,0:nodes,0:c0,1": 3D mesh
+bench-shear.py CLI [MESHES [CASE]]
+                                (CASE: only the cases whose name contains it;
+                                 MESHES default "0,n6.6,0:rows:p2,0:nodes,0:c0,1": 3D mesh
                                  levels, or nX for X elements across a_max,
                                  e.g. "0,n8.5,1"; a ":nodes" suffix runs the
                                  junction rule --junction nodes instead of
@@ -92,22 +94,30 @@ def mesh_args(m):
 
 def main():
     if len(sys.argv) < 2:
-        sys.exit("usage: bench-shear.py CLI [MESHES]")
+        sys.exit("usage: bench-shear.py CLI [MESHES [CASE]]")
     cli = sys.argv[1]
     levels = (sys.argv[2] if len(sys.argv) > 2
               else "0,%s,0:rows:p2,0:nodes,0:c0,1" % SHIFTED).split(",")
+    # CASE: run only the cases whose name contains it
+    cases = [c for c in CASES if len(sys.argv) < 4 or sys.argv[3] in c[0]]
+    if not cases:
+        sys.exit("bench-shear.py: case '%s': no case name contains it" % sys.argv[3])
     print("Work-precision of mu_s (3D half model, shear criterion); error vs the finest level")
     print("%-34s %7s %8s %9s %9s %8s %7s %7s %6s %8s %6s %6s %6s" % (
         "case", "mesh", "DOFs", "mu_s", "err fin", "wall s", "Newton", "factor", "incr",
         "peak MB", "asm s", "fac s", "pcg s"))
     met = []
-    for name, args in CASES:
+    for name, args in cases:
         rows, placed = [], {}
         for lev in levels:
             j, wall, extra = run(cli, args + mesh_args(lev))
             rows.append((lev, j, wall, extra))
+        # the reference: the last plain mesh, or, in a table of ensembles
+        # only, the last ensemble
         fin_lev, fin = next(((lev, j["mu_s"]) for lev, j, w, e in reversed(rows)
                              if j and ":" not in lev), (None, None))
+        if fin is None and rows and rows[-1][1]:
+            fin_lev, fin = rows[-1][0], rows[-1][1]["mu_s"]
         for lev, j, wall, extra in rows:
             if j is None:
                 print("%-34s %7s   failed after %.1f s: %s" % (name, lev, wall, extra))
@@ -118,6 +128,12 @@ def main():
                       "peak MB %.0f" % (name, lev, "-", j["mu_s"], err, wall,
                                         " ".join("%.5f" % m["mu_s"] for m in j["members"]),
                                         100 * j["mu_s_spread"], extra))
+                # a level-0 ensemble covers the node placements itself
+                if lev.startswith("0:") and ":p" in lev and lev != fin_lev:
+                    ok = abs(err) <= TARGET_ERR and wall < TARGET_S
+                    if ok:
+                        met.append("%s (%s %+.2f %% vs %s, %.0f s)" % (name, lev, err, fin_lev,
+                                                                       wall))
                 continue
             print("%-34s %7s %8d %9.5f %+8.3f%% %8.1f %7s %7s %6s %8.0f %6.1f %6.1f %6.1f" % (
                 name, lev, j.get("dofs", -1), j["mu_s"], err, wall,
@@ -134,8 +150,9 @@ def main():
                                                     for l, (ok, e, w) in placed.items())))
     print("(wall s: the whole process: mesh, normal step and ramp; asm / fac / pcg s: where the "
           "solver's time went: element loops, Cholesky factorizations, Krylov iterations)")
-    print("target (level 0 within %g %% of the finest in < %g s, and %s within %g %% too): %s"
-          % (TARGET_ERR, TARGET_S, SHIFTED, TARGET_ERR,
+    print("target (level 0 within %g %% of the finest in < %g s, and %s within %g %% too; or "
+          "a level-0 ensemble within %g %% of the finest in < %g s): %s"
+          % (TARGET_ERR, TARGET_S, SHIFTED, TARGET_ERR, TARGET_ERR, TARGET_S,
              "met by " + "; ".join(met) if met else "NOT met"))
 
 
