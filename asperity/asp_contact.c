@@ -588,7 +588,6 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
  * between the n with equal weights, over -0.53 .. -0.75 % with the δ-share
  * weights; worst n 1.72 -> 1.44 %; a window factor of 1.5 or 3 was worse
  * (end noise up to 3.2 %; curvature bias -0.8 %) (curve3d helper). */
-#define ASP_SMOOTH_W 2.0
 enum { ASP_SMOOTH_MIN = 5 };
 
 void asp_history_push(asp_solver *s, double delta, double P)

@@ -61,6 +61,11 @@
  * 0.42 0.73 0.47 0.41 0.30 0.29 0.21 % (60 ωc: +0.21 .. +0.32 %); left
  * is 1 ωc, +0.46 .. +0.80 %: first yield, ~6 elements across that contact
  * (+0.33 % on a mesh sized to it alone) plus where its edge falls.
+ * Session 12: the elastic node entries sampled before a curve point
+ * (asp_options.sample_elastic, step_limit) and the surface between a_min
+ * and a_max sized to arc length / n (mesh.c): max error over all 12
+ * points for n = 6..12: 0.29 0.46 0.26 0.22 0.23 0.16 0.24 % (1 ωc +0.10
+ * .. +0.26 %), level 0 in 0.6 s; met (docs/tangential-step.md §25).
  * 3D (speed3d): a factorization costs ~50 triangular solves there, so the
  * Newton steps are solved by PCG preconditioned with the last factor
  * (Newton-Krylov, see linear_step); level-0 slip curve to 60 ωc: the same
@@ -122,6 +127,7 @@ void asp_options_default(asp_options *o)
     o->surface_layers = -1;
     o->shell_coarsen = -1;
     o->grade_3d = 0;
+    o->sample_elastic = 0;
 }
 
 static stc_status check_options(const asp_options *o)
@@ -135,6 +141,8 @@ static stc_status check_options(const asp_options *o)
               o->elements_per_contact);
     STC_CHECK(o->grade_3d == 0 || o->grade_3d == 1, STC_EINVAL,
               "grade-3d = %d: must be 0 or 1", o->grade_3d);
+    STC_CHECK(o->sample_elastic == 0 || o->sample_elastic == 1, STC_EINVAL,
+              "sample-elastic = %d: must be 0 or 1", o->sample_elastic);
     STC_CHECK(o->shell_coarsen >= -1 && o->shell_coarsen <= 2, STC_EINVAL,
               "shell coarsenings = %d: must be -1 (default) or in [0, 2]", o->shell_coarsen);
     STC_CHECK(o->surface_layers >= -1 && o->surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS,
@@ -1589,14 +1597,31 @@ static double steps_per_node(const asp_solver *s)
     return s->dim == 3 ? ASP_STEPS_PER_NODE_3D : ASP_STEPS_PER_NODE;
 }
 
-static double step_limit(const asp_solver *s, int *aimed)
+/* Element size at the contact edge of radius a: two zones (axisymmetric),
+ * or growing with the distance (graded 3D shells). */
+static double edge_size(const asp_solver *s, double a)
+{
+    return s->graded ? fmin(fmax(a * s->h / s->a_max, s->h0), s->h) : a < s->a_min ? s->h0 : s->h;
+}
+
+/* target: the δ asp_solver_load is loading to. */
+static double step_limit(const asp_solver *s, double target, int *aimed)
 {
     int elastic = s->pt.plastic_points == 0;
     double lim = INFINITY;
     for (int k = 0; k < 2; k++) lim = fmin(lim, yield_aim(s, k));
     *aimed = lim < INFINITY;
     if (s->opt.contact == ASP_CONTACT_SLIP && elastic) {
-        if (s->delta <= 0.0) return 0.5 * s->omega_est;
+        /* sample_elastic: from the start of the target's P_smooth window on,
+         * steps_per_node increments per node entry (Hertz: a² = R' δ, a node
+         * enters every Δδ = 2 a h / R') */
+        double w0 = s->opt.sample_elastic ? target / (1.05 * ASP_SMOOTH_W) : INFINITY;
+        if (s->delta <= 0.0) return fmin(0.5 * s->omega_est, w0);
+        if (s->delta < w0 * (1 - 1e-9)) lim = fmin(lim, w0 - s->delta);
+        else if (s->opt.sample_elastic) {
+            double a = s->pt.a > 0.0 ? s->pt.a : sqrt(s->Rp * s->delta);
+            lim = fmin(lim, 2.0 * a * edge_size(s, a) / (steps_per_node(s) * s->Rp));
+        }
         /* at most x4 per step: the trend is unreliable on a few-node contact */
         return fmax(fmin(lim, 3.0 * s->delta), 0.005 * s->delta);
     }
@@ -1607,10 +1632,7 @@ static double step_limit(const asp_solver *s, int *aimed)
      * Newton is slow, biased it by -1.5 % on mesh level 0; with 4: within
      * 0.4 % of the finest mesh at level 1) */
     double a = fmin(fmax(s->pt.a, 0.0), sqrt(2.0 * s->Rp * s->delta));
-    /* element size at the contact edge: two zones (axisymmetric), or
-     * growing with the distance (graded 3D shells) */
-    double hc = s->graded ? fmin(fmax(a * s->h / s->a_max, s->h0), s->h)
-                          : a < s->a_min ? s->h0 : s->h;
+    double hc = edge_size(s, a);
     double spn = steps_per_node(s);
     if (!elastic) lim = fmin(lim, a * hc / (spn * s->Rp));
     /* stick: the contact grows by at most about one surface element */
@@ -1654,7 +1676,7 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
     int cuts = 0;
     while (s->delta < delta * (1 - 1e-14)) {
         int aimed;
-        double lim = step_limit(s, &aimed);
+        double lim = step_limit(s, delta, &aimed);
         if (s->step <= 0.0) s->step = lim;
         double dnew = fmin(delta, s->delta + fmin(s->step, lim));
         /* no sliver steps, unless the step brackets a first yield */

@@ -157,6 +157,10 @@ stc_status asp_mesh_axisym_n(const asp_mesh_spec *spec, double a_min, double n, 
 /* ... and with the top row split into surface_layers + 1 rows halving towards
  * the surface (asp_options.surface_layers; in [0, ASP_MESH_MAX_SURFACE_LAYERS]). */
 enum { ASP_MESH_MAX_SURFACE_LAYERS = 6 };
+
+/* asp_solver_P_smooth's window: increments within a factor ASP_SMOOTH_W of δ
+ * (asp_contact.c). */
+#define ASP_SMOOTH_W 2.0
 stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
                               int surface_layers, asp_mesh **out);
 /* mesh.c: asp_options.surface_layers with -1 (automatic) resolved. */

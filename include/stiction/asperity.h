@@ -113,6 +113,14 @@ typedef struct asp_options {
                                 curve at every point (uniform core: -6 % at 6 ωc),
                                 2.1x the DOFs (docs/tangential-step.md §17);
                                 default 0 */
+    int sample_elastic;      /* slip: 1 = while all is elastic, step through the
+                                surface node entries from δ/2 on (δ the target of
+                                asp_solver_load), steps_per_node per entry, so that
+                                asp_solver_P_smooth at an elastic or just-yielded
+                                point averages over both sides of it instead of
+                                fitting across the yield bend; 0 = jump to the
+                                predicted yield.  The CLI sets it for load curves;
+                                default 0 */
 } asp_options;
 
 void asp_options_default(asp_options *o);
