@@ -395,7 +395,11 @@ def target_3d(cli, fin, smooth):
     for name, args, env in (("auto", [], None), ("auto, OMP_WAIT_POLICY=passive", [], passive),
                             ("4/node", ["--steps-per-node", "4"], None),
                             ("auto, --grade-3d (core sized to the 0.8 wc contact)",
-                             ["--grade-3d"], passive)):
+                             ["--grade-3d"], passive),
+                            # the nearest to the target (docs/tangential-step.md §25)
+                            ("auto, --grade-3d, 4 elements per contact, no shell coarsening",
+                             ["--grade-3d", "--elements-per-contact", "4", "--shell-coarsen", "0"],
+                             passive)):
         j, w, m = run(cli, ["--delta", "1:60:12", "--contact", "slip", "--model", "3d",
                             "--mesh", "0"] + args, env)
         # the 1 wc point has one contact node at level 0: reported apart
