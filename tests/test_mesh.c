@@ -162,6 +162,41 @@ static void test_elements_per_contact(void **state)
     assert_null(a);
 }
 
+/* A mesh for a load curve (a_min < a_max): between 1.25 a_min and 1.25 a_max
+ * every surface interval is at most its distance from the axis / n (and not
+ * much finer), so each contact radius of the curve has about n elements
+ * across (growth by q = 1.3 alone gave intervals of ~0.3 times the
+ * distance, docs/tangential-step.md §25). */
+static void test_proportional_surface(void **state)
+{
+    (void)state;
+    const double amin = 0.03, n = 6.0;
+    asp_mesh_spec s = {10.0, 0.0, 0.3, 0, 0.0, 0, 0.0};
+    asp_mesh *m = NULL;
+    assert_int_equal(asp_mesh_axisym_n(&s, amin, n, &m), STC_OK);
+    double *arc = malloc((size_t)m->nnode * sizeof *arc);
+    int nb = 0, inzone = 0;
+    for (int i = 0; i < m->nnode; i++)
+        if (fabs(hypot(m->x[2 * i], m->x[2 * i + 1]) - s.R) < 1e-9 * s.R)
+            arc[nb++] = s.R * atan2(m->x[2 * i], m->x[2 * i + 1]);
+    for (int i = 1; i < nb; i++) /* insertion sort */
+        for (int k = i; k > 0 && arc[k] < arc[k - 1]; k--) {
+            double t = arc[k];
+            arc[k] = arc[k - 1], arc[k - 1] = t;
+        }
+    for (int i = 0; i + 1 < nb; i++) {
+        double x = arc[i], h = arc[i + 1] - arc[i];
+        if (x < 1.25 * amin * (1 + 1e-9) || x >= 1.25 * s.a_max) continue;
+        inzone++;
+        assert_true(h <= x / n * (1 + 1e-9));
+        if (x / n < s.a_max / n) assert_true(h >= 0.75 * x / n);
+    }
+    printf("# %d surface intervals between 1.25 a_min and 1.25 a_max\n", inzone);
+    assert_true(inzone >= (int)(n * log(s.a_max / amin)) - 1);
+    free(arc);
+    asp_mesh_destroy(&m);
+}
+
 /* an inverted element is reported by the quality check */
 static void test_inverted(void **state)
 {
@@ -183,6 +218,7 @@ int main(void)
         cmocka_unit_test(test_uncoated_levels), cmocka_unit_test(test_coated),
         cmocka_unit_test(test_small_contact), cmocka_unit_test(test_invalid),
         cmocka_unit_test(test_inverted),    cmocka_unit_test(test_elements_per_contact),
+        cmocka_unit_test(test_proportional_surface),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
