@@ -1615,12 +1615,16 @@ static double step_limit(const asp_solver *s, double target, int *aimed)
         /* sample_elastic: from the start of the target's P_smooth window on,
          * steps_per_node increments per node entry (Hertz: a² = R' δ, a node
          * enters every Δδ = 2 a h / R') */
-        double w0 = s->opt.sample_elastic ? target / (1.05 * ASP_SMOOTH_W) : INFINITY;
-        if (s->delta <= 0.0) return fmin(0.5 * s->omega_est, w0);
-        if (s->delta < w0 * (1 - 1e-9)) lim = fmin(lim, w0 - s->delta);
-        else if (s->opt.sample_elastic) {
+        if (s->delta <= 0.0) {
+            double first = 0.5 * s->omega_est;
+            return s->opt.sample_elastic ? fmin(first, target / (1.05 * ASP_SMOOTH_W)) : first;
+        }
+        if (s->opt.sample_elastic) {
+            double w0 = target / (1.05 * ASP_SMOOTH_W);
             double a = s->pt.a > 0.0 ? s->pt.a : sqrt(s->Rp * s->delta);
-            lim = fmin(lim, 2.0 * a * edge_size(s, a) / (steps_per_node(s) * s->Rp));
+            lim = fmin(lim, s->delta < w0 * (1 - 1e-9)
+                                ? w0 - s->delta
+                                : 2.0 * a * edge_size(s, a) / (steps_per_node(s) * s->Rp));
         }
         /* at most x4 per step: the trend is unreliable on a few-node contact */
         return fmax(fmin(lim, 3.0 * s->delta), 0.005 * s->delta);

@@ -151,16 +151,16 @@ struct asp_solver {
     struct asp_shear_snap *snap;  /* [ASP_SHEAR_NSNAP] kept field snapshots (shear.c) */
 };
 
+/* asp_solver_P_smooth's window: increments within a factor ASP_SMOOTH_W of δ
+ * (asp_contact.c; solver.c samples the elastic range from its start). */
+#define ASP_SMOOTH_W 2.0
+
 /* mesh.c: asp_mesh_axisym_graded with n elements across a_max instead of
  * 6 2^level (n in [3, 384], any real value; spec->level is still checked). */
 stc_status asp_mesh_axisym_n(const asp_mesh_spec *spec, double a_min, double n, asp_mesh **out);
 /* ... and with the top row split into surface_layers + 1 rows halving towards
  * the surface (asp_options.surface_layers; in [0, ASP_MESH_MAX_SURFACE_LAYERS]). */
 enum { ASP_MESH_MAX_SURFACE_LAYERS = 6 };
-
-/* asp_solver_P_smooth's window: increments within a factor ASP_SMOOTH_W of δ
- * (asp_contact.c). */
-#define ASP_SMOOTH_W 2.0
 stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
                               int surface_layers, asp_mesh **out);
 /* mesh.c: asp_options.surface_layers with -1 (automatic) resolved. */

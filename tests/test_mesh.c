@@ -24,6 +24,25 @@ static double quad_area(const asp_mesh *m, int e, double *rc, double *zc)
     return A;
 }
 
+/* Polar angles (from the axis) of the nodes on the outer arc |x| = Rp,
+ * ascending; returns their count.  *out: new array. */
+static int outer_arc_angles(const asp_mesh *m, double Rp, double **out)
+{
+    double *th = malloc((size_t)m->nnode * sizeof *th);
+    int nb = 0;
+    assert_non_null(th);
+    for (int i = 0; i < m->nnode; i++)
+        if (fabs(hypot(m->x[2 * i], m->x[2 * i + 1]) - Rp) < 1e-9 * Rp)
+            th[nb++] = atan2(m->x[2 * i], m->x[2 * i + 1]);
+    for (int i = 1; i < nb; i++) /* insertion sort */
+        for (int k = i; k > 0 && th[k] < th[k - 1]; k--) {
+            double t = th[k];
+            th[k] = th[k - 1], th[k - 1] = t;
+        }
+    *out = th;
+    return nb;
+}
+
 /* Area = quarter disk (up to the chord error of the arc), every element
  * positively oriented, quality bounded away from zero. */
 static void check_mesh(const asp_mesh_spec *s, int *nelem)
@@ -46,16 +65,8 @@ static void check_mesh(const asp_mesh_spec *s, int *nelem)
         }
     }
     /* exact area of the polygon inscribed in the outer arc */
-    double *th = malloc((size_t)m->nnode * sizeof *th), exact = M_PI * Rp * Rp / 4.0;
-    int nb = 0;
-    for (int i = 0; i < m->nnode; i++)
-        if (fabs(hypot(m->x[2 * i], m->x[2 * i + 1]) - Rp) < 1e-9 * Rp)
-            th[nb++] = atan2(m->x[2 * i], m->x[2 * i + 1]);
-    for (int i = 1; i < nb; i++) /* insertion sort */
-        for (int k = i; k > 0 && th[k] < th[k - 1]; k--) {
-            double t = th[k];
-            th[k] = th[k - 1], th[k - 1] = t;
-        }
+    double *th, exact = M_PI * Rp * Rp / 4.0;
+    int nb = outer_arc_angles(m, Rp, &th);
     for (int i = 1; i < nb; i++) {
         double d = th[i] - th[i - 1];
         exact -= 0.5 * Rp * Rp * (d - sin(d));
@@ -174,18 +185,10 @@ static void test_proportional_surface(void **state)
     asp_mesh_spec s = {10.0, 0.0, 0.3, 0, 0.0, 0, 0.0};
     asp_mesh *m = NULL;
     assert_int_equal(asp_mesh_axisym_n(&s, amin, n, &m), STC_OK);
-    double *arc = malloc((size_t)m->nnode * sizeof *arc);
-    int nb = 0, inzone = 0;
-    for (int i = 0; i < m->nnode; i++)
-        if (fabs(hypot(m->x[2 * i], m->x[2 * i + 1]) - s.R) < 1e-9 * s.R)
-            arc[nb++] = s.R * atan2(m->x[2 * i], m->x[2 * i + 1]);
-    for (int i = 1; i < nb; i++) /* insertion sort */
-        for (int k = i; k > 0 && arc[k] < arc[k - 1]; k--) {
-            double t = arc[k];
-            arc[k] = arc[k - 1], arc[k - 1] = t;
-        }
+    double *th;
+    int nb = outer_arc_angles(m, s.R, &th), inzone = 0;
     for (int i = 0; i + 1 < nb; i++) {
-        double x = arc[i], h = arc[i + 1] - arc[i];
+        double x = s.R * th[i], h = s.R * (th[i + 1] - th[i]);
         if (x < 1.25 * amin * (1 + 1e-9) || x >= 1.25 * s.a_max) continue;
         inzone++;
         assert_true(h <= x / n * (1 + 1e-9));
@@ -193,7 +196,7 @@ static void test_proportional_surface(void **state)
     }
     printf("# %d surface intervals between 1.25 a_min and 1.25 a_max\n", inzone);
     assert_true(inzone >= (int)(n * log(s.a_max / amin)) - 1);
-    free(arc);
+    free(th);
     asp_mesh_destroy(&m);
 }
 

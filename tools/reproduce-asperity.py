@@ -26,6 +26,12 @@ def run(cli, args):
     return j if isinstance(j, list) else [j]
 
 
+def smooth(p):
+    """P_smooth (the load without the node-entry sawtooth), or P where the
+    solver had too few increments for it."""
+    return p["P_smooth_N"] if p["P_smooth_N"] is not None else p["P_N"]
+
+
 def gnuplot(script):
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
 
@@ -76,11 +82,10 @@ def fig44(cli, out):
             # L_smooth: P_smooth, the load without the node-entry sawtooth
             f.write("d_over_dc2,L_over_Lc2,A_over_Ac2,L_smooth_over_Lc2\n")
             for p in pts:
-                Ps = p["P_smooth_N"] if p["P_smooth_N"] is not None else p["P_N"]
                 f.write("%.6g,%.6g,%.6g,%.6g\n" % (p["delta_mm"] / dc2, p["P_N"] / Lc2,
-                                                  p["A_mm2"] / Ac2, Ps / Lc2))
+                                                  p["A_mm2"] / Ac2, smooth(p) / Lc2))
         last = pts[-1]
-        Ps = last["P_smooth_N"] if last["P_smooth_N"] is not None else last["P_N"]
+        Ps = smooth(last)
         print("  Eco/Esu = %2d: L/Lc2 = %.3f (smoothed %.3f; Ronen 1), A/Ac2 = %.3f (Ronen 1), "
               "FE dc2/fit = %s"
               % (er, last["P_N"] / Lc2, Ps / Lc2, last["A_mm2"] / Ac2,
