@@ -242,7 +242,17 @@ static stc_status plan_make(const asp_mesh_spec *spec, m3_plan *p)
     if (p->coated) interface_sphere(spec->R / p->Rp, &p->W, &p->ri);
     p->zs = fmax(0.0, p->cw - p->c);
     double umax = sqrt(2.0 * p->c * p->c + (p->cw - p->zs) * (p->cw - p->zs)) / p->c;
-    p->kappa = fmax(1.0 / log(1.0 / p->c), 0.9 / log(umax));
+    /* Rounding rate: as fast as the corner points' growth allows (0.9 / ln umax, see
+     * skel_pos), but never so slow that the shells are not round at the base (1 / ln(1/c)).
+     * A graded core (c_ref > c) rounds off across the graded zone instead, reaching round
+     * at the a_max core's width: on rounded-square shells a node ring's points enter the
+     * contact at different δ, so a load curve's node-entry sawtooth is finer.  Measured
+     * (slip curve 1:60:12 ωc, n = 4, coarsen 1, against the axisymmetric level 3): the raw
+     * P's worst tooth -2.68 -> -1.39 %, the smoothed P's worst error 0.68 -> 0.55 %;
+     * docs/tangential-step.md §26. */
+    double k_fast = 0.9 / log(umax);
+    if (p->c_ref > 1.5 * p->c) k_fast = fmin(k_fast, 1.0 / log(p->c_ref / p->c));
+    p->kappa = fmax(1.0 / log(1.0 / p->c), k_fast);
 
     /* Shell radii of the ray |σ| = c: step ρ(q_s(ρ)-1), capped so the physical
      * step (scale 2/(1+ρ²) near the surface) stays <= hmax; then rescaled

@@ -476,6 +476,34 @@ static void expect_bad(double Rr, double t, double a, int level, const char *nee
  * edges near the axis are ~a_min/6, those around r = a_max ~a_max/6 (the
  * shells grow in proportion to the distance), the quality holds, and
  * a_min = 0 or >= a_max gives exactly the uniform-core mesh. */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Largest number of contact-candidate nodes that share one distance from the
+ * axis (within 1e-9 r) among those with r0 <= r <= r1: they enter the
+ * contact at the same δ, so this is the size of a load curve's biggest
+ * node-entry tooth there. */
+static int largest_ring(const asp_mesh *M, double r0, double r1)
+{
+    double *r = malloc((size_t)M->nnode * sizeof *r);
+    int n = 0, best = 0;
+    assert_non_null(r);
+    for (int i = 0; i < M->nnode; i++) {
+        double q = hypot(M->x[3 * i], M->x[3 * i + 1]);
+        if ((M->flags[i] & ASP_NODE_TOP) && q >= r0 && q <= r1) r[n++] = q;
+    }
+    qsort(r, (size_t)n, sizeof *r, cmp_double);
+    for (int i = 0, j = 0; i < n; i = j) {
+        while (j < n && r[j] - r[i] <= 1e-9 * r[i]) j++;
+        if (j - i > best) best = j - i;
+    }
+    free(r);
+    return best;
+}
+
 static void test_graded_core(void **state)
 {
     (void)state;
@@ -500,6 +528,15 @@ static void test_graded_core(void **state)
     assert_true(c0 > 0.7 * amin / 6 && c1 < 1.3 * amin / 6);
     assert_true(r0 > 0.4 * a / 6 && r1 < 1.6 * a / 6);
     assert_true(q > 0.3);
+    /* The shells round off across the graded zone (plan_make's κ), so between
+     * a few a_min and a_max the surface nodes of one shell sit at different
+     * radii: only mirror images (x -> -x, and across the box's diagonals)
+     * share one.  Round shells
+     * there (the uniform core's rate) put a whole shell's ring, 4 m + 1 = 25
+     * nodes, at one radius. */
+    int ring = largest_ring(G, 3.0 * amin, a);
+    printf("graded core: at most %d surface nodes share a radius in [3 a_min, a_max]\n", ring);
+    assert_true(ring <= 4);
     asp_mesh_destroy(&G), asp_mesh_destroy(&U), asp_mesh_destroy(&U2);
 }
 
