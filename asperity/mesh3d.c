@@ -251,7 +251,7 @@ static stc_status plan_make(const asp_mesh_spec *spec, m3_plan *p)
      * P's worst tooth -2.68 -> -1.39 %, the smoothed P's worst error 0.68 -> 0.55 %;
      * docs/tangential-step.md §26. */
     double k_fast = 0.9 / log(umax);
-    if (p->c_ref > 1.5 * p->c) k_fast = fmin(k_fast, 1.0 / log(p->c_ref / p->c));
+    if (p->c_ref > p->c) k_fast = fmin(k_fast, 1.0 / log(p->c_ref / p->c));
     p->kappa = fmax(1.0 / log(1.0 / p->c), k_fast);
 
     /* Shell radii of the ray |σ| = c: step ρ(q_s(ρ)-1), capped so the physical

@@ -472,10 +472,6 @@ static void expect_bad(double Rr, double t, double a, int level, const char *nee
     if (!strstr(stc_errmsg(), needle)) fail_msg("'%s' lacks '%s'", stc_errmsg(), needle);
 }
 
-/* asp_mesh_spec.a_min (the graded core of a 3D load curve): the surface
- * edges near the axis are ~a_min/6, those around r = a_max ~a_max/6 (the
- * shells grow in proportion to the distance), the quality holds, and
- * a_min = 0 or >= a_max gives exactly the uniform-core mesh. */
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -504,6 +500,10 @@ static int largest_ring(const asp_mesh *M, double r0, double r1)
     return best;
 }
 
+/* asp_mesh_spec.a_min (the graded core of a 3D load curve): the surface
+ * edges near the axis are ~a_min/6, those around r = a_max ~a_max/6 (the
+ * shells grow in proportion to the distance), the quality holds, and
+ * a_min = 0 or >= a_max gives exactly the uniform-core mesh. */
 static void test_graded_core(void **state)
 {
     (void)state;
@@ -531,9 +531,8 @@ static void test_graded_core(void **state)
     /* The shells round off across the graded zone (plan_make's κ), so between
      * a few a_min and a_max the surface nodes of one shell sit at different
      * radii: only mirror images (x -> -x, and across the box's diagonals)
-     * share one.  Round shells
-     * there (the uniform core's rate) put a whole shell's ring, 4 m + 1 = 25
-     * nodes, at one radius. */
+     * share one.  Round shells there (the uniform core's rate) put a whole
+     * shell's ring, 4 m + 1 = 25 nodes, at one radius. */
     int ring = largest_ring(G, 3.0 * amin, a);
     printf("graded core: at most %d surface nodes share a radius in [3 a_min, a_max]\n", ring);
     assert_true(ring <= 4);
