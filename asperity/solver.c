@@ -628,10 +628,13 @@ static stc_status assemble(asp_solver *s, int want_K)
         /* colour by colour: no two elements of a colour share a node, so
          * the scatter needs no atomics, and every entry of K and fint sums
          * its terms in colour order whatever the thread count: the same K
-         * on 1 or 2 threads (the atomic scatter's order varied by run) */
+         * on 1 or 2 threads (the atomic scatter's order varied by run).
+         * Dynamic: the plastic elements (tangent, return map) cost several
+         * elastic ones and cluster in the core; measured on the graded 3D
+         * curve (n = 4, 16k DOFs, 2 threads): element loop 5.8 -> 3.7 s */
 #pragma omp parallel num_threads(nthr) if (nthr > 1)
         for (int c = 0; c < s->ncolor; c++) {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 8)
             for (int l = s->cptr[c]; l < s->cptr[c + 1]; l++)
                 if (element_share(s, s->celem[l], want_K, 0) < 0) {
 #pragma omp critical
@@ -652,7 +655,7 @@ static stc_status assemble(asp_solver *s, int want_K)
     if (want_K) {
         /* list the (few: plastic elements') entries of Kd + W, so the
          * mat-vecs of every Krylov iteration skip the zeros (3D level 0:
-         * skew_matvec_add was as costly as the K mat-vec) */
+         * the skew mat-vec was as costly as the K mat-vec) */
         const int *Kp = s->K->p;
         s->nsk = 0;
         for (int j = 0; j < s->ndof; j++)
@@ -784,7 +787,21 @@ static double norm_sel(const asp_solver *s, const double *v, int want_fixed)
     return sqrt(a);
 }
 
-static stc_status fcopy_update(asp_solver *s);
+/* The Krylov kernels (precond.c) call OpenBLAS from their own threads, on
+ * one right-hand side: OpenBLAS itself must run on the calling thread (its
+ * threads only spun there: 3D level 0, loaded machine, 55 ms per threaded
+ * solve against 13.5 ms serial).  Returns the count to restore. */
+static int blas_serial_begin(void)
+{
+    int bt = openblas_get_num_threads();
+    if (bt != 1) openblas_set_num_threads(1);
+    return bt;
+}
+
+static void blas_serial_end(int bt)
+{
+    if (bt != 1) openblas_set_num_threads(bt);
+}
 
 static stc_status factorize(asp_solver *s, nstat *ns)
 {
@@ -799,7 +816,7 @@ static stc_status factorize(asp_solver *s, nstat *ns)
     if (s->serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
     ns->facts++;
     s->have_factor = s->cc.status == CHOLMOD_OK;
-    if (s->have_factor) STC_CALL(fcopy_update(s));
+    if (s->have_factor) STC_CALL(asp_prec_update(s));
     else s->fx_ok = 0;
     s->k_last = 0;
     STC_CHECK(s->cc.status == CHOLMOD_OK, STC_ESOLVER,
@@ -808,35 +825,6 @@ static stc_status factorize(asp_solver *s, nstat *ns)
                                                  : "numerical failure",
               (int)s->L->minor, s->ndof);
     return STC_OK;
-}
-
-/* y = K x for the symmetric K stored as its upper triangle. */
-static void sym_matvec(const cholmod_sparse *K, const double *x, double *y, int n)
-{
-    const int *Kp = K->p, *Ki = K->i;
-    const double *Kx = K->x;
-    memset(y, 0, (size_t)n * sizeof *y);
-    for (int j = 0; j < n; j++)
-        for (int k = Kp[j]; k < Kp[j + 1]; k++) {
-            int i = Ki[k];
-            y[i] += Kx[k] * x[j];
-            if (i != j) y[j] += Kx[k] * x[i];
-        }
-}
-
-/* y += (Kd + W) x: the tangent's part that is not in the factorized K,
- * Kd symmetric and W skew (their upper entries in Kd, Kk; W_ji = -W_ij);
- * free_only: the free-free block (the constrained system). */
-static void skew_matvec_add(const asp_solver *s, const double *x, double *y, int free_only)
-{
-    const int *Ki = s->K->i;
-    if (!s->skew) return;
-    for (int l = 0; l < s->nsk; l++) {
-        int k = s->sk_k[l], i = Ki[k], j = s->sk_j[l];
-        if (free_only && (s->fixed[j] || s->fixed[i])) continue;
-        y[i] += (s->Kd[k] + s->Kk[k]) * x[j];
-        if (i != j) y[j] += (s->Kd[k] - s->Kk[k]) * x[i];
-    }
 }
 
 /* Constraint defect c = ubc - u on the fixed DOFs (0 elsewhere); returns |c|. */
@@ -890,6 +878,7 @@ static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
  * linear_step).  K is the constrained (identity-row) matrix here, Kd and W
  * their free-free blocks. */
 enum { SKEW_SWEEPS = 3 };
+static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du);
 static double dot(const double *a, const double *b, int n);
 static int precondition(asp_solver *s, const double *r, double *z);
 static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax);
@@ -899,8 +888,7 @@ static stc_status gmres_alloc(asp_solver *s);
 /* r = b - (K + Kd + W) du on the free DOFs (0 on the fixed); returns |r|. */
 static double skew_residual(const asp_solver *s, const double *bx, const double *du, double *r)
 {
-    sym_matvec(s->K, du, r, s->ndof);
-    skew_matvec_add(s, du, r, 1);
+    asp_tangent_matvec(s, du, r, 2);
     double a = 0.0;
     for (int i = 0; i < s->ndof; i++) {
         r[i] = s->fixed[i] ? 0.0 : bx[i] - r[i];
@@ -913,6 +901,14 @@ static stc_status skew_correct(asp_solver *s, cholmod_dense *b, double *du)
 {
     if (!s->skew) return STC_OK;
     STC_CALL(krylov_alloc(s));
+    int bt = blas_serial_begin();
+    stc_status st = skew_sweeps(s, b, du);
+    blas_serial_end(bt);
+    return st;
+}
+
+static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du)
+{
     int n = s->ndof;
     double *r = s->skew_r, *z = s->kv + n, *bx = b->x; /* gmres uses kv[0, n) */
     double rn = skew_residual(s, bx, du, r), tol = 1e-10 * sqrt(dot(bx, bx, n));
@@ -981,82 +977,12 @@ static double dot(const double *a, const double *b, int n)
  * step is refactorized after KRYLOV_MAX_CAP iterations) */
 #define KRYLOV_MAX_CAP 100
 
-/* ---- single-precision preconditioner ------------------------------------
- * A Krylov iteration is two triangular solves with the factor, which are
- * memory bound (3D: 2-12e6 entries read twice per iteration).  The
- * preconditioner reads a float copy of the supernodal factor instead and
- * works in double: half the traffic.  Rounding the factor to float left
- * the WSP 3 ωc shear ramp at the same mu_s (10 digits), Newton 147 -> 148
- * and the same 26 factorizations.  With the float solves (idle machine):
- * WSP 3 ωc ramp, one thread, Krylov 11.2 -> 7.2 s but 26 -> 29
- * factorizations (they converge a little slower, so the refactorization
- * rule fires more), solver 20.5 -> 17.1 s; coated t/R .025 Eco/Esu 2
- * δ = 10 stick ramp, two threads, 66.7 -> 61.9 s (mu_s moved 1e-7: stick
- * positions follow the iterates).  Layout of a
- * CHOLMOD supernode k: columns super[k] .. super[k+1]-1, row indices
- * s[pi[k] .. pi[k+1]) (the columns themselves first), values column-major
- * from px[k] (CHOLMOD User Guide, "cholmod_factor"). */
-static stc_status fcopy_update(asp_solver *s)
-{
-    const cholmod_factor *L = s->L;
-    s->fx_ok = 0;
-    if (!L->is_super || !L->is_ll) return STC_OK;
-    if (s->fx_size < L->xsize) {
-        free(s->fx);
-        s->fx = malloc(L->xsize * sizeof *s->fx);
-        s->fx_size = s->fx ? L->xsize : 0;
-        STC_CHECK(s->fx, STC_ENOMEM, "solver: out of memory for the factor copy");
-    }
-    if (!s->fy) {
-        s->fy = malloc(2 * (size_t)s->ndof * sizeof *s->fy);
-        STC_CHECK(s->fy, STC_ENOMEM, "solver: out of memory");
-    }
-    const double *x = L->x;
-    for (size_t k = 0; k < L->xsize; k++) s->fx[k] = (float)x[k];
-    s->fx_ok = 1;
-    return STC_OK;
-}
-
-/* out = P' L^-T L^-1 P b with the float factor (A = P' L L' P), in float:
- * per supernode a triangular solve on its diagonal block and a
- * matrix-vector product with the rows below it, as CHOLMOD does in double
- * (cholmod_super_lsolve / ltsolve). */
-static void fsolve(const asp_solver *s, const double *b, double *out)
-{
-    const cholmod_factor *L = s->L;
-    const int *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s, *perm = L->Perm;
-    int n = s->ndof, ns = (int)L->nsuper;
-    float *y = s->fy, *t = s->fy + n, f0 = 0.0f, f1 = 1.0f, fm1 = -1.0f;
-    const int one = 1;
-    for (int i = 0; i < n; i++) y[i] = (float)b[perm[i]];
-    for (int k = 0; k < ns; k++) { /* L y = P b */
-        int k1 = super[k], nc = super[k + 1] - k1, nr = pi[k + 1] - pi[k], nb = nr - nc;
-        const float *Lk = s->fx + px[k];
-        const int *rows = ls + pi[k] + nc;
-        strsv_("L", "N", "N", &nc, Lk, &nr, y + k1, &one);
-        if (nb == 0) continue;
-        sgemv_("N", &nb, &nc, &f1, Lk + nc, &nr, y + k1, &one, &f0, t, &one);
-        for (int i = 0; i < nb; i++) y[rows[i]] -= t[i];
-    }
-    for (int k = ns - 1; k >= 0; k--) { /* L' x = y */
-        int k1 = super[k], nc = super[k + 1] - k1, nr = pi[k + 1] - pi[k], nb = nr - nc;
-        const float *Lk = s->fx + px[k];
-        const int *rows = ls + pi[k] + nc;
-        if (nb > 0) {
-            for (int i = 0; i < nb; i++) t[i] = y[rows[i]];
-            sgemv_("T", &nb, &nc, &fm1, Lk + nc, &nr, t, &one, &f1, y + k1, &one);
-        }
-        strsv_("L", "T", "N", &nc, Lk, &nr, y + k1, &one);
-    }
-    for (int i = 0; i < n; i++) out[perm[i]] = y[i];
-}
-
 /* z = P K^-1 P r with the stored factor, its float copy where there is one
  * (P: zero the fixed DOFs). */
 static int precondition(asp_solver *s, const double *r, double *z)
 {
     if (s->fx_ok) {
-        fsolve(s, r, z);
+        asp_prec_solve(s, r, z);
         for (int i = 0; i < s->ndof; i++)
             if (s->fixed[i]) z[i] = 0.0;
         return 0;
@@ -1092,7 +1018,7 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax
         /* (the first direction is z itself: p holds no data yet, and 0 times
          * a stale NaN would not be 0) */
         for (int i = 0; i < n; i++) p[i] = k ? z[i] + beta * p[i] : z[i];
-        sym_matvec(s->K, p, q, n); /* zero on the fixed DOFs: p is */
+        asp_tangent_matvec(s, p, q, 0); /* zero on the fixed DOFs: p is */
         double pq = dot(p, q, n), alpha = rz / pq;
         if (!(pq > 0.0) || !isfinite(alpha)) return -1;
         for (int i = 0; i < n; i++) du[i] += alpha * p[i], r[i] -= alpha * q[i];
@@ -1123,8 +1049,7 @@ static int gmres(asp_solver *s, const double *bx, double *du, double tol, int km
             if (k == m) return -1;
             double *vk = V + (size_t)k * n, *vn = V + (size_t)(k + 1) * n;
             if (precondition(s, vk, z)) return -1;
-            sym_matvec(s->K, z, w, n);
-            skew_matvec_add(s, z, w, 1);
+            asp_tangent_matvec(s, z, w, 2);
             for (int i = 0; i < n; i++)
                 if (s->fixed[i]) w[i] = 0.0;
             for (int j = 0; j <= k; j++) {
@@ -1219,16 +1144,12 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
     if (s->have_factor && krylov_pays(s) && 2 * s->k_last <= s->opt.krylov_max) {
         STC_CALL(krylov_alloc(s));
         if (s->skew) STC_CALL(gmres_alloc(s));
-        /* one right-hand side: the triangular solves are memory bound and
-         * OpenBLAS's threads only spin (3D level 0, loaded machine: 55 ms
-         * per solve threaded, 13.5 ms serial) */
-        int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
-        omp_set_max_active_levels(0), openblas_set_num_threads(1);
+        int bt = blas_serial_begin();
         double t0 = omp_get_wtime();
         int k = s->skew ? gmres(s, b->x, du, tol, s->opt.krylov_max)
                         : pcg(s, b->x, du, tol, s->opt.krylov_max);
         s->t_pcg += omp_get_wtime() - t0;
-        omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
+        blas_serial_end(bt);
         s->k_last = k;
         s->n_kits += k >= 0 ? k : s->opt.krylov_max;
         if (k >= 0) return STC_OK;
@@ -1271,8 +1192,7 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
         if (age >= o->newton_reuse || cn > 0.0) {
             STC_CHECK(s->k_fresh, STC_ESOLVER, "solver: stale stiffness at δ = %g mm", delta);
             if (cn > 0.0) { /* before the identity rows */
-                sym_matvec(s->K, c, du, s->ndof);
-                skew_matvec_add(s, c, du, 0);
+                asp_tangent_matvec(s, c, du, 1);
             }
             STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref));
             age = 0;
@@ -1498,6 +1418,7 @@ stc_status asp_solver_create(const stc_params *p, const asp_options *o, double d
     int small = s->dim == 2 && s->ndof < ASP_SERIAL_MAX_DOF;
     s->nthr = s->opt.threads > 0 ? s->opt.threads : small ? 1 : omp_get_max_threads();
     STC_CALL_GOTO(build_colors(s), st, fail);
+    STC_CALL_GOTO(asp_matvec_setup(s), st, fail);
     s->serial_factor = small;
     /* 3D: METIS nested dissection (the better of it and AMD is kept):
      * on the level-0 half model (24k DOFs) it cut the factor from 1.9e7 to
@@ -1533,7 +1454,8 @@ void asp_solver_destroy(asp_solver **sp)
     asp_mesh_destroy(&s->mesh);
     free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos);
     free(s->Kk), free(s->Kd), free(s->sk_k), free(s->sk_j), free(s->gv);
-    free(s->cptr), free(s->celem), free(s->fx), free(s->fy);
+    free(s->cptr), free(s->celem);
+    asp_prec_free(s);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->kel), free(s->kglob), free(s->eplastic);

@@ -86,7 +86,9 @@ struct asp_solver {
     float *fx;            /* single-precision copy of the supernodal factor's values */
     size_t fx_size;       /* its allocated length; fx_ok: it matches the factor */
     int fx_ok;
-    float *fy;            /* [2 ndof] its solve's work vectors */
+    float *fy;            /* [ndof] its solve's work vector */
+    struct asp_prec *prec; /* the float solve's plan (precond.c), NULL until made */
+    struct asp_mvplan *mv; /* the mat-vec's plan (precond.c) */
     double *skew_r;       /* [ndof] residual of the skew corrections */
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
@@ -172,6 +174,23 @@ int asp_kpos(const cholmod_sparse *K, int i, int j);
 /* Displacement of node n from the DOF vector u (dim components into out):
  * a hanging node's is the weighted average of its masters' (solver.c). */
 void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
+
+/* precond.c: the Krylov kernels on s->nthr threads (OpenBLAS on one thread:
+ * the caller sets it).  asp_prec_update copies the factor to float after
+ * each factorization (fx_ok: it succeeded for a supernodal LL' factor);
+ * asp_prec_solve: out = K^-1 b with it; asp_matvec_setup once per pattern,
+ * then asp_tangent_matvec: y = K x (skew 0), (K + Kd + W) x (1), or with
+ * the free-free block of Kd + W (2); asp_prec_free frees both plans and
+ * the float factor. */
+stc_status asp_prec_update(asp_solver *s);
+void asp_prec_solve(const asp_solver *s, const double *b, double *out);
+stc_status asp_matvec_setup(asp_solver *s);
+void asp_tangent_matvec(const asp_solver *s, const double *x, double *y, int skew);
+void asp_prec_free(asp_solver *s);
+/* The solve plan: parts that got subtrees (0: no plan, one part runs all),
+ * the factor entries of the top and of each part (part_w: ASP_PREC_PARTS). */
+enum { ASP_PREC_PARTS = 2 };
+int asp_prec_parts(const asp_solver *s, double *top_w, double *part_w);
 
 /* asp_contact.c: results at the converged state; the contact footprint of
  * the tangential step (shear.c). */
