@@ -118,7 +118,7 @@ void asp_options_default(asp_options *o)
     o->max_newton = 30;
     o->newton_reuse = 1;
     o->krylov = ASP_KRYLOV_AUTO;
-    o->krylov_max = 30;
+    o->krylov_max = 50;
     o->steps_per_node = 0.0;
     o->return_map = ASP_RETURN_MIDPOINT;
     o->max_active_set = 40;
@@ -1140,7 +1140,12 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
     /* refactorize once PCG needs half its budget: the tangent has drifted
      * (plastic zone, contact) and the count climbs from there (3D level 0,
      * curve to 30 ωc: 2 factorizations + 1754 PCG iterations with the hard
-     * limit only, 11 + 939 with this rule; a factorization costs ~45) */
+     * limit only, 11 + 939 with this rule; a factorization costs ~45).
+     * Budget 50, not 30, since the Krylov kernels run on two threads (a
+     * factorization now costs ~60 iterations; idle machine, whole runs):
+     * graded 3D curve n = 4 20.9 -> 17.2 s, WSP 3 / 12 ωc shear 12.2 / 15.5
+     * -> 10.6 / 13.8 s, coated stick δ = 10 shear 43.0 -> 37.7 s
+     * (docs/tangential-step.md §27) */
     if (s->have_factor && krylov_pays(s) && 2 * s->k_last <= s->opt.krylov_max) {
         STC_CALL(krylov_alloc(s));
         if (s->skew) STC_CALL(gmres_alloc(s));

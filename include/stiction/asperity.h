@@ -80,7 +80,7 @@ typedef struct asp_options {
     asp_krylov krylov;       /* Newton-Krylov: solve the Newton steps by PCG
                                 preconditioned with the last Cholesky factor;
                                 default ASP_KRYLOV_AUTO */
-    int krylov_max;          /* PCG iterations before refactorizing; default 30 */
+    int krylov_max;          /* PCG iterations before refactorizing; default 50 */
     double steps_per_node;   /* load increments per surface node entering the
                                 contact past first yield (samples the P(δ)
                                 sawtooth for asp_solver_P_smooth), in

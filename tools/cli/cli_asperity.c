@@ -50,7 +50,7 @@ static const cli_opt opts[] = {
     {"krylov", "off|auto|on",
      "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
      "factorization costs many PCG iterations, i.e. 3D; default auto)"},
-    {"krylov-max", "N", "PCG iterations before refactorizing (default 30)"},
+    {"krylov-max", "N", "PCG iterations before refactorizing (default 50)"},
     {"steps-per-node", "X",
      "load increments per surface node entering the contact past yield, in [0.5, 16] "
      "(default auto: 4 slip, 2 slip 3D, 1 stick)"},
