@@ -390,13 +390,15 @@ def target_3d(cli, fin, smooth):
     (the two models agree to ~0.05 % for Hertz)."""
     print("Issue-3 target, 3D: --model 3d --mesh 0 --delta 1:60:12 (slip), vs axisymmetric level 3")
     # OMP_WAIT_POLICY=passive: the idle OpenMP thread sleeps instead of
-    # spinning through the serial PCG (measured -3 s here)
+    # spinning; it saved 3 s while PCG ran on one thread, and makes no
+    # difference since the Krylov phase runs on two (n = 4 curve: 17.9 s
+    # default, 18.1 s passive; docs/tangential-step.md §27)
     passive = {"OMP_WAIT_POLICY": "passive"}
     for name, args, env in (("auto", [], None), ("auto, OMP_WAIT_POLICY=passive", [], passive),
                             ("4/node", ["--steps-per-node", "4"], None),
                             ("auto, --grade-3d (core sized to the 0.8 wc contact)",
                              ["--grade-3d"], passive),
-                            # the nearest to the target (docs/tangential-step.md §25)
+                            # the nearest to the target (docs/tangential-step.md §25, §27)
                             ("auto, --grade-3d, 4 elements per contact, no shell coarsening",
                              ["--grade-3d", "--elements-per-contact", "4", "--shell-coarsen", "0"],
                              passive)):
