@@ -24,7 +24,7 @@
  * of the top.  The cut is chosen by expanding the heaviest subtree (its
  * root moves to the top) while that lowers the estimated time, top +
  * heaviest part, counted in factor entries (the data a solve reads).  On
- * the 3D meshes the top is the last one or two separators, 25-30 % of the
+ * the 3D meshes the top is the last one or two separators, 26-36 % of the
  * entries (tests/test_precond.c).
  *
  * Mat-vec.  K's columns are cut where half its stored entries lie; each
