@@ -89,7 +89,8 @@ typedef struct asp_options {
                                 default 0 */
     int max_active_set;      /* active-set passes per increment; default 40 */
     int max_cutbacks;        /* consecutive increment halvings; default 10 */
-    int threads;             /* OpenMP threads for assembly, 0 = runtime default */
+    int threads;             /* OpenMP threads for assembly and the Krylov kernels (at
+                                most 2 used there), 0 = runtime default */
     int surface_layers;      /* axisymmetric: the top element row is split into
                                 N + 1 rows halving towards the surface (h/2^N
                                 there; resolves a stuck-surface stress maximum),

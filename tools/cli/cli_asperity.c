@@ -58,7 +58,8 @@ static const cli_opt opts[] = {
      "plastic integration over an increment: midpoint rule (second order) or radial return "
      "(backward Euler, first order) (default midpoint)"},
     {"no-separation", NULL, "a node in contact never opens"},
-    {"threads", "N", "OpenMP threads for the element loop (default: runtime)"},
+    {"threads", "N",
+     "OpenMP threads for the element loop and the Krylov solves (default: runtime)"},
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
     {"json", NULL, "print JSON (one object, or an array for a curve)"},
     CLI_SHEAR_OPTS,
