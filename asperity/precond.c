@@ -6,15 +6,15 @@
  * while the other idled: 7.7 s of the 24 s graded 3D load curve (n = 4,
  * docs/tangential-step.md §27).
  *
- * Each kernel is split into ASP_PREC_PARTS fixed parts, whatever the number
+ * Each kernel is split into two fixed parts, whatever the number
  * of threads that runs them, and the parts' contributions to shared entries
  * are summed in part order: the result is the same on one or two threads.
  *
  * Solve.  The supernodes of CHOLMOD's factor form a tree (the parent of a
  * supernode is the one holding its first row below the diagonal block) and
  * are numbered in postorder, so every subtree is a contiguous range
- * (CHOLMOD User Guide, "cholmod_factor"; checked here, else one part does
- * all, in order).  The plan cuts the tree into disjoint subtrees packed
+ * (CHOLMOD User Guide, "cholmod_factor"; checked here, else the whole tree
+ * is the top and the parts are empty).  The plan cuts the tree into disjoint subtrees packed
  * into the parts and a "top" (the supernodes above the cut: the last
  * separators).  Forward, L y = P b: the parts run their subtrees
  * concurrently; a supernode's update of rows of its own subtree is applied
@@ -42,8 +42,6 @@
 enum { PREC_MAX_EXPAND = 256 }; /* cut: at most this many supernodes moved to the top */
 
 struct asp_prec {
-    int ok;           /* the tree was cut (else part 0 runs everything in order) */
-    int n, ns;        /* columns, supernodes */
     int *range;       /* [2 nr]: the subtrees, supernodes range[2i] .. range[2i+1] */
     int nr;
     int rptr[ASP_PREC_PARTS + 1]; /* part p's subtrees: rptr[p] .. rptr[p+1] */
@@ -98,8 +96,8 @@ static double heaviest(const double w[ASP_PREC_PARTS])
     return m;
 }
 
-/* Cut the supernodal tree of L (see the file comment); on success fills
- * pr's range, rptr, top, topcol, intop. */
+/* Cut the supernodal tree of L (see the file comment) into pr's range,
+ * rptr, top, topcol, intop (pr zeroed on entry). */
 static stc_status plan_cut(const cholmod_factor *L, struct asp_prec *pr)
 {
     const int *super = L->super, *pi = L->pi, *ls = L->s;
@@ -112,8 +110,12 @@ static stc_status plan_cut(const cholmod_factor *L, struct asp_prec *pr)
     unsigned char *istop = calloc((size_t)ns, 1), *best_top = calloc((size_t)ns, 1);
     cand *c = malloc((size_t)(ns + 1) * sizeof *c), *best = malloc((size_t)(ns + 1) * sizeof *best);
     int *bin = malloc((size_t)(ns + 1) * sizeof *bin), nbest = 0;
+    pr->range = malloc((size_t)(2 * ns + 2) * sizeof *pr->range);
+    pr->top = malloc((size_t)ns * sizeof *pr->top);
+    pr->intop = calloc((size_t)n, 1);
+    pr->topcol = malloc((size_t)n * sizeof *pr->topcol);
     STC_CHECK_GOTO(col2s && par && first && cnt && kids && kid && W && istop && best_top && c &&
-                       best && bin,
+                       best && bin && pr->range && pr->top && pr->intop && pr->topcol,
                    st, done, STC_ENOMEM, "solver: out of memory for the solve plan");
     for (int k = 0; k < ns; k++)
         for (int j = super[k]; j < super[k + 1]; j++) col2s[j] = k;
@@ -132,7 +134,11 @@ static stc_status plan_cut(const cholmod_factor *L, struct asp_prec *pr)
         if (first[k] < first[par[k]]) first[par[k]] = first[k];
     }
     for (int k = 0; k < ns && post; k++) post = first[k] == k - cnt[k] + 1;
-    if (!post) goto done; /* not postordered: pr->ok stays 0 */
+    if (!post) { /* not postordered: everything is top, solved in order */
+        for (int k = 0; k < ns; k++) pr->top[k] = k;
+        pr->ntop = ns;
+        goto done;
+    }
     /* children lists (CSR by parent) */
     memset(kids, 0, (size_t)(ns + 1) * sizeof *kids);
     for (int k = 0; k < ns; k++)
@@ -167,13 +173,6 @@ static stc_status plan_cut(const cholmod_factor *L, struct asp_prec *pr)
     }
     /* the best cut: ranges grouped by part */
     pack(best, nbest, bin, pr->part_w);
-    pr->range = malloc((size_t)(2 * nbest + 1) * sizeof *pr->range);
-    pr->top = malloc((size_t)ns * sizeof *pr->top);
-    pr->intop = calloc((size_t)n, 1);
-    pr->topcol = malloc((size_t)n * sizeof *pr->topcol);
-    STC_CHECK_GOTO(pr->range && pr->top && pr->intop && pr->topcol, st, done, STC_ENOMEM,
-                   "solver: out of memory for the solve plan");
-    pr->nr = 0;
     for (int p = 0; p < ASP_PREC_PARTS; p++) {
         pr->rptr[p] = pr->nr;
         for (int i = 0; i < nbest; i++)
@@ -191,7 +190,6 @@ static stc_status plan_cut(const cholmod_factor *L, struct asp_prec *pr)
             for (int j = super[k]; j < super[k + 1]; j++)
                 pr->intop[j] = 1, pr->topcol[pr->ntopcol++] = j;
         }
-    pr->ok = 1;
 done:
     free(col2s), free(par), free(first), free(cnt), free(kids), free(kid), free(W);
     free(istop), free(best_top), free(c), free(best), free(bin);
@@ -222,15 +220,17 @@ static stc_status prec_plan(asp_solver *s)
     struct asp_prec *pr = calloc(1, sizeof *pr);
     STC_CHECK(pr, STC_ENOMEM, "solver: out of memory for the solve plan");
     s->prec = pr;
-    pr->n = (int)L->n, pr->ns = (int)L->nsuper;
-    pr->buf = malloc(ASP_PREC_PARTS * (size_t)pr->n * sizeof *pr->buf);
-    pr->tmp = malloc(ASP_PREC_PARTS * (size_t)pr->n * sizeof *pr->tmp);
+    pr->buf = malloc(ASP_PREC_PARTS * L->n * sizeof *pr->buf);
+    pr->tmp = malloc(ASP_PREC_PARTS * L->n * sizeof *pr->tmp);
     STC_CHECK(pr->buf && pr->tmp, STC_ENOMEM, "solver: out of memory for the solve plan");
     return plan_cut(L, pr);
 }
 
-/* Single precision.  A Krylov iteration is two triangular solves with the factor, which are
- * memory bound (3D: 2-12e6 entries read twice per iteration).  The
+/* Float copy of the supernodal factor, after each factorization (the plan
+ * is made once: the supernodes are those of the analysis).
+ *
+ * Single precision: a Krylov iteration is two triangular solves with the
+ * factor, which are memory bound (3D: 2-12e6 entries read twice).  The
  * preconditioner reads a float copy of the supernodal factor instead and
  * works in double: half the traffic.  Rounding the factor to float left
  * the WSP 3 ωc shear ramp at the same mu_s (10 digits), Newton 147 -> 148
@@ -243,9 +243,6 @@ static stc_status prec_plan(asp_solver *s)
  * CHOLMOD supernode k: columns super[k] .. super[k+1]-1, row indices
  * s[pi[k] .. pi[k+1]) (the columns themselves first), values column-major
  * from px[k] (CHOLMOD User Guide, "cholmod_factor"). */
-
-/* Float copy of the supernodal factor, after each factorization (the plan
- * is made once: the supernodes are those of the analysis). */
 stc_status asp_prec_update(asp_solver *s)
 {
     const cholmod_factor *L = s->L;
@@ -318,15 +315,9 @@ void asp_prec_solve(const asp_solver *s, const double *b, double *out)
 {
     const struct asp_prec *pr = s->prec;
     const int *perm = s->L->Perm;
-    int n = s->ndof, ns = (int)s->L->nsuper;
+    int n = s->ndof;
     float *y = s->fy;
     for (int i = 0; i < n; i++) y[i] = (float)b[perm[i]];
-    if (!pr->ok) {
-        for (int k = 0; k < ns; k++) fwd_node(s, k, y, pr->tmp, NULL, NULL);
-        for (int k = ns - 1; k >= 0; k--) bwd_node(s, k, y, pr->tmp);
-        for (int i = 0; i < n; i++) out[perm[i]] = y[i];
-        return;
-    }
     int nthr = s->nthr < ASP_PREC_PARTS ? s->nthr : ASP_PREC_PARTS;
 #pragma omp parallel num_threads(nthr) if (nthr > 1)
     {
@@ -455,7 +446,7 @@ void asp_tangent_matvec(const asp_solver *s, const double *x, double *y, int ske
 int asp_prec_parts(const asp_solver *s, double *top_w, double *part_w)
 {
     const struct asp_prec *pr = s->prec;
-    if (!pr || !pr->ok) return 0;
+    if (!pr) return 0;
     int np = 0;
     *top_w = pr->top_w;
     for (int p = 0; p < ASP_PREC_PARTS; p++) {
