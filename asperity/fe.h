@@ -89,22 +89,22 @@ typedef struct asp_qp_state {
 typedef struct asp_j2 {
     double E, nu, Y;     /* MPa, -, MPa */
     double lambda, mu, kappa; /* Lamé constants and bulk modulus, MPa */
-    int midpoint;        /* 1: midpoint return (default), 0: radial return */
+    int map;             /* asp_return_map: midpoint (default), radial, exact */
 } asp_j2;
 
 void asp_j2_init(asp_j2 *m, const stc_material *mat);
 
 /* Return map for total strain eps given the converged state `old`:
- * midpoint rule (m->midpoint, the default of asp_j2_init) or radial
- * return.  Writes stress sig[6], the updated state `upd` and (if D !=
+ * midpoint rule (m->map, the default of asp_j2_init), radial return
+ * or exact integration.  Writes stress sig[6], the updated state `upd` and (if D !=
  * NULL) the consistent tangent D[6][6] (row major, engineering-shear
- * Voigt; not symmetric under the midpoint rule).  Returns 1 if the point
+ * Voigt; not symmetric under the midpoint rule and exact integration).  Returns 1 if the point
  * is plastic in this step, 0 if elastic.  Pure. */
 int asp_j2_update(const asp_j2 *m, const double eps[6], const asp_qp_state *old,
                   asp_qp_state *upd, double sig[6], double *D);
 /* The same, also writing (if D and Dp != NULL) a symmetric positive
  * definite approximation Dp of D to factorize: D itself where D is
- * symmetric (elastic, radial return), else the midpoint tangent of a
+ * symmetric (elastic, radial return), else the tangent of a
  * proportional increment along the same flow direction. */
 int asp_j2_update_pc(const asp_j2 *m, const double eps[6], const asp_qp_state *old,
                      asp_qp_state *upd, double sig[6], double *D, double *Dp);

@@ -27,6 +27,21 @@
  * factorizes an SPD approximation of it (asp_j2_update_pc's Dp) and keeps
  * Newton quadratic with the remainder (solver.c: skew_correct, gmres).
  *
+ * Exact integration: the closed-form solution of the elastic-perfectly
+ * plastic von Mises law under a strain rate that is constant over the
+ * increment (Krieg & Krieg, J. Pressure Vessel Technol. 99 (1977) 510).
+ * The elastic part is the same straight path to the yield surface as
+ * above; from there the unit deviator x = s / k turns on the sphere
+ * towards ê = Δs / |Δs| along a great circle, tan(θ/2) decaying as
+ * exp(-D / k) with D the remaining trial increment.  Exact for any
+ * straight strain path, with no degenerate case and a smooth tangent
+ * (derivation in exact()'s comment).  But a load increment's strain path
+ * is curved, and there the midpoint rule is the more accurate one: 4-25x
+ * smaller stress errors on turning paths (test_j2), and the 3D slip curve
+ * to 60 ωc at 2 steps per node entry sits 0.5 % lower (docs §28).  So the
+ * midpoint rule stays the default; this is the reference for straight
+ * paths and an option (--return-map exact).
+ *
  * Voigt order [xx, yy, zz, xy, yz, zx], engineering shear strains
  * γ = 2ε.  Stress shear slots hold tensor components.  Hence:
  *   - the tensor norm of a deviatoric stress s is
@@ -45,6 +60,7 @@
 #include <string.h>
 
 #include "fe.h"
+#include "stiction/asperity.h"
 
 enum { NV = 6 };
 
@@ -56,7 +72,7 @@ void asp_j2_init(asp_j2 *m, const stc_material *mat)
     m->mu = mat->E / (2.0 * (1.0 + mat->nu));
     m->lambda = mat->E * mat->nu / ((1.0 + mat->nu) * (1.0 - 2.0 * mat->nu));
     m->kappa = mat->E / (3.0 * (1.0 - 2.0 * mat->nu));
-    m->midpoint = 1;
+    m->map = ASP_RETURN_MIDPOINT;
 }
 
 /* Tensor inner product of two deviators held in Voigt slots (shear
@@ -157,6 +173,98 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
     return 1;
 }
 
+/* Exact return for the trial deviator str from old->s (Krieg & Krieg
+ * 1977).  s_a = s_0 + β Δs is where the straight elastic path leaves the
+ * surface, d = (1 - β) Δs the rest, D = |d|, ê = d / D, x_0 = s_a / |s_a|,
+ * c = x_0·ê = cos θ_0 (≥ 0: the path leaves the surface there), u =
+ * tan²(θ_0/2) = (1 - c) / (1 + c), E = exp(-D / k).  The flow
+ * dx/dτ = (d - (x·d) x) / k keeps x in the plane of x_0 and ê with
+ * tan(θ/2) = tan(θ_0/2) E^τ, so (derived for this code)
+ *   s_1 = k (α ê + ρ x_0),  α = (1 - E)(1 + u E) / (1 + u E²),
+ *                           ρ = E (1 + u) / (1 + u E²),
+ * and the plastic work per k, ∫ x·d dτ = k ln(sin θ_0 / sin θ_1) = D +
+ * k ln((1 + u E²) / (1 + u)), gives ε̄_p.  Tangent: s_1 = F(s_a, d) with
+ * ds_a = dβ Δs + β dΔs, dd = -dβ Δs + (1 - β) dΔs.  Since F follows the
+ * flow, F_sa f = F_d Δs for f = Δs - (s_a·Δs / k²) s_a, so the dβ terms
+ * leave (s_a·Δs / k²) F_sa s_a dβ, which is zero because F depends on s_a
+ * only through its direction: ds_1 = (β F_sa + (1 - β) F_d) dΔs, with no
+ * 1 / (s_a·Δs) where the path grazes the surface.  Returns 0 (radial
+ * return by the caller) only for a vanishing increment or start. */
+static int exact(const asp_j2 *m, const double str[NV], const asp_qp_state *old,
+                 asp_qp_state *upd, double sig[NV], double p, double *D, double *Dp)
+{
+    double k = sqrt(2.0 / 3.0) * m->Y, sa[NV], ds[NV], beta = 0.0;
+    memcpy(sa, old->s, sizeof sa);
+    for (int a = 0; a < NV; a++) ds[a] = str[a] - sa[a];
+    double A = tdot(ds, ds), B = tdot(sa, ds), C = tdot(sa, sa) - k * k;
+    if (A > 0.0) beta = fmin(fmax((-B + sqrt(fmax(B * B - A * C, 0.0))) / A, 0.0), 1.0);
+    for (int a = 0; a < NV; a++) sa[a] += beta * ds[a];
+    double na = dev_norm(sa), dn = (1.0 - beta) * sqrt(A);
+    if (!(na > 0.0) || !(dn > 1e-14 * k)) return 0;
+    double x0[NV], e[NV];
+    for (int a = 0; a < NV; a++) x0[a] = sa[a] / na, e[a] = ds[a] / sqrt(A);
+    double c = tdot(x0, e);
+    if (c < -0.5) return 0; /* not reached: c ≥ 0 up to rounding */
+    double u = (1.0 - c) / (1.0 + c), E = exp(-dn / k), om = -expm1(-dn / k);
+    double v = u * E * E, q = 1.0 + v;
+    double al = om * (1.0 + u * E) / q, rho = E * (1.0 + u) / q;
+    double s1[NV];
+    for (int a = 0; a < NV; a++) s1[a] = k * (al * e[a] + rho * x0[a]);
+    for (int a = 0; a < NV; a++) {
+        double de = (str[a] - s1[a]) / (2.0 * m->mu);
+        sig[a] = s1[a] + (a < 3 ? p : 0.0);
+        upd->eps_p[a] += (a < 3 ? 1.0 : 2.0) * de;
+        upd->s[a] = s1[a];
+    }
+    /* |Δε_p| integrated along the path (tensor norm) */
+    double dgam = (dn + k * log(q / (1.0 + u))) / (2.0 * m->mu);
+    upd->epbar += sqrt(2.0 / 3.0) * fmax(dgam, 0.0);
+    if (!D) return 1;
+    /* scalar derivatives in u and E, then in c (du/dc = -(1 + u)² / 2)
+     * and D (dE/dD = -E / k) */
+    double q2 = q * q, duc = -0.5 * (1.0 + u) * (1.0 + u);
+    double al_u = om * om * E / q2, rho_u = E * (1.0 - E * E) / q2;
+    double al_E = ((u - 1.0 - 2.0 * u * E) * q - om * (1.0 + u * E) * 2.0 * u * E) / q2;
+    double rho_E = (1.0 + u) * (1.0 - v) / q2;
+    double al_c = al_u * duc, rho_c = rho_u * duc;
+    double al_D = -al_E * E / k, rho_D = -rho_E * E / k;
+    /* J = ∂s_1/∂s_t = β F_sa + (1 - β) F_d, with (a ⊗ b) acting as a (b·v):
+     *   F_sa = (k / |s_a|) [g ⊗ (ê - c x_0) + ρ (I - x_0 ⊗ x_0)],
+     *   F_d  = k [g ⊗ (x_0 - c ê) / D + h ⊗ ê + (α / D) (I - ê ⊗ ê)],
+     * g = α_c ê + ρ_c x_0, h = α_D ê + ρ_D x_0 */
+    double fa = beta * k / na, fd = (1.0 - beta) * k, J[NV * NV];
+    for (int a = 0; a < NV; a++) {
+        double g = al_c * e[a] + rho_c * x0[a], h = al_D * e[a] + rho_D * x0[a];
+        for (int b = 0; b < NV; b++) {
+            double w = b < 3 ? 1.0 : 2.0; /* the tensor dot's shear weight */
+            double ja = g * (e[b] - c * x0[b]) * w + rho * ((a == b) - x0[a] * x0[b] * w);
+            double jd = g * (x0[b] - c * e[b]) * w / dn + h * e[b] * w +
+                        al / dn * ((a == b) - e[a] * e[b] * w);
+            J[a * NV + b] = fa * ja + fd * jd;
+        }
+    }
+    /* D = κ 1⊗1 + J ∂s_t/∂ε, ∂s_t/∂ε = 2μ I_dev (μ on the engineering shears) */
+    double S[NV * NV] = {0};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) S[a * NV + b] = 2.0 * m->mu * ((a == b) - 1.0 / 3.0);
+    for (int a = 3; a < NV; a++) S[a * NV + a] = m->mu;
+    for (int a = 0; a < NV; a++)
+        for (int b = 0; b < NV; b++) {
+            double v2 = (a < 3 && b < 3) ? m->kappa : 0.0;
+            for (int l = 0; l < NV; l++) v2 += J[a * NV + l] * S[l * NV + b];
+            D[a * NV + b] = v2;
+        }
+    /* SPD part for the factorization: the radial return's tangent at the
+     * same trial, exact for a proportional increment from the surface to
+     * first order in D / k */
+    if (Dp) {
+        double n1[NV];
+        for (int a = 0; a < NV; a++) n1[a] = s1[a] / k;
+        tangent(m, fmax(k / dev_norm(str), 0.01), 1.0, n1, Dp);
+    }
+    return 1;
+}
+
 int asp_j2_update(const asp_j2 *m, const double eps[NV], const asp_qp_state *old,
                   asp_qp_state *upd, double sig[NV], double *D)
 {
@@ -193,7 +301,9 @@ int asp_j2_update_pc(const asp_j2 *m, const double eps[NV], const asp_qp_state *
         return 0;
     }
 
-    if (m->midpoint && midpoint(m, s, old, upd, sig, p, D, D ? Dp : NULL)) return 1;
+    if (m->map == ASP_RETURN_MIDPOINT && midpoint(m, s, old, upd, sig, p, D, D ? Dp : NULL))
+        return 1;
+    if (m->map == ASP_RETURN_EXACT && exact(m, s, old, upd, sig, p, D, D ? Dp : NULL)) return 1;
     /* Perfect plasticity: Δγ = (|s_tr| - √(2/3) Y) / 2μ, s = √(2/3) Y n */
     double n[NV], dgam = (snorm - radius) / (2.0 * m->mu);
     for (int a = 0; a < NV; a++) {

@@ -454,8 +454,8 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
               "max-increments = %d: must be in [3, 100000]", o->max_increments);
     STC_CHECK(o->junction == ASP_JUNCTION_FOOTPRINT || o->junction == ASP_JUNCTION_NODES,
               STC_EINVAL, "junction = %d: must be footprint or nodes", (int)o->junction);
-    STC_CHECK(o->return_map == ASP_RETURN_MIDPOINT || o->return_map == ASP_RETURN_RADIAL,
-              STC_EINVAL, "ramp return map = %d: must be 0 (midpoint) or 1 (radial)",
+    STC_CHECK(o->return_map >= ASP_RETURN_MIDPOINT && o->return_map <= ASP_RETURN_EXACT,
+              STC_EINVAL, "ramp return map = %d: must be 0 (midpoint), 1 (radial) or 2 (exact)",
               (int)o->return_map);
     STC_CHECK(o->ramp_refine >= 1.0 && o->ramp_refine <= 64.0, STC_EINVAL,
               "ramp refine = %g: must be in [1, 64]", o->ramp_refine);
@@ -558,7 +558,7 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     initial_slip(s);
     s->shear = 1;
     s->opt.no_separation = 1; /* thesis §3.2.3.3: the contact stays closed */
-    for (int k = 0; k < 2; k++) s->mat[k].midpoint = o->return_map == ASP_RETURN_MIDPOINT;
+    for (int k = 0; k < 2; k++) s->mat[k].map = o->return_map;
     s->ux = s->ux_conv = 0.0;
     s->k_fresh = 0;
     asp_slide_params sp;

@@ -162,8 +162,8 @@ static stc_status check_options(const asp_options *o)
               o->utol);
     STC_CHECK(o->krylov >= ASP_KRYLOV_OFF && o->krylov <= ASP_KRYLOV_ON, STC_EINVAL,
               "krylov = %d: must be 0 (off), 1 (auto) or 2 (on)", (int)o->krylov);
-    STC_CHECK(o->return_map == ASP_RETURN_MIDPOINT || o->return_map == ASP_RETURN_RADIAL,
-              STC_EINVAL, "return map = %d: must be 0 (midpoint) or 1 (radial)",
+    STC_CHECK(o->return_map >= ASP_RETURN_MIDPOINT && o->return_map <= ASP_RETURN_EXACT,
+              STC_EINVAL, "return map = %d: must be 0 (midpoint), 1 (radial) or 2 (exact)",
               (int)o->return_map);
     STC_CHECK(o->krylov_max >= 1 && o->krylov_max <= 1000, STC_EINVAL,
               "krylov max = %d: must be in [1, 1000]", o->krylov_max);
@@ -1359,7 +1359,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     stc_params_materials(&s->par, &su, &co);
     asp_j2_init(&s->mat[ASP_REGION_SUBSTRATE], &su);
     asp_j2_init(&s->mat[ASP_REGION_COATING], &co);
-    for (int k = 0; k < 2; k++) s->mat[k].midpoint = s->opt.return_map == ASP_RETURN_MIDPOINT;
+    for (int k = 0; k < 2; k++) s->mat[k].map = s->opt.return_map;
     double t = stc_params_t(&s->par);
     s->Rp = s->par.R + t;
     STC_CALL(stc_critical_eval(&su, s->par.R, &c));

@@ -1,6 +1,7 @@
-/* J2 material kernel: elastic law, return onto the yield surface (midpoint
- * and radial), isochoric flow, consistent tangents vs finite differences,
- * order of accuracy in the increment, uniaxial strain against the closed
+/* J2 material kernel: elastic law, return onto the yield surface (midpoint,
+ * radial, exact), isochoric flow, consistent tangents vs finite
+ * differences, order of accuracy in the increment, exactness of the exact
+ * integration along a straight path, uniaxial strain against the closed
  * form. */
 #include <math.h>
 #include <setjmp.h>
@@ -11,6 +12,7 @@
 #include <cmocka.h>
 
 #include "fe.h"
+#include "stiction/asperity.h"
 
 static asp_j2 steel(void)
 {
@@ -101,9 +103,10 @@ static double tangent_error(const asp_j2 *m, const asp_qp_state *old,
 static void test_tangent_fd(void **state)
 {
     (void)state;
-    for (int mode = 0; mode < 2; mode++) { /* midpoint, radial */
+    static const char *name[3] = {"midpoint", "radial", "exact"};
+    for (int mode = 0; mode < 3; mode++) { /* asp_return_map */
         asp_j2 m = steel();
-        m.midpoint = mode == 0;
+        m.map = mode;
         asp_qp_state virgin = {{0}, 0, {0}};
         /* a pre-strained state, to test with nonzero eps_p */
         asp_qp_state pre;
@@ -126,8 +129,24 @@ static void test_tangent_fd(void **state)
         double eps[6];
         for (int a = 0; a < 6; a++) eps[a] = e1[a] - 9e-3 * DIRS[1][a] + 1e-3 * DIRS[4][a];
         worst_pl = fmax(worst_pl, tangent_error(&m, &pre, eps, 1));
+        /* exact: an increment that grazes the surface (the path leaves it
+         * almost tangentially), where dβ/dε is singular */
+        if (mode == 2) {
+            /* the strain direction DIRS[3], deviatoric, with its part along
+             * s removed: Δs·s = 2μ Σ s_a ε_a (engineering shears), and a
+             * strain along s has ε_a = s_a (normal), 2 s_a (shear) */
+            double dir[6], tr = (DIRS[3][0] + DIRS[3][1] + DIRS[3][2]) / 3.0, se = 0.0, ss = 0.0;
+            for (int a = 0; a < 6; a++) dir[a] = DIRS[3][a] - (a < 3 ? tr : 0.0);
+            for (int a = 0; a < 6; a++)
+                se += pre.s[a] * dir[a], ss += pre.s[a] * pre.s[a] * (a < 3 ? 1.0 : 2.0);
+            for (int a = 0; a < 6; a++) dir[a] -= se / ss * pre.s[a] * (a < 3 ? 1.0 : 2.0);
+            for (int a = 0; a < 6; a++) eps[a] = e1[a] + 2e-3 * dir[a];
+            double g = tangent_error(&m, &pre, eps, 1);
+            printf("exact: increment tangent to the yield surface, tangent vs FD %.2e\n", g);
+            worst_pl = fmax(worst_pl, g);
+        }
         printf("%s: tangent vs central FD: elastic %.2e, plastic %.2e (rel. to max|D|)\n",
-               mode ? "radial" : "midpoint", worst_el, worst_pl);
+               name[mode], worst_el, worst_pl);
         assert_true(worst_el < 1e-6);
         assert_true(worst_pl < 1e-6);
     }
@@ -137,12 +156,13 @@ static void test_tangent_fd(void **state)
  * turns its deviatoric direction by 90° while growing (the stress turns
  * on the yield surface, as under a growing contact), integrated in n and 2n
  * increments against 20000 midpoint increments.  Measured errors (|Δσ|/Y)
- * and ratios printed; second order for the midpoint rule, first for the
- * radial return, and the midpoint more accurate at equal n. */
-static double path_error(int midpoint, int n, const double ref[6], double out[6])
+ * and ratios printed; second order for the midpoint rule and the exact
+ * integration (exact on each chord of the curved path), first for the
+ * radial return, and the midpoint more accurate than radial at equal n. */
+static double path_error(int map, int n, const double ref[6], double out[6])
 {
     asp_j2 m = steel();
-    m.midpoint = midpoint;
+    m.map = map;
     asp_qp_state st = {{0}, 0, {0}}, nx;
     double ey = m.Y / (2 * m.mu), d1[6] = {1, -1, 0, 0, 0, 0}, d2[6] = {0, 0, 0, 1, 0, 0};
     double sig[6], e = 0.0;
@@ -163,17 +183,64 @@ static void test_increment_order(void **state)
 {
     (void)state;
     double ref[6];
-    path_error(1, 20000, NULL, ref);
-    double m1 = path_error(1, 8, ref, NULL), m2 = path_error(1, 16, ref, NULL);
-    double r1 = path_error(0, 8, ref, NULL), r2 = path_error(0, 16, ref, NULL);
-    double rr = path_error(0, 20000, ref, NULL);
+    path_error(ASP_RETURN_MIDPOINT, 20000, NULL, ref);
+    double m1 = path_error(ASP_RETURN_MIDPOINT, 8, ref, NULL);
+    double m2 = path_error(ASP_RETURN_MIDPOINT, 16, ref, NULL);
+    double r1 = path_error(ASP_RETURN_RADIAL, 8, ref, NULL);
+    double r2 = path_error(ASP_RETURN_RADIAL, 16, ref, NULL);
+    double x1 = path_error(ASP_RETURN_EXACT, 8, ref, NULL);
+    double x2 = path_error(ASP_RETURN_EXACT, 16, ref, NULL);
+    double rr = path_error(ASP_RETURN_RADIAL, 20000, ref, NULL);
+    double xx = path_error(ASP_RETURN_EXACT, 20000, ref, NULL);
     printf("turning path, |dsigma|/Y at 8 / 16 increments: midpoint %.2e / %.2e (ratio %.2f), "
-           "radial %.2e / %.2e (ratio %.2f); radial at 20000: %.1e\n",
-           m1, m2, m1 / m2, r1, r2, r1 / r2, rr);
+           "radial %.2e / %.2e (ratio %.2f), exact %.2e / %.2e (ratio %.2f); "
+           "at 20000: radial %.1e, exact %.1e\n",
+           m1, m2, m1 / m2, r1, r2, r1 / r2, x1, x2, x1 / x2, rr, xx);
     assert_true(m1 / m2 > 3.0 && m1 / m2 < 5.5);
     assert_true(r1 / r2 > 1.5 && r1 / r2 < 2.7);
+    assert_true(x1 / x2 > 3.0 && x1 / x2 < 5.5);
     assert_true(m1 < 0.5 * r1);
-    assert_true(rr < 1e-3); /* both converge to the same path integral */
+    assert_true(rr < 1e-3); /* all converge to the same path integral */
+    assert_true(xx < 1e-7);
+}
+
+/* The exact integration is exact along a straight strain path: from a
+ * yielded state, one increment that unloads through the elastic interior
+ * and reloads 150° away from the start gives the same stress and ε̄_p as
+ * 4000 increments along the same line, and as the midpoint and radial
+ * returns in the limit of many increments. */
+static void test_exact_straight(void **state)
+{
+    (void)state;
+    asp_j2 m = steel();
+    m.map = ASP_RETURN_EXACT;
+    asp_qp_state virgin = {{0}, 0, {0}}, pre, st, nx;
+    double e0[6], e1[6], sig1[6], sign[6], sig[6];
+    for (int a = 0; a < 6; a++) e0[a] = 4e-3 * DIRS[1][a];
+    asp_j2_update(&m, e0, &virgin, &pre, sig, NULL);
+    for (int a = 0; a < 6; a++) e1[a] = e0[a] - 7e-3 * DIRS[1][a] + 4e-3 * DIRS[3][a];
+    assert_int_equal(asp_j2_update(&m, e1, &pre, &nx, sig1, NULL), 1);
+    double ep1 = nx.epbar - pre.epbar, err[3], dep[3];
+    for (int map = 0; map < 3; map++) {
+        m.map = map == 0 ? ASP_RETURN_EXACT : map == 1 ? ASP_RETURN_MIDPOINT : ASP_RETURN_RADIAL;
+        int n = 4000;
+        st = pre;
+        for (int k = 1; k <= n; k++) {
+            double eps[6], t = (double)k / n;
+            for (int a = 0; a < 6; a++) eps[a] = e0[a] + t * (e1[a] - e0[a]);
+            asp_j2_update(&m, eps, &st, &nx, sign, NULL);
+            st = nx;
+        }
+        err[map] = 0.0;
+        for (int a = 0; a < 6; a++) err[map] = fmax(err[map], fabs(sign[a] - sig1[a]) / m.Y);
+        dep[map] = fabs(st.epbar - pre.epbar - ep1) / ep1;
+    }
+    printf("straight path, one exact increment vs 4000 increments: |dsigma|/Y exact %.1e, "
+           "midpoint %.1e, radial %.1e; eps_p-bar rel. %.1e / %.1e / %.1e\n",
+           err[0], err[1], err[2], dep[0], dep[1], dep[2]);
+    assert_true(err[0] < 1e-11 && dep[0] < 1e-9);
+    assert_true(err[1] < 1e-6 && dep[1] < 1e-5);
+    assert_true(err[2] < 1e-3 && dep[2] < 1e-2);
 }
 
 /* D symmetric (associative flow) and the plastic tangent annihilates n. */
@@ -253,6 +320,7 @@ int main(void)
         cmocka_unit_test(test_return_on_surface),
         cmocka_unit_test(test_tangent_fd),
         cmocka_unit_test(test_increment_order),
+        cmocka_unit_test(test_exact_straight),
         cmocka_unit_test(test_tangent_structure),
         cmocka_unit_test(test_uniaxial_strain),
         cmocka_unit_test(test_von_mises),

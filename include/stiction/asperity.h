@@ -52,10 +52,13 @@ enum { ASP_MESH_DEFAULT = -1, ASP_MESH_FINE = -2 };
 /* How the von Mises return map integrates an increment (asperity/j2.c).
  * Radial return (backward Euler) is first-order accurate in the increment
  * size; the midpoint rule (normal at the average of the start and end
- * stresses) is second order, at the price of a non-symmetric tangent. */
+ * stresses) is second order, at the price of a non-symmetric tangent;
+ * exact integration solves the law along the increment's straight strain
+ * path in closed form (also a non-symmetric tangent). */
 typedef enum asp_return_map {
     ASP_RETURN_MIDPOINT = 0, /* generalized midpoint, α = 1/2 (Ortiz & Popov 1985) */
-    ASP_RETURN_RADIAL = 1    /* backward Euler radial return (Simo & Hughes 1998) */
+    ASP_RETURN_RADIAL = 1,   /* backward Euler radial return (Simo & Hughes 1998) */
+    ASP_RETURN_EXACT = 2     /* constant strain rate, exact (Krieg & Krieg 1977) */
 } asp_return_map;
 
 typedef struct asp_options {

@@ -111,7 +111,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
         {"junction", "footprint|nodes",                                                        \
          "contact growth under shear: edge advance from the gaps (default) or F_z/p_m of "   \
          "the nodes that touch; the two bracket the mesh-converged answer"},                 \
-        {"ramp-return-map", "radial|midpoint",                                                 \
+        {"ramp-return-map", "radial|midpoint|exact",                                           \
          "plastic integration during the ramp (default radial: the midpoint rule, used in "   \
          "the normal step, can be far off over the ramp's long increments)"},                \
         {"ramp-refine", "K",                                                                   \

@@ -54,9 +54,10 @@ static const cli_opt opts[] = {
     {"steps-per-node", "X",
      "load increments per surface node entering the contact past yield, in [0.5, 16] "
      "(default auto: 4 slip, 2 slip 3D, 1 stick)"},
-    {"return-map", "midpoint|radial",
-     "plastic integration over an increment: midpoint rule (second order) or radial return "
-     "(backward Euler, first order) (default midpoint)"},
+    {"return-map", "midpoint|radial|exact",
+     "plastic integration over an increment: midpoint rule (second order), radial return "
+     "(backward Euler, first order) or exact along the increment's strain path "
+     "(default midpoint)"},
     {"no-separation", NULL, "a node in contact never opens"},
     {"threads", "N",
      "OpenMP threads for the element loop and the Krylov solves (default: runtime)"},

@@ -22,7 +22,8 @@ stc_status cli_parse_return_map(const char *key, const char *value, asp_return_m
 {
     if (!strcmp(value, "midpoint")) *rm = ASP_RETURN_MIDPOINT;
     else if (!strcmp(value, "radial")) *rm = ASP_RETURN_RADIAL;
-    else return bad(key, value, "midpoint or radial");
+    else if (!strcmp(value, "exact")) *rm = ASP_RETURN_EXACT;
+    else return bad(key, value, "midpoint, radial or exact");
     return STC_OK;
 }
 
