@@ -973,6 +973,30 @@ static double dot(const double *a, const double *b, int n)
  * more Newton iterations and 50 % more line-search evaluations. */
 #define KRYLOV_ABS 1e-3
 #define KRYLOV_ETA 1e-6
+
+/* Inexact Newton: the Krylov solve of a Newton step need only be as
+ * accurate as the step's linear model is useful, which it is to about the
+ * square of the last residual ratio.  Forcing term η_k = γ (|r_k| /
+ * |r_k-1|)², γ = 0.9 (Eisenstat & Walker, SIAM J. Sci. Comput. 17 (1996)
+ * 16, choice 2), capped at KRYLOV_EW_MAX (the first step of a Newton solve
+ * uses the cap; their safeguard against a too-fast decrease, γ η_k-1²,
+ * never exceeds their 0.1 under this cap); the Krylov tolerance is then
+ * the larger of η_k |r| and the fixed one above, and a step that jumps the
+ * constraints is solved to the fixed one.  Measured (idle machine, two
+ * threads): graded 3D slip curve n = 4 17.4 -> 13.7 s (Krylov iterations
+ * 2812 -> 1966, factorizations 20 -> 15, Newton iterations 191 -> 209),
+ * P to 9 digits unchanged; WSP 3 / 12 ωc shear 11.1 / 13.6 -> 8.5 / 11.3 s,
+ * μs moved 1e-8; coated stick δ = 10 shear ~38 -> 35.9 s, μs moved 1e-7
+ * (the stick positions follow the iterates).  A cap of 0.1 moved the
+ * curve's last P by +0.2 % (the active set settles on loose iterates), and
+ * γ = 0.5 ran as fast as 0.9. */
+#define KRYLOV_EW_GAMMA 0.9
+#define KRYLOV_EW_MAX 1e-2
+
+static double forcing(double ratio)
+{
+    return fmin(KRYLOV_EW_GAMMA * ratio * ratio, KRYLOV_EW_MAX);
+}
 /* GMRES keeps at most this many basis vectors (krylov_max above it: the
  * step is refactorized after KRYLOV_MAX_CAP iterations) */
 #define KRYLOV_MAX_CAP 100
@@ -1006,6 +1030,7 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax
     double rz = 0.0;
     double rel = KRYLOV_ETA * sqrt(dot(r, r, n));
     tol = tol > 0.0 ? fmin(tol, rel) : rel; /* no reaction yet: relative only */
+    tol = fmax(tol, s->k_eta * sqrt(dot(r, r, n)));
     for (int k = 0;; k++) {
         if (sqrt(dot(r, r, n)) <= tol) {
             for (int i = 0; i < n; i++)
@@ -1041,6 +1066,7 @@ static int gmres(asp_solver *s, const double *bx, double *du, double tol, int km
     double beta = sqrt(dot(V, V, n));
     double rel = KRYLOV_ETA * beta;
     tol = tol > 0.0 ? fmin(tol, rel) : rel;
+    tol = fmax(tol, s->k_eta * beta);
     int k = 0;
     if (beta > tol) {
         for (int i = 0; i < n; i++) V[i] /= beta;
@@ -1184,6 +1210,7 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
     double rtol = o->rtol * loose, utol = o->utol * loose;
     double r_first = -1.0, dun = INFINITY, *c = s->cvec, r_best = INFINITY;
     int age = o->newton_reuse, it_best = 0;
+    double r_prev = -1.0; /* the last iteration's residual, for the forcing term */
     if (need_asm || !s->k_fresh) STC_CALL(assemble(s, 1));
     for (int it = 0;; it++) {
         double cn = constraint_defect(s, c);
@@ -1219,13 +1246,16 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
             if (cn > 0.0) { /* before the identity rows */
                 asp_tangent_matvec(s, c, du, 1);
             }
+            s->k_eta = cn > 0.0 ? 0.0 : r_prev > 0.0 ? forcing(rn / r_prev) : KRYLOV_EW_MAX;
             STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref));
+            s->k_eta = 0.0;
             age = 0;
         } else {
             STC_CALL(newton_solve(s, b, c, cn, du));
         }
         age++;
         ns->iters++;
+        r_prev = cn == 0.0 ? rn : -1.0;
         memcpy(u0, s->u, (size_t)s->ndof * sizeof *u0);
         double alpha = 1.0;
         for (int ls = 0;; ls++) {

@@ -457,12 +457,17 @@ static void test_placements(void **state)
     assert_int_equal(e->n_ok, 2);
     assert_true(e->m[0].elements_per_contact == 6.0);
     /* the same run, to rounding: R factorizes with two OpenBLAS threads,
-     * the members with one each, and OpenBLAS may sum in another order;
-     * measured 2-3e-16 (equal with OMP_NUM_THREADS=1) */
+     * the members with one each, and OpenBLAS may sum in another order.
+     * Equal to the bit with OMP_NUM_THREADS=1.  Otherwise measured 2-3e-16
+     * while every Krylov solve went to 1e-6; since the solves stop at the
+     * inexact-Newton forcing term (up to 1e-2, solver.c), the rounding
+     * steers the iterates and the answers agree to the Newton tolerance's
+     * scale instead: measured 1.3e-12 (rtol 1e-8; another mesh moves μs
+     * by ~1e-2) */
     printf("# member 0 vs the single run: mu_s %+.1e, P %+.1e relative\n",
            e->m[0].res.mu_s / R.res.mu_s - 1, e->m[0].pt.P / R.pt.P - 1);
-    assert_true(fabs(e->m[0].res.mu_s / R.res.mu_s - 1) < 1e-12);
-    assert_true(fabs(e->m[0].pt.P / R.pt.P - 1) < 1e-12);
+    assert_true(fabs(e->m[0].res.mu_s / R.res.mu_s - 1) < 1e-10);
+    assert_true(fabs(e->m[0].pt.P / R.pt.P - 1) < 1e-10);
     assert_true(fabs(e->period - 1.1 * sqrt(R.p.R * delta) / e->m[0].pt.a) < 1e-9);
     assert_true(fabs(e->m[1].elements_per_contact - 6.0 - 0.5 * e->period) < 1e-12);
     assert_true(e->m[1].pt.a != e->m[0].pt.a); /* another mesh */
