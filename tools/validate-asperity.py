@@ -336,12 +336,13 @@ def bench(cli):
 
 def return_map_table(cli):
     """Work against the increment error: P at 60 wc (slip, axisymmetric
-    level 1) for 1..16 load steps per node entry, midpoint rule and radial
-    return, against the midpoint rule at 16 (docs/tangential-step.md 14)."""
+    level 1) for 1..16 load steps per node entry, midpoint rule, radial
+    return and exact integration along each increment's straight strain
+    path, against the midpoint rule at 16 (docs/tangential-step.md 14, 28)."""
     print("Return map vs load increment: P at 60 wc, slip, level 1, against the midpoint "
           "rule at 16 steps per node entry")
     runs = {}
-    for rm in ("midpoint", "radial"):
+    for rm in ("midpoint", "radial", "exact"):
         for spn in (1, 2, 4, 8, 16):
             runs[rm, spn] = run(cli, ["--delta", "60", "--contact", "slip", "--mesh", "1",
                                       "--return-map", rm, "--steps-per-node", str(spn)])
