@@ -193,6 +193,9 @@ void asp_solver_info(const asp_solver *s, asp_info *info);
  * of the ln δ axis, i.e. an average over δ; window δ/2 .. 2 δ, widened
  * up to 3.4x if fewer than 5 increments fall in it) through ALL converged
  * increments so far, so it is best called after the whole curve is solved.
+ * A linear fit across the concave bend of ln P(ln δ) reads low: about
+ * -0.2 % past first yield (-0.13 ... -0.23 % against a local quadratic on
+ * the mesh-converged slip curve to 60 ωc, docs/tangential-step.md §28).
  * Writes *P (N; NaN if not enough increments) and returns the number of
  * increments used (0: no estimate). */
 int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
