@@ -395,14 +395,13 @@ def target_3d(cli, fin, smooth):
     # difference since the Krylov phase runs on two (n = 4 curve: 17.9 s
     # default, 18.1 s passive; docs/tangential-step.md §27)
     passive = {"OMP_WAIT_POLICY": "passive"}
-    for name, args, env in (("auto", [], None), ("auto, OMP_WAIT_POLICY=passive", [], passive),
+    for name, args, env in (("auto (graded core, 4 elements across every contact)", [], None),
+                            ("auto, OMP_WAIT_POLICY=passive", [], passive),
                             ("4/node", ["--steps-per-node", "4"], None),
-                            ("auto, --grade-3d (core sized to the 0.8 wc contact)",
-                             ["--grade-3d"], passive),
-                            # the nearest to the target (docs/tangential-step.md §25, §27)
-                            ("auto, --grade-3d, 4 elements per contact, no shell coarsening",
-                             ["--grade-3d", "--elements-per-contact", "4", "--shell-coarsen", "0"],
-                             passive)):
+                            ("auto, --grade-3d=no (uniform core sized to the 60 wc contact)",
+                             ["--grade-3d=no"], None),
+                            ("auto, graded, 6 elements per contact, shells coarsened",
+                             ["--elements-per-contact", "6", "--shell-coarsen", "1"], passive)):
         j, w, m = run(cli, ["--delta", "1:60:12", "--contact", "slip", "--model", "3d",
                             "--mesh", "0"] + args, env)
         # the 1 wc point has one contact node at level 0: reported apart

@@ -112,11 +112,15 @@ typedef struct asp_options {
                                 distance out to a_max, so every contact radius of
                                 the curve gets about n elements across.  Needs a
                                 coating within the small core's depth (t <= 0.8
-                                a_min), else the uniform core is kept.  Slip curve
-                                1:60:12, level 0: within 0.40 % of the converged
-                                curve at every point (uniform core: -6 % at 6 ωc),
-                                2.1x the DOFs (docs/tangential-step.md §17);
-                                default 0 */
+                                a_min), else the uniform core is kept.  Its
+                                levels have 4 2^level elements across every
+                                contact and no coarsened shells (uniform: 6 2^level
+                                across a_max).  Slip curve 1:60:12, level 0:
+                                within 0.50 % of the converged curve at every
+                                point in 13.7 s (uniform core: -33 % at 1 ωc,
+                                -6.2 % at 6.4 ωc in 6.5 s; docs/tangential-step.md
+                                §17, §26, §28); default 0 (the CLI sets it for a
+                                3D load curve) */
     int sample_elastic;      /* slip: 1 = while all is elastic, step through the
                                 surface node entries from δ/2 on (δ the target of
                                 asp_solver_load), steps_per_node per entry, so that
@@ -136,7 +140,11 @@ typedef struct asp_info {
     double mesh_quality; /* worst scaled Jacobian in (0, 1] */
     double h_contact;    /* element size at the contact, mm */
     double a_max;        /* contact radius the mesh was sized for, mm */
-    double elements_per_contact; /* a_max / h_contact: the option, or 6 2^level */
+    double elements_per_contact; /* a_max / h_contact: the option, or 6 2^level
+                                    (4 2^level on the graded 3D core) */
+    double a_min;        /* smallest contact radius with about elements_per_contact
+                            elements across (a load curve's mesh: between a_min
+                            and a_max every contact has); a_max if none, mm */
     /* where the time went since create (wall, s): element loops (tangent and
      * residual), numeric factorizations, PCG iterations (solves + mat-vecs) */
     double time_assembly_s, time_factorize_s, time_pcg_s;
