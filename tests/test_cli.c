@@ -236,8 +236,10 @@ static void test_json_uncoated(void **state)
  * resolved where the uniform core sized to 3 ωc is not.  Reference: raw P
  * of `--delta 1,3 --contact slip --mesh 3` (axisymmetric level 3) 0.3651055
  * / 1.8042887 N.  Measured at 1 ωc: graded -0.21 %, uniform (--grade-3d=no)
- * -1.56 %; at 3 ωc the graded zone's stiff error shows (docs §28): graded
- * +0.94 %, uniform +0.08 %.  ~4 s for both. */
+ * -1.56 %.  At 3 ωc (printed, not checked) graded +0.94 %, uniform +0.08 %:
+ * past yield a raw P carries the node-entry sawtooth (the uniform core at
+ * 4 / 8 elements across reads -2.2 / -0.3 % there), so one point does not
+ * rank the meshes (docs §28).  ~4 s for both. */
 static void test_curve_3d_graded(void **state)
 {
     (void)state;
@@ -257,7 +259,6 @@ static void test_curve_3d_graded(void **state)
            "%+.2f / %+.2f %%\n", 100 * eg, 100 * eg3, 100 * eu, 100 * eu3);
     assert_true(fabs(eg) < 0.005);
     assert_true(fabs(eu) > 0.01);
-    assert_true(fabs(eg3) < 0.015 && fabs(eu3) < 0.005);
     snprintf(args, sizeof args, "%s --grade-3d=no", base);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
     assert_null(strstr(out, "elements across every a in"));
