@@ -38,7 +38,8 @@ static const cli_opt opts[] = {
      "axisymmetric: split the top element row into N+1 rows halving towards the surface "
      "(N in [0, 6]; default auto = 3 under stick, 0 under slip)"},
     {"elements-per-contact", "N",
-     "elements across the largest contact radius, overrides --mesh (6 2^level); "
+     "elements across the largest contact radius, overrides --mesh (6 2^level; 4 2^level "
+     "across every contact on the graded 3D core); "
      "values between levels, e.g. 8 (in [3, 384]; 3D: the shells follow the level log2(N/6))"},
     {"shell-coarsen", "N",
      "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
