@@ -878,10 +878,11 @@ static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
  * linear_step).  K is the constrained (identity-row) matrix here, Kd and W
  * their free-free blocks. */
 enum { SKEW_SWEEPS = 3 };
-static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du);
+static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du, double eta);
 static double dot(const double *a, const double *b, int n);
 static int precondition(asp_solver *s, const double *r, double *z);
-static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax);
+static int gmres(asp_solver *s, const double *bx, double *du, double tol, double eta,
+                 int kmax);
 static stc_status krylov_alloc(asp_solver *s);
 static stc_status gmres_alloc(asp_solver *s);
 
@@ -897,17 +898,19 @@ static double skew_residual(const asp_solver *s, const double *bx, const double 
     return sqrt(a);
 }
 
-static stc_status skew_correct(asp_solver *s, cholmod_dense *b, double *du)
+/* eta: the Newton step's forcing term for the fallback GMRES (0: the fixed
+ * tolerance) */
+static stc_status skew_correct(asp_solver *s, cholmod_dense *b, double *du, double eta)
 {
     if (!s->skew) return STC_OK;
     STC_CALL(krylov_alloc(s));
     int bt = blas_serial_begin();
-    stc_status st = skew_sweeps(s, b, du);
+    stc_status st = skew_sweeps(s, b, du, eta);
     blas_serial_end(bt);
     return st;
 }
 
-static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du)
+static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du, double eta)
 {
     int n = s->ndof;
     double *r = s->skew_r, *z = s->kv + n, *bx = b->x; /* gmres uses kv[0, n) */
@@ -924,7 +927,7 @@ static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du)
         /* not contracting: undo, and GMRES preconditioned by the factor */
         for (int i = 0; i < n; i++) du[i] -= z[i];
         STC_CALL(gmres_alloc(s));
-        int k = gmres(s, bx, r, 0.0, s->opt.krylov_max);
+        int k = gmres(s, bx, r, 0.0, eta, s->opt.krylov_max);
         if (k >= 0) memcpy(du, r, (size_t)n * sizeof *du);
         break; /* else: keep the best correction so far */
     }
@@ -936,7 +939,7 @@ static stc_status newton_solve(asp_solver *s, cholmod_dense *b, const double *c,
 {
     newton_rhs(s, b, c, cn, du);
     STC_CALL(direct_solve(s, b, du));
-    return skew_correct(s, b, du);
+    return skew_correct(s, b, du, 0.0);
 }
 
 /* ---- Newton-Krylov (speed3d) ----------------------------------------------
@@ -997,6 +1000,7 @@ static double forcing(double ratio)
 {
     return fmin(KRYLOV_EW_GAMMA * ratio * ratio, KRYLOV_EW_MAX);
 }
+
 /* GMRES keeps at most this many basis vectors (krylov_max above it: the
  * step is refactorized after KRYLOV_MAX_CAP iterations) */
 #define KRYLOV_MAX_CAP 100
@@ -1020,9 +1024,10 @@ static int precondition(asp_solver *s, const double *r, double *z)
 }
 
 /* PCG for A du = b (A: constrained tangent in s->K, b in bx): du = b on the
- * fixed DOFs, the free block to |r| <= tol.  Returns the iterations, or -1
- * when it needs more than kmax (or the preconditioner failed). */
-static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax)
+ * fixed DOFs, the free block to |r| <= max(min(tol, KRYLOV_ETA |r0|),
+ * eta |r0|) (eta: the forcing term, 0 for none).  Returns the iterations,
+ * or -1 when it needs more than kmax (or the preconditioner failed). */
+static int pcg(asp_solver *s, const double *bx, double *du, double tol, double eta, int kmax)
 {
     int n = s->ndof;
     double *r = s->kv, *z = r + n, *p = z + n, *q = p + n;
@@ -1030,7 +1035,7 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax
     double rz = 0.0;
     double rel = KRYLOV_ETA * sqrt(dot(r, r, n));
     tol = tol > 0.0 ? fmin(tol, rel) : rel; /* no reaction yet: relative only */
-    tol = fmax(tol, s->k_eta * sqrt(dot(r, r, n)));
+    tol = fmax(tol, eta * sqrt(dot(r, r, n)));
     for (int k = 0;; k++) {
         if (sqrt(dot(r, r, n)) <= tol) {
             for (int i = 0; i < n; i++)
@@ -1056,7 +1061,8 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, int kmax
  * rotations; modified Gram-Schmidt).  Right preconditioning keeps the
  * true residual, which is what tol bounds.  Returns the iterations, or -1
  * when kmax do not reach tol (or the preconditioner failed). */
-static int gmres(asp_solver *s, const double *bx, double *du, double tol, int kmax)
+static int gmres(asp_solver *s, const double *bx, double *du, double tol, double eta,
+                 int kmax)
 {
     int n = s->ndof, m = kmax < KRYLOV_MAX_CAP ? kmax : KRYLOV_MAX_CAP;
     double *V = s->gv, *w = V + (size_t)(m + 1) * n, *z = s->kv;
@@ -1066,7 +1072,7 @@ static int gmres(asp_solver *s, const double *bx, double *du, double tol, int km
     double beta = sqrt(dot(V, V, n));
     double rel = KRYLOV_ETA * beta;
     tol = tol > 0.0 ? fmin(tol, rel) : rel;
-    tol = fmax(tol, s->k_eta * beta);
+    tol = fmax(tol, eta * beta);
     int k = 0;
     if (beta > tol) {
         for (int i = 0; i < n; i++) V[i] /= beta;
@@ -1155,11 +1161,12 @@ static int krylov_pays(const asp_solver *s)
 }
 
 /* One Newton step at a fresh tangent: PCG with the last factor when there
- * is one (tolerance tol on the free-DOF residual), else, or when PCG needs
- * more than krylov_max iterations, factorize and solve directly.  When
+ * is one (tolerance tol on the free-DOF residual, loosened to the forcing
+ * term eta, see pcg), else, or when PCG needs more than krylov_max
+ * iterations, factorize and solve directly.  When
  * cn > 0, du holds K c (unconstrained K) on entry, as for newton_solve. */
 static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const double *c,
-                              double cn, double *du, double tol)
+                              double cn, double *du, double tol, double eta)
 {
     apply_constraints(s);
     newton_rhs(s, b, c, cn, du);
@@ -1177,8 +1184,8 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
         if (s->skew) STC_CALL(gmres_alloc(s));
         int bt = blas_serial_begin();
         double t0 = omp_get_wtime();
-        int k = s->skew ? gmres(s, b->x, du, tol, s->opt.krylov_max)
-                        : pcg(s, b->x, du, tol, s->opt.krylov_max);
+        int k = s->skew ? gmres(s, b->x, du, tol, eta, s->opt.krylov_max)
+                        : pcg(s, b->x, du, tol, eta, s->opt.krylov_max);
         s->t_pcg += omp_get_wtime() - t0;
         blas_serial_end(bt);
         s->k_last = k;
@@ -1187,7 +1194,7 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
     }
     STC_CALL(factorize(s, ns));
     STC_CALL(direct_solve(s, b, du));
-    return skew_correct(s, b, du);
+    return skew_correct(s, b, du, eta);
 }
 
 /* Iterations without halving the best residual before Newton gives up.
@@ -1246,9 +1253,8 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
             if (cn > 0.0) { /* before the identity rows */
                 asp_tangent_matvec(s, c, du, 1);
             }
-            s->k_eta = cn > 0.0 ? 0.0 : r_prev > 0.0 ? forcing(rn / r_prev) : KRYLOV_EW_MAX;
-            STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref));
-            s->k_eta = 0.0;
+            double eta = cn > 0.0 ? 0.0 : r_prev > 0.0 ? forcing(rn / r_prev) : KRYLOV_EW_MAX;
+            STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref, eta));
             age = 0;
         } else {
             STC_CALL(newton_solve(s, b, c, cn, du));

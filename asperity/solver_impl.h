@@ -92,7 +92,6 @@ struct asp_solver {
     double *skew_r;       /* [ndof] residual of the skew corrections */
     int n_kits;           /* PCG iterations (cumulative) */
     int k_last;           /* PCG iterations of the last step (-1: failed) */
-    double k_eta;         /* forcing term of the current Krylov solve (0: fixed tolerance) */
     double t_asm, t_fact, t_pcg; /* cumulative wall time: element loop, factorizations, PCG, s */
     int level;            /* mesh level in use (opt.mesh_level resolved) */
 
