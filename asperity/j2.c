@@ -109,6 +109,21 @@ static void tangent(const asp_j2 *m, double theta, double beta,
         }
 }
 
+/* Where the straight elastic path s_0 + β Δs, Δs = s_t - s_0, leaves the
+ * yield surface |s| = k: the larger root β of the quadratic, at least 0
+ * (s_0 on the surface and the increment loading it).  On return s holds
+ * s_0 + β Δs and ds holds Δs; returns β. */
+static double elastic_exit(double k, const double s0[NV], const double str[NV], double s[NV],
+                           double ds[NV])
+{
+    double beta = 0.0;
+    for (int a = 0; a < NV; a++) ds[a] = str[a] - s0[a];
+    double n0 = sqrt(tdot(s0, s0)), A = tdot(ds, ds), B = tdot(s0, ds), C = n0 * n0 - k * k;
+    if (A > 0.0) beta = fmax((-B + sqrt(fmax(B * B - A * C, 0.0))) / A, 0.0);
+    for (int a = 0; a < NV; a++) s[a] = s0[a] + beta * ds[a];
+    return beta;
+}
+
 /* Midpoint return for the trial deviator str (outside the yield surface)
  * from old->s; p the pressure.  Returns 0, leaving the radial return to
  * the caller, in the degenerate cases: no real root, or an end stress
@@ -123,15 +138,8 @@ static void tangent(const asp_j2 *m, double theta, double beta,
 static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *old,
                     asp_qp_state *upd, double sig[NV], double p, double *D, double *Dp)
 {
-    double k = sqrt(2.0 / 3.0) * m->Y, s0[NV], ds[NV], mm[NV], nh[NV], beta = 0.0;
-    memcpy(s0, old->s, sizeof s0);
-    double n0 = sqrt(tdot(s0, s0));
-    for (int a = 0; a < NV; a++) ds[a] = str[a] - s0[a];
-    { /* elastic part: where the straight path s0 + β Δs leaves the yield surface */
-        double A = tdot(ds, ds), B = tdot(s0, ds), C = n0 * n0 - k * k;
-        if (A > 0.0) beta = fmax((-B + sqrt(fmax(B * B - A * C, 0.0))) / A, 0.0);
-        for (int a = 0; a < NV; a++) s0[a] += beta * ds[a];
-    }
+    double k = sqrt(2.0 / 3.0) * m->Y, s0[NV], ds[NV], mm[NV], nh[NV];
+    double beta = elastic_exit(k, old->s, str, s0, ds); /* s0: where the path leaves */
     for (int a = 0; a < NV; a++) mm[a] = s0[a] + str[a];
     double mn = sqrt(tdot(mm, mm));
     if (mn <= 0.0) return 0;
@@ -193,12 +201,9 @@ static int midpoint(const asp_j2 *m, const double str[NV], const asp_qp_state *o
 static int exact(const asp_j2 *m, const double str[NV], const asp_qp_state *old,
                  asp_qp_state *upd, double sig[NV], double p, double *D, double *Dp)
 {
-    double k = sqrt(2.0 / 3.0) * m->Y, sa[NV], ds[NV], beta = 0.0;
-    memcpy(sa, old->s, sizeof sa);
-    for (int a = 0; a < NV; a++) ds[a] = str[a] - sa[a];
-    double A = tdot(ds, ds), B = tdot(sa, ds), C = tdot(sa, sa) - k * k;
-    if (A > 0.0) beta = fmin(fmax((-B + sqrt(fmax(B * B - A * C, 0.0))) / A, 0.0), 1.0);
-    for (int a = 0; a < NV; a++) sa[a] += beta * ds[a];
+    double k = sqrt(2.0 / 3.0) * m->Y, sa[NV], ds[NV];
+    double beta = elastic_exit(k, old->s, str, sa, ds), A = tdot(ds, ds);
+    /* (β > 1 only by rounding, and then dn < 0: the radial return) */
     double na = dev_norm(sa), dn = (1.0 - beta) * sqrt(A);
     if (!(na > 0.0) || !(dn > 1e-14 * k)) return 0;
     double x0[NV], e[NV];
