@@ -135,7 +135,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv);
 stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b);
 /* A flag's value: 1/true/yes or 0/false/no ("--json" alone passes "1"). */
 stc_status cli_parse_flag(const char *key, const char *value, int *flag);
-/* "midpoint" or "radial" → *rm (--return-map, --ramp-return-map). */
+/* "midpoint", "radial" or "exact" → *rm (--return-map, --ramp-return-map). */
 stc_status cli_parse_return_map(const char *key, const char *value, asp_return_map *rm);
 /* Replace *out (owned, freed first) by a copy of a non-empty `value`: option
  * values from an INI file live only while the file is parsed, so any string
