@@ -134,6 +134,8 @@ struct asp_solver {
     asp_fric_law fric;            /* τc and penalty k_t */
     double *carea;                /* [ncand] tributary area, mm² */
     double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
+    double *carea_prev, *carea_tgt; /* [ncand] areas of the converged state and the reading
+                                       after it (the increment's target; shear.c try_ux) */
     unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
     double foot[3];               /* contact extent +x, -x, +y during the ramp, mm */
     double pt0_a;                 /* contact radius at the start of the ramp, mm */
