@@ -15,12 +15,11 @@ Exit status 1 if any run failed or missed the 5 % band.
 """
 import argparse
 import json
-import os
 import subprocess
 import sys
 import time
 
-from wsp_case import WSP, write_csv, wsp_mu as wsp_fit
+from wsp_case import WSP, write_progress, wsp_mu as wsp_fit
 TOL = 0.05  # issue 4, acceptance 1
 
 
@@ -71,9 +70,8 @@ def main():
             print("level %d omega/omega_c %5g: mu_s %s fit %.4f error %s %% wall %.0f s %s" %
                   (lv, w, r["mu_s"] or "-", fit, r["error_pct"] or "-", wall,
                    "" if good else "FAILED: " + r["reason"]), flush=True)
-            write_csv(a.out + ".part", cols, rows)  # what is done so far
-    write_csv(a.out, cols, rows)
-    os.remove(a.out + ".part")
+            write_progress(a.out, cols, rows)  # what is done so far
+    write_progress(a.out, cols, rows, done=True)
     print("WSP check (|error| <= 5 %%): %s" % ("ok" if ok else "FAIL"))
     return 0 if ok else 1
 

@@ -17,12 +17,11 @@ Exit status 1 if any case failed.
 import argparse
 import json
 import math
-import os
 import subprocess
 import sys
 import time
 
-from wsp_case import write_csv
+from wsp_case import write_progress
 
 SHEAR = ["--shear", "--model", "3d"]
 COATED = ["--t-over-R", "0.025", "--E-ratio", "2", "--contact", "stick"]
@@ -119,9 +118,8 @@ def main():
                      "wall_s": "%.1f" % wall, "reason": why})
         print("%-26s %-4s %-10s %6.1f s  %s" % (name, "ok" if good else "FAIL", val or "-", wall,
                                                why[:100]), flush=True)
-        write_csv(a.out + ".part", cols, rows)
-    write_csv(a.out, cols, rows)
-    os.remove(a.out + ".part")
+        write_progress(a.out, cols, rows)
+    write_progress(a.out, cols, rows, done=True)
     print("stress scan: %s" % ("ok" if ok else "FAIL"))
     return 0 if ok else 1
 

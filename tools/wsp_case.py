@@ -3,7 +3,7 @@ check (issue 4), shared by validate-shear.py, bench-shear.py and
 reproduce-shear.py: E = 74 GPa, nu = 0.33, Y = 325 MPa, R' = 10.5 mm, slip
 normal step (thesis section 4.1.3), as `stiction asperity` arguments, and the
 WSP fit (the same formula as stc_wsp_mu in asperity/formulas.c); and the
-atomic CSV writer of the validate scripts."""
+atomic CSV writers of the validate scripts."""
 import csv
 import math
 import os
@@ -25,3 +25,15 @@ def write_csv(path, cols, rows):
         wr.writeheader()
         wr.writerows(rows)
     os.replace(path + ".tmp", path)
+
+
+def write_progress(path, cols, rows, done=False):
+    """The rows so far into path.part while a validate script runs; with
+    done, the whole table into path and the progress copy removed."""
+    if not done:
+        write_csv(path + ".part", cols, rows)
+        return
+    write_csv(path, cols, rows)
+    if os.path.exists(path + ".part"):
+        os.remove(path + ".part")
+
