@@ -504,9 +504,11 @@ typedef struct ramp {
  * (docs/tangential-step.md §29). */
 static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
 {
-    for (int k = 0; k < s->ncand; k++)
-        s->carea[k] = lam < 1.0 ? s->carea_prev[k] + lam * (s->carea_tgt[k] - s->carea_prev[k])
-                                : s->carea_tgt[k];
+    /* lam = 1 is only the first try after an accept, which left carea at
+     * the reading itself; a cut try overwrites it, so blend from the copies */
+    if (lam < 1.0)
+        for (int k = 0; k < s->ncand; k++)
+            s->carea[k] = s->carea_prev[k] + lam * (s->carea_tgt[k] - s->carea_prev[k]);
     memcpy(r->cs0, s->cs, (size_t)s->ncand);
     memcpy(r->cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *r->cst0);
     s->ux = ux;
@@ -644,7 +646,6 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
     STC_CALL_GOTO(setup_ramp(s, o, res, &det), st, done);
     /* ux = 0: release the tangential constraints of a stick step, clip the
      * nodes whose reaction exceeds τc A, re-equilibrate */
-    memcpy(s->carea_tgt, s->carea, (size_t)s->ncand * sizeof *s->carea);
     STC_CALL_GOTO(try_ux(s, &r, 0.0, 1.0), st, done);
     STC_CALL_GOTO(accept(s, o, det, cb, ctx, &r, &stop), st, done);
     int cuts = 0;

@@ -1001,6 +1001,15 @@ static double forcing(double ratio)
     return fmin(KRYLOV_EW_GAMMA * ratio * ratio, KRYLOV_EW_MAX);
 }
 
+/* The Krylov stopping tolerance of pcg and gmres for a start residual of
+ * norm r0: the caller's absolute tol (0: none yet, relative only) capped
+ * at KRYLOV_ETA r0, then loosened to the forcing term eta r0. */
+static double krylov_tol(double tol, double eta, double r0)
+{
+    double rel = KRYLOV_ETA * r0;
+    return fmax(tol > 0.0 ? fmin(tol, rel) : rel, eta * r0);
+}
+
 /* GMRES keeps at most this many basis vectors (krylov_max above it: the
  * step is refactorized after KRYLOV_MAX_CAP iterations) */
 #define KRYLOV_MAX_CAP 100
@@ -1024,8 +1033,8 @@ static int precondition(asp_solver *s, const double *r, double *z)
 }
 
 /* PCG for A du = b (A: constrained tangent in s->K, b in bx): du = b on the
- * fixed DOFs, the free block to |r| <= max(min(tol, KRYLOV_ETA |r0|),
- * eta |r0|) (eta: the forcing term, 0 for none).  Returns the iterations,
+ * fixed DOFs, the free block to |r| <= krylov_tol(tol, eta, |r0|) (eta:
+ * the forcing term, 0 for none).  Returns the iterations,
  * or -1 when it needs more than kmax (or the preconditioner failed). */
 static int pcg(asp_solver *s, const double *bx, double *du, double tol, double eta, int kmax)
 {
@@ -1033,9 +1042,7 @@ static int pcg(asp_solver *s, const double *bx, double *du, double tol, double e
     double *r = s->kv, *z = r + n, *p = z + n, *q = p + n;
     for (int i = 0; i < n; i++) r[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
     double rz = 0.0;
-    double rel = KRYLOV_ETA * sqrt(dot(r, r, n));
-    tol = tol > 0.0 ? fmin(tol, rel) : rel; /* no reaction yet: relative only */
-    tol = fmax(tol, eta * sqrt(dot(r, r, n)));
+    tol = krylov_tol(tol, eta, sqrt(dot(r, r, n)));
     for (int k = 0;; k++) {
         if (sqrt(dot(r, r, n)) <= tol) {
             for (int i = 0; i < n; i++)
@@ -1070,9 +1077,7 @@ static int gmres(asp_solver *s, const double *bx, double *du, double tol, double
     double g[KRYLOV_MAX_CAP + 1], y[KRYLOV_MAX_CAP];
     for (int i = 0; i < n; i++) V[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
     double beta = sqrt(dot(V, V, n));
-    double rel = KRYLOV_ETA * beta;
-    tol = tol > 0.0 ? fmin(tol, rel) : rel;
-    tol = fmax(tol, eta * beta);
+    tol = krylov_tol(tol, eta, beta);
     int k = 0;
     if (beta > tol) {
         for (int i = 0; i < n; i++) V[i] /= beta;
