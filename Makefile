@@ -81,7 +81,8 @@ $(CLI): $(CLI_OBJ) $(STATIC)
 
 $(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) $(wildcard tests/*.h) | $(DEPSTAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) -Itests $(CFLAGS) -o $@ $< $(STATIC) -lcmocka $(LDFLAGS) $(LDLIBS)
+	$(CC) $(CPPFLAGS) -Itests -DSTC_DATA_DIR='"$(CURDIR)/data"' $(CFLAGS) -o $@ $< $(STATIC) \
+	    -lcmocka $(LDFLAGS) $(LDLIBS)
 
 check: all $(TEST_BIN)
 	@tools/run-tests.sh $(TEST_BIN)
@@ -107,6 +108,11 @@ install: all
 	ln -sf libstiction.so.0 $(DESTDIR)$(PREFIX)/lib/libstiction.so
 	install -m 644 include/stiction/*.h $(DESTDIR)$(PREFIX)/include/stiction/
 	install -m 755 $(CLI) $(DESTDIR)$(PREFIX)/bin/
+	for d in data/*/; do \
+	    install -d $(DESTDIR)$(PREFIX)/share/stiction/$$d && \
+	    install -m 644 $$d*.csv $(DESTDIR)$(PREFIX)/share/stiction/$$d || exit 1; \
+	done
+	install -m 644 data/README.md $(DESTDIR)$(PREFIX)/share/stiction/data/
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \
 	    -e 's|@LIBS@|$(LDLIBS)|g' tools/stiction.pc.in \
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/stiction.pc

@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "stiction/formulas.h"
+#include "data_util.h"
 
 static void assert_rel(double got, double want, double tol, const char *what)
 {
@@ -43,28 +44,33 @@ static stc_coated coated(double tR, double er)
     return c;
 }
 
-/* Thesis Table 4.2 (SPEC §4), values printed to two decimals.  At t/R = 0.05
- * the thesis prints δc2/ωc_su = 35.88 under Eco/Esu = 2 and 39.61 under 4;
- * eq. 3.12 gives 39.61 for 2 and 35.88 for 4.  Eq. 3.12 falls strictly with
- * Eco/Esu at fixed E/Y (factor (Eco/Esu − 1)^−0.09), as the table's own rows
- * at t/R = 0.005 and 0.025 do, so the two printed entries are transposed in
- * the thesis: we check them crosswise and say so. */
+/* Thesis Table 4.2 (SPEC §4), values printed to two decimals, as printed in
+ * data/thesis/table4_2.csv.  At t/R = 0.05 the thesis prints δc2/ωc_su =
+ * 35.88 under Eco/Esu = 2 and 39.61 under 4; eq. 3.12 gives 39.61 for 2 and
+ * 35.88 for 4.  Eq. 3.12 falls strictly with Eco/Esu at fixed E/Y (factor
+ * (Eco/Esu − 1)^−0.09), as the table's own rows at t/R = 0.005 and 0.025
+ * do, so the two printed entries are transposed in the thesis: we check
+ * them crosswise and say so. */
 static void test_table_4_2(void **state)
 {
     (void)state;
-    static const struct { double tR, er, d1, d2; } tab[] = {
-        {0.005, 2, 1.65, 2.68},  {0.005, 4, 2.40, 2.43},
-        {0.025, 2, 1.03, 17.60}, {0.025, 4, 1.13, 15.95},
-        {0.05, 2, 0.97, 39.61},  {0.05, 4, 1.01, 35.88}, /* δc2 printed transposed */
-    };
-    for (size_t i = 0; i < sizeof tab / sizeof *tab; i++) {
-        stc_coated c = coated(tab[i].tR, tab[i].er);
+    enum { ROWS = 6 };
+    static const char *const cols[] = {"t_over_R", "E_ratio", "delta_c1_over_omega_c_su",
+                                       "delta_c2_over_omega_c_su"};
+    double tR[ROWS], er[ROWS], d1[ROWS], d2[ROWS], *out[] = {tR, er, d1, d2};
+    assert_int_equal(data_read_columns("thesis/table4_2.csv", 4, cols, out, ROWS), ROWS);
+    for (int i = 0; i < ROWS; i++) {
+        int crosswise = tR[i] == 0.05, k = i;
+        if (crosswise) /* the printed entry of the other Eco/Esu */
+            for (int j = 0; j < ROWS; j++)
+                if (tR[j] == tR[i] && er[j] != er[i]) k = j;
+        assert_true(!crosswise || k != i);
+        stc_coated c = coated(tR[i], er[i]);
         printf("  t/R = %-5g Eco/Esu = %g: dc1/wc_su = %.4f (thesis %.2f), dc2/wc_su = %.4f "
-               "(thesis %.2f%s)\n", tab[i].tR, tab[i].er, c.delta_c1_over_omega_c_su, tab[i].d1,
-               c.delta_c2_over_omega_c_su, tab[i].d2,
-               tab[i].tR == 0.05 ? ", printed in the other column" : "");
-        assert_true(round_to(c.delta_c1_over_omega_c_su, 2) == tab[i].d1);
-        assert_true(round_to(c.delta_c2_over_omega_c_su, 2) == tab[i].d2);
+               "(thesis %.2f%s)\n", tR[i], er[i], c.delta_c1_over_omega_c_su, d1[i],
+               c.delta_c2_over_omega_c_su, d2[k], crosswise ? ", printed in the other column" : "");
+        assert_true(round_to(c.delta_c1_over_omega_c_su, 2) == d1[i]);
+        assert_true(round_to(c.delta_c2_over_omega_c_su, 2) == d2[k]);
         /* E/Y equal in both layers: ωc_co = ωc_su (SPEC §4) */
         assert_rel(c.delta_c2_over_omega_c_co, c.delta_c2_over_omega_c_su, 1e-14, "wc_co = wc_su");
     }

@@ -17,6 +17,7 @@
 
 #include "stiction/asperity.h"
 #include "stiction/formulas.h"
+#include "data_util.h"
 
 /* The thesis's Hertz check: R = 10.09 mm, E = 74 GPa, ν = 0.32, elastic
  * (Y far above any stress reached). */
@@ -313,17 +314,20 @@ static void test_smooth_load(void **state)
  * on past the last point (asp_solver_load_tail).  Reference: P_smooth of
  * `stiction asperity --delta 1:60:12 --contact slip --mesh 3` (42292 DOFs;
  * the level-3 mesh without the proportional surface grading agrees within
- * 0.05 % at every point).  Measured at level 0: +0.26 +0.29 +0.12 -0.11
- * +0.03 +0.06 +0.11 +0.13 +0.12 +0.15 +0.17 +0.13 %; without the tail
- * the last two points read one side of their window; without the elastic
+ * 0.05 % at every point), stored in data/fe/slip-curve-level3.csv.
+ * Measured at level 0: +0.26 +0.29 +0.12 -0.11 +0.03 +0.06 +0.11 +0.13
+ * +0.12 +0.15 +0.17 +0.13 %; without the tail the last two points read one
+ * side of their window; without the elastic
  * sampling the 1 wc window is fitted across the yield bend from a few
  * increments (+0.8 %, docs/tangential-step.md §23, §25). */
 static void test_smooth_tail(void **state)
 {
     (void)state;
     enum { N = 12 };
-    const double P3[N] = {0.36463, 5.0736, 11.452, 18.681, 26.481, 34.71,
-                          43.281, 52.134, 61.227, 70.529, 80.022, 89.693}; /* N */
+    static const char *const cols[] = {"delta_over_omega_c", "P_smooth_N"};
+    double d3[N], P3[N], *ref[] = {d3, P3}; /* ωc, N */
+    assert_int_equal(data_read_columns("fe/slip-curve-level3.csv", 2, cols, ref, N), N);
+    for (int i = 0; i < N; i++) assert_true(fabs(d3[i] - (1.0 + i * 59.0 / 11.0)) < 1e-6);
     stc_critical c;
     asp_point pt;
     double one[2], P, worst = 0.0;

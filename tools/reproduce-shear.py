@@ -34,15 +34,19 @@ import shutil
 import subprocess
 import sys
 
+import refdata
 from wsp_case import WSP, wsp_mu
 WSP_OMEGAS = (0.5, 1, 3, 6, 12, 24, 48, 72)
-FIG48_OMEGAS = (0.5, 3, 12, 72)
 # thesis Fig. 4.8: plateaus of the Wu et al. (2012) curves, read off the plot
-FIG48_THESIS = {0.5: 0.3, 3: 2.0, 12: 10.0, 72: 90.0}
-GRID_TR = (0.005, 0.025, 0.05)
-GRID_ER = (1, 2, 4)
+FIG48_THESIS = {r["omega_over_omega_c"]: r["Q_over_P_c"]
+                for r in refdata.rows("thesis/fig4_8_plateaus.csv")}
+FIG48_OMEGAS = tuple(sorted(FIG48_THESIS))
+# the coated grid: thesis Table 4.1 (grid_args)
+_T41 = refdata.thesis_table4_1()
+GRID_TR, GRID_ER = _T41["t_over_R"], _T41["E_ratio"]
+(GRID_R,), (GRID_E_SU,), (GRID_NU,), (GRID_E_OVER_Y,) = (_T41[k] for k in ("R", "E_su", "nu",
+                                                                            "E_over_Y"))
 GRID_DELTA = (1, 10, 30, 60)
-GRID_R, GRID_E_SU, GRID_NU = 10.0, 200000.0, 0.32  # thesis Table 4.1 (grid_args)
 LOADS = (2, 10, 30, 60, 100)
 MESH_NOTE = [""]  # appended to every figure title: the 3D mesh level used
 
@@ -53,7 +57,7 @@ def total_wall(r):
 
 
 def grid_args(tr, er):
-    return ["--R", "%g" % GRID_R, "--E-su", "%g" % GRID_E_SU, "--E-over-Y", "1000",
+    return ["--R", "%g" % GRID_R, "--E-su", "%g" % GRID_E_SU, "--E-over-Y", "%g" % GRID_E_OVER_Y,
             "--nu", "%g" % GRID_NU,
             "--t-over-R", "%g" % tr, "--E-ratio", "%g" % er, "--contact", "stick"]
 

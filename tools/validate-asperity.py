@@ -16,6 +16,8 @@ import subprocess
 import sys
 import time
 
+import refdata
+
 HERTZ = ["--R", "10.09", "--E-su", "74000", "--nu", "0.32", "--Y-su", "70000", "--Y-co", "70000"]
 
 
@@ -372,6 +374,11 @@ def target_curve(cli):
                                          j[-1]["wall_s"], w, m,
                                          "  (target met)" if ers < 0.005 and w < 1.0 else ""))
     print("  level 3: %d DOFs, %.1f s" % (fin[0]["dofs"], wf))
+    # the stored reference (data/fe/, used by make check) against this run
+    stored = refdata.rows("fe/slip-curve-level3.csv")
+    drift = max(abs(r["P_smooth_N"] / smooth(p) - 1) for r, p in zip(stored, fin))
+    print("  data/fe/slip-curve-level3.csv against this level-3 run: max |P_smooth| difference "
+          "%.3f %%%s" % (100 * drift, "" if drift < 1e-3 else "  (stale: remake it, data/README.md)"))
     # robustness: the error must not hinge on one lucky resolution
     print("  robustness, --elements-per-contact n (target: every n <= 0.5 % in < 1 s):")
     for n in range(6, 13):

@@ -14,27 +14,29 @@ gnuplot -e "data='$OUT/fig4_7.csv'; out='$OUT/fig4_7.png.tmp'" "$HERE/../fig4_7.
 mv "$OUT/fig4_7.png.tmp" "$OUT/fig4_7.png"
 echo "wrote $OUT/fig4_7.png ($OUT/fig4_7.csv: $(($(wc -l < "$OUT/fig4_7.csv") - 1)) rows)"
 
-# Table 4.2: our values beside the thesis's printed ones.  The thesis prints
-# the two δc2 values at t/R = 0.05 in each other's column (eq. 3.12 falls
-# with Eco/Esu; see tests/test_formulas.c); we print them where the thesis
-# does and say so in the note column.
+# Table 4.2: our values beside the thesis's printed ones, read from
+# data/thesis/table4_2.csv.  The thesis prints the two δc2 values at
+# t/R = 0.05 in each other's column (eq. 3.12 falls with Eco/Esu; see
+# tests/test_formulas.c); we print them where the thesis does and say so in
+# the note column.
 "$CLI" formulas --csv --sweep-t-over-R 0.005,0.025,0.05 --sweep-E-ratio 2,4 \
     --output "$OUT/table4_2.raw.csv"
 awk -F, '
-BEGIN {
-    split("0.005 2 1.65 2.68|0.025 2 1.03 17.60|0.05 2 0.97 35.88|0.005 4 2.40 2.43|0.025 4 1.13 15.95|0.05 4 1.01 39.61", rows, "|")
-    for (i in rows) { split(rows[i], f, " "); d1[f[1] "," f[2]] = f[3]; d2[f[1] "," f[2]] = f[4] }
-    print "t_over_R,E_ratio,delta_c1_over_omega_c_su,thesis_delta_c1,delta_c2_over_omega_c_su,thesis_delta_c2,agree_2dp,note"
+# first file: the values printed in the thesis
+FNR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; if (NR == 1) print "t_over_R,E_ratio,delta_c1_over_omega_c_su,thesis_delta_c1,delta_c2_over_omega_c_su,thesis_delta_c2,agree_2dp,note"; next }
+NR == FNR {
+    k = ($col["t_over_R"] + 0) "," ($col["E_ratio"] + 0)
+    d1[k] = $col["delta_c1_over_omega_c_su"]; d2[k] = $col["delta_c2_over_omega_c_su"]
+    next
 }
-NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
 {
-    k = $col["t_over_R"] "," $col["E_ratio"]
+    k = ($col["t_over_R"] + 0) "," ($col["E_ratio"] + 0)
     a = sprintf("%.2f", $col["delta_c1_over_omega_c_su"]); b = sprintf("%.2f", $col["delta_c2_over_omega_c_su"])
-    swap = $col["t_over_R"] "," (6 - $col["E_ratio"])   # the other Eco/Esu column
+    swap = ($col["t_over_R"] + 0) "," (6 - $col["E_ratio"])   # the other Eco/Esu column
     ok = (a == d1[k] && b == d2[k]) ? "yes" : (a == d1[k] && b == d2[swap]) ? "yes (columns swapped)" : "no"
     note = (ok == "yes (columns swapped)") ? "thesis prints this delta_c2 under the other Eco/Esu (eq. 3.12 falls with Eco/Esu)" : ""
     printf "%s,%s,%.4f,%s,%.4f,%s,%s,%s\n", $col["t_over_R"], $col["E_ratio"], $col["delta_c1_over_omega_c_su"], d1[k], $col["delta_c2_over_omega_c_su"], d2[k], ok, note
-}' "$OUT/table4_2.raw.csv" > "$OUT/table4_2.csv.tmp"
+}' "$HERE/../../data/thesis/table4_2.csv" "$OUT/table4_2.raw.csv" > "$OUT/table4_2.csv.tmp"
 rm -f "$OUT/table4_2.raw.csv"
 mv "$OUT/table4_2.csv.tmp" "$OUT/table4_2.csv"
 echo "wrote $OUT/table4_2.csv"

@@ -1,6 +1,7 @@
 #!/bin/sh
 # Install into a temporary prefix and build a small program against the
-# installed library through pkg-config (static and shared).
+# installed library through pkg-config (static and shared); the reference
+# data is installed under share/stiction/.
 set -eu
 CLI=$1; OUT=$2
 tmp=$(mktemp -d)
@@ -25,4 +26,8 @@ cc -o "$tmp/probe-static" "$tmp/probe.c" $(pkg-config --cflags stiction) \
     "$tmp/prefix/lib/libstiction.a" $(pkg-config --libs --static stiction | sed 's/-lstiction//')
 "$tmp/probe-static"
 "$tmp/prefix/bin/stiction" --version
+# the reference data (data/README.md) travels with the library
+for f in data/README.md data/*/*.csv; do
+    cmp -s "$f" "$tmp/prefix/share/stiction/$f" || { echo "install: $f not installed" >&2; exit 1; }
+done
 echo "install: ok" | tee "$OUT/install.txt"
