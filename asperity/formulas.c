@@ -168,6 +168,12 @@ stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out)
     const double r = R * q * YE;
     out->P_c = pow(M_PI, 3) * m->Y / 6.0 * pow(out->Cv, 3) * r * r;
     out->A_c = M_PI * out->omega_c * R;
+    /* every model divides by these scales: they must be numbers */
+    STC_CHECK(isfinite(out->P_c) && out->P_c > 0.0 && isfinite(out->A_c) && out->A_c > 0.0 &&
+              out->omega_c > 0.0, STC_ERANGE,
+              "R = %g mm, E = %g MPa, Y = %g MPa: the critical scales omega_c = %g mm, "
+              "P_c = %g N, A_c = %g mm2 are not representable (valid: inputs that give finite, "
+              "positive scales)", R, m->E, m->Y, out->omega_c, out->P_c, out->A_c);
     out->delta_c_stick_over_omega_c = stc_brizmer_delta_ratio(nu);
     out->L_c_stick_over_P_c = stc_brizmer_load_ratio(nu);
     out->delta_c_stick = out->delta_c_stick_over_omega_c * out->omega_c;

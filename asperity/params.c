@@ -10,6 +10,7 @@
 
 #include <ini.h>
 
+#include "stiction/formulas.h"
 #include "stiction/params.h"
 #include "stc_check.h"
 
@@ -162,10 +163,25 @@ stc_status stc_params_validate(const stc_params *p)
     }
     stc_material su, co;
     stc_params_materials(p, &su, &co);
+    STC_CHECK(isfinite(co.E) && co.E > 0.0, STC_EINVAL,
+              "E-ratio = %g with E-su = %g MPa: the coating modulus %g MPa is not representable "
+              "(valid: a finite, positive product)", p->E_ratio, p->E_su, co.E);
     STC_CHECK(su.Y < su.E, STC_EINVAL,
               "Y-su = %g MPa: must be below E-su = %g MPa", su.Y, su.E);
     STC_CHECK(co.Y < co.E, STC_EINVAL,
               "Y-co = %g MPa: must be below the coating modulus %g MPa", co.Y, co.E);
+    /* Each range alone is open-ended, but together the values must give
+     * critical scales (ωc, Pc, Ac) that are numbers: every model divides by
+     * them (R = 1e308 mm passes its own check and overflows Pc). */
+    const stc_material *layer[2] = {&su, &co};
+    for (int i = 0; i < 2; i++) {
+        stc_critical c;
+        if (stc_critical_eval(layer[i], p->R, &c) != STC_OK) {
+            char msg[512];
+            snprintf(msg, sizeof msg, "%s", stc_errmsg());
+            return STC_FAIL(STC_EINVAL, "%s: %s", i ? "coating" : "substrate", msg);
+        }
+    }
     return STC_OK;
 }
 

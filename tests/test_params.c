@@ -87,6 +87,22 @@ static void test_validate_cross(void **state)
     assert_int_equal(stc_params_set(&p, "Y-su", "300000"), STC_OK);
     assert_int_equal(stc_params_validate(&p), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "Y-su = 300000"));
+    /* each value in its own range, but together not representable (found
+     * by test_fuzz): Pc overflows, ωc underflows, Eco overflows */
+    static const char *const bad[][2] = {{"R", "1e308"}, {"E-over-Y", "1e308"},
+                                         {"R", "1e-200"}, {"E-ratio", "1e305"}};
+    static const char *const says[] = {"R = 1e+308 mm", "Y = 2e-303 MPa", "P_c = 0 N",
+                                       "E-ratio = 1e+305"};
+    for (int i = 0; i < 4; i++) {
+        stc_params_default(&p);
+        assert_int_equal(stc_params_set(&p, "t-over-R", "0.025"), STC_OK);
+        assert_int_equal(stc_params_set(&p, bad[i][0], bad[i][1]), STC_OK);
+        if (i == 3) assert_int_equal(stc_params_set(&p, "E-su", "1e10"), STC_OK);
+        assert_int_equal(stc_params_validate(&p), STC_EINVAL);
+        printf("  %s = %s: %s\n", bad[i][0], bad[i][1], stc_errmsg());
+        assert_non_null(strstr(stc_errmsg(), says[i]));
+        assert_non_null(strstr(stc_errmsg(), "not representable"));
+    }
 }
 
 static stc_status collect(void *user, const char *section, const char *key,
