@@ -195,8 +195,12 @@ stc_status srf_map_import_text(const char *path, double dx, double dy, double zs
     size_t cap = 0;
     long lineno = 0, nx = 0, ny = 0, first = 0;
     stc_status st = STC_OK;
-    while (getline(&line, &cap, f) != -1) {
+    ssize_t len;
+    while ((len = getline(&line, &cap, f)) != -1) {
         lineno++;
+        /* a NUL would end the line for the parser and hide what follows */
+        STC_CHECK_GOTO(memchr(line, '\0', (size_t)len) == NULL, st, done, STC_EFORMAT,
+                       "%s: line %ld holds a NUL byte: not a text grid", path, lineno);
         long c = parse_line(line, path, lineno, &d, &st);
         if (c < 0) goto done;
         if (c == 0) continue;

@@ -83,6 +83,19 @@ stc_status srf_stats_compute(const srf_map *m, const srf_summits *s, srf_stats *
     out->m40 = mo.m40;
     out->m04 = mo.m04;
     out->moments_fd = !m->periodic;
+    /* heights so large, or pixels so small or large, that the moments
+     * overflow or underflow (a file in the wrong unit): statistics of
+     * infinities or of zero slopes are not results */
+    double zmax = 0;
+    for (size_t k = 0; k < (size_t)m->nx * m->ny; k++) zmax = fmax(zmax, fabs(m->z[k]));
+    int finite = isfinite(out->sigma) && isfinite(mo.m0) && isfinite(mo.m2) &&
+                 isfinite(mo.m4) && (out->sigma == 0 || isfinite(out->kurtosis)) &&
+                 isfinite(m->lx * m->ly) && (out->sigma == 0 || (mo.m2 > 0 && mo.m4 > 0));
+    STC_CHECK(finite, STC_ERANGE,
+              "heights up to %g mm on pixels of %g x %g mm: their moments are not "
+              "representable (sigma = %g mm, m2 = %g, m4 = %g mm^-2; valid: heights and pixel "
+              "sizes in mm that give finite moments, and m2, m4 > 0)", zmax, m->lx / m->nx,
+              m->ly / m->ny, out->sigma, mo.m2, mo.m4);
     summit_stats(s, out);
     theory(out);
     return STC_OK;

@@ -76,12 +76,16 @@ static void print_json(const stats_opts *o, const srf_map *m, const srf_stats *s
     cj_done(&j);
 }
 
+/* One table row; a value that does not exist (σs of a single summit, the
+ * radius when no summit was found) reads "n/a", never "nan". */
 static void row(const char *name, double measured, double theory, const char *unit)
 {
-    if (isfinite(theory))
-        printf("  %-28s %14.6g %14.6g %+8.2f %%  %s\n", name, measured, theory,
-               100 * (measured / theory - 1), unit);
-    else printf("  %-28s %14.6g %14s %10s  %s\n", name, measured, "-", "", unit);
+    char mv[24] = "n/a", tv[24] = "-", dv[24] = "";
+    if (isfinite(measured)) snprintf(mv, sizeof mv, "%.6g", measured);
+    if (isfinite(theory)) snprintf(tv, sizeof tv, "%.6g", theory);
+    if (isfinite(measured) && isfinite(theory) && theory != 0)
+        snprintf(dv, sizeof dv, "%+.2f %%", 100 * (measured / theory - 1));
+    printf("  %-28s %14s %14s %10s  %s\n", name, mv, tv, dv, unit);
 }
 
 static void print_table(const stats_opts *o, const srf_map *m, const srf_stats *s)
