@@ -1,5 +1,6 @@
 # stiction — static friction of hard-coated rough surfaces.
-# Targets: all (default), deps, demo, check, validate, bench, reproduce, install, clean.
+# Targets: all (default), deps, demo, check, fuzz, validate, bench, reproduce, install,
+# clean.
 # O=DIR puts every build product under DIR (default: the source tree).
 # SANITIZE=1 builds with AddressSanitizer + UndefinedBehaviorSanitizer (default O=build-san).
 
@@ -41,7 +42,7 @@ SHARED    := $(O)/lib/libstiction.so
 CLI       := $(O)/bin/stiction
 DEPSTAMP  := $(O)/obj/.deps-ok
 
-.PHONY: all deps demo check validate bench reproduce install clean
+.PHONY: all deps demo check fuzz validate bench reproduce install clean
 .DELETE_ON_ERROR:
 
 all: $(STATIC) $(SHARED) $(CLI)
@@ -86,6 +87,11 @@ $(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) $(wildcard tests/*.h) | $(DEPST
 
 check: all $(TEST_BIN)
 	@tools/run-tests.sh $(TEST_BIN)
+
+# The randomised input tests of make check, FUZZ_CASES times as many cases.
+FUZZ_CASES ?= 100
+fuzz: all $(O)/tests-bin/test_fuzz
+	@STICTION_FUZZ_CASES=$(FUZZ_CASES) tools/run-tests.sh $(O)/tests-bin/test_fuzz
 
 demo: all
 	@tools/demo.sh $(CLI)
