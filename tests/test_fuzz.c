@@ -1,7 +1,8 @@
 /* Randomised inputs for every reader of user files: INI configurations
  * (stc_ini_load + stc_params_set), text height grids (srf_map_import_text),
- * HDF5 surface files (srf_map_read, srf_map_import_h5), and the CLI on
- * random configurations and argument lists.
+ * HDF5 surface files (srf_map_read, srf_map_import_h5), and the CLI
+ * (`formulas`, `surface stats`, `surface synth`) on random configurations,
+ * argument lists and grids.
  *
  * Each case is generated from a fixed seed, so a failure repeats; the case
  * number is in the message.  Where the generator knows the answer (a grid
@@ -497,6 +498,28 @@ static int run_cli(const char *args, char *out, char *err, size_t n)
     return rc;
 }
 
+/* Remove every out* entry of the scratch directory (keep = 0), or return
+ * the name of the first one (keep = 1; NULL if none). */
+static const char *outputs(int keep)
+{
+    static char name[256];
+    const char *found = NULL;
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    struct dirent *e;
+    while ((e = readdir(d)))
+        if (strncmp(e->d_name, "out", 3) == 0) {
+            if (!keep) {
+                unlink(path_in(e->d_name));
+            } else if (!found) {
+                snprintf(name, sizeof name, "%s", e->d_name);
+                found = name;
+            }
+        }
+    closedir(d);
+    return found;
+}
+
 static void test_cli(void **state)
 {
     (void)state;
@@ -517,13 +540,30 @@ static void test_cli(void **state)
                                         "--json", "--in", "--bogus"};
     static const char *const svals[] = {"8", "4", "3", "0.001", "0.001,0.002", "0", "-1", "1e-300",
                                         "1e300", "nan", "grid.txt", "height", "x", "1,2,3"};
-    long n = 150 * scale, ok = 0, ok_surface = 0;
+    static const char *const gopts[] = {"--size", "--length", "--rms", "--spectrum",
+                                        "--corr-length", "--hurst", "--cutoff-wavelength",
+                                        "--skewness", "--kurtosis", "--amplitude", "--seed",
+                                        "--no-png", "--json", "--png", "--threads"};
+    static const char *const gvals[] = {"16", "33", "8,16", "0", "-1", "2", "1e9", "0.5",
+                                        "0.01", "1e-300", "nan", "self-affine", "exponential",
+                                        "rayleigh", "exact", "3", "4.5", "-0.5", "x", "out.png",
+                                        "/nonexistent/out.png", "1,"};
+    long n = 150 * scale, ok = 0, ok_surface = 0, ok_synth = 0;
     static char out[1 << 16], err[1 << 16];
     for (long c = 0; c < n; c++) {
         seed(200000 + (uint64_t)c);
         char cfg[512] = "", args[1024] = "formulas";
         size_t cl = 0, al = strlen(args);
-        int surface = pick(3) == 0;
+        int family = pick(3), surface = family == 1;
+        if (family == 2) { /* `surface synth` of a small map */
+            al = (size_t)snprintf(args, sizeof args, "surface synth --out out.h5 --size %s",
+                                  pick(3) ? "24" : ONE_OF(gvals));
+            for (int k = pick(5); k > 0; k--) {
+                al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(gopts));
+                if (pick(5))
+                    al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(gvals));
+            }
+        }
         if (surface) { /* `surface stats` on a small random grid */
             char grid[512];
             size_t gl = 0;
@@ -547,11 +587,11 @@ static void test_cli(void **state)
             cl += (size_t)snprintf(cfg + cl, sizeof cfg - cl, "%s=%s\n", ONE_OF(keys),
                                    ONE_OF(vals));
         write_bytes(path_in("cfg.ini"), cfg, cl);
-        for (int k = surface ? 0 : pick(6); k > 0; k--) {
+        for (int k = family ? 0 : pick(6); k > 0; k--) {
             al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(opts));
             if (pick(4)) al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(vals));
         }
-        unlink(path_in("out.csv"));
+        outputs(0);
         int rc = run_cli(args, out, err, sizeof out);
         /* a sanitizer build exits 1 on a memory error: read what it says */
         if ((rc != 0 && rc != 1 && rc != 2) || strstr(err, "Sanitizer") ||
@@ -561,9 +601,18 @@ static void test_cli(void **state)
             if (!*ws(err)) fail_msg("case %ld: 'stiction %s' failed silently", c, args);
             if (*ws(out))
                 fail_msg("case %ld: 'stiction %s' failed but printed '%.200s'", c, args, out);
-            if (access(path_in("out.csv"), F_OK) == 0)
-                fail_msg("case %ld: 'stiction %s' failed but left out.csv", c, args);
+            const char *left = outputs(1);
+            if (left) fail_msg("case %ld: 'stiction %s' failed but left %s", c, args, left);
             continue;
+        }
+        if (family == 2) { /* what synth wrote, the library reads back */
+            srf_map *m = NULL;
+            if (srf_map_read(path_in("out.h5"), &m) != STC_OK)
+                fail_msg("case %ld: 'stiction %s' wrote an unreadable out.h5: %s", c, args,
+                         stc_errmsg());
+            assert_map_sane(m, c);
+            srf_map_destroy(&m);
+            ok_synth++;
         }
         if (strstr(out, "nan") || strstr(out, "inf") || strstr(out, "NaN"))
             fail_msg("case %ld: 'stiction %s' printed a non-number: %.300s", c, args, out);
@@ -573,10 +622,10 @@ static void test_cli(void **state)
         ok++;
         ok_surface += surface;
     }
-    printf("# CLI: %ld runs of 'stiction formulas' and 'stiction surface stats' with random "
-           "options, configs and grids: %ld succeeded (%ld surface stats), the rest refused with a "
-           "message\n", n, ok, ok_surface);
-    assert_true(ok_surface > 0 && ok > ok_surface && ok < n);
+    printf("# CLI: %ld runs of 'stiction formulas', 'surface stats' and 'surface synth' with "
+           "random options, configs and grids: %ld succeeded (%ld stats, %ld synth), the rest "
+           "refused with a message\n", n, ok, ok_surface, ok_synth);
+    assert_true(ok_surface > 0 && ok_synth > 0 && ok > ok_surface + ok_synth && ok < n);
 }
 
 /* ------------------------------------------------------------ driver */
