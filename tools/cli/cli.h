@@ -53,6 +53,11 @@ int cli_out_close(cli_out *o);
 /* Print the common options' help. */
 void cli_common_help(FILE *f);
 
+/* v printed with `fmt` (one double conversion) into buf[n], or `none` when v
+ * is not finite: text and CSV output never show nan or inf ("n/a" in a
+ * table, "" in a CSV field).  Returns buf. */
+const char *cli_num(char *buf, size_t n, const char *fmt, double v, const char *none);
+
 /* Parse a list of numbers: "a,b,c" or a range "start:stop:count" (inclusive,
  * linear).  Returns a new array in *out (caller frees) and its length. */
 stc_status cli_parse_list(const char *key, const char *value, double **out, int *n);

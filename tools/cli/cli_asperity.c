@@ -272,9 +272,11 @@ static void print_table(const arow *rows, int n, const stc_critical *c, const as
            "wall s");
     for (int i = 0; i < n; i++) {
         const asp_point *p = &rows[i].pt;
-        printf("%10.4g %11.5g %11.5g %9.5g %9.5g %10.5g %9.5g %7.3f %7.3f %7d %6d %8.3f%s\n",
-               p->delta / c->omega_c, p->delta, p->P, p->P / c->P_c, rows[i].P_smooth / c->P_c,
-               p->a, p->A / c->A_c,
+        char sm[32]; /* P_smooth: n/a where the increments do not surround the point */
+        printf("%10.4g %11.5g %11.5g %9.5g %9s %10.5g %9.5g %7.3f %7.3f %7d %6d %8.3f%s\n",
+               p->delta / c->omega_c, p->delta, p->P, p->P / c->P_c,
+               cli_num(sm, sizeof sm, "%.5g", rows[i].P_smooth / c->P_c, "n/a"), p->a,
+               p->A / c->A_c,
                p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->increments, p->wall_s,
                rows[i].st == STC_OK ? "" : "  NOT CONVERGED");
     }
@@ -299,8 +301,10 @@ static int write_csv(const char *dir, const arow *rows, int n, const stc_critica
                "vm_over_Y_su,vm_over_Y_co,newton_iterations,wall_s\n");
     for (int i = 0; i < n; i++) {
         const asp_point *p = &rows[i].pt;
-        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%d,%.4f\n", p->delta,
-                p->delta / c->omega_c, p->P, p->P / c->P_c, rows[i].P_smooth, p->a, p->A,
+        char sm[32];
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%.6g,%.6g,%d,%.4f\n", p->delta,
+                p->delta / c->omega_c, p->P, p->P / c->P_c,
+                cli_num(sm, sizeof sm, "%.9g", rows[i].P_smooth, ""), p->a, p->A,
                 p->A / c->A_c,
                 p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->wall_s);
     }

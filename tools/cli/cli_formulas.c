@@ -274,13 +274,8 @@ static void json_report(FILE *f, const model *m, const point *pts, int n)
 
 /* ---- readable report -------------------------------------------------- */
 
-/* A number, or "n/a" (never "nan"). */
-static const char *num(char *buf, double v)
-{
-    if (isfinite(v)) snprintf(buf, 32, "%.6g", v);
-    else snprintf(buf, 32, "n/a");
-    return buf;
-}
+/* A number, or "n/a" (never "nan"); buf holds 32 characters. */
+static const char *num(char *buf, double v) { return cli_num(buf, 32, "%.6g", v, "n/a"); }
 
 static void text_flags(FILE *f, stc_fit_family fam, unsigned flags)
 {

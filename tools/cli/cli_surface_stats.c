@@ -80,12 +80,11 @@ static void print_json(const stats_opts *o, const srf_map *m, const srf_stats *s
  * radius when no summit was found) reads "n/a", never "nan". */
 static void row(const char *name, double measured, double theory, const char *unit)
 {
-    char mv[24] = "n/a", tv[24] = "-", dv[24] = "";
-    if (isfinite(measured)) snprintf(mv, sizeof mv, "%.6g", measured);
-    if (isfinite(theory)) snprintf(tv, sizeof tv, "%.6g", theory);
-    if (isfinite(measured) && isfinite(theory) && theory != 0)
-        snprintf(dv, sizeof dv, "%+.2f %%", 100 * (measured / theory - 1));
-    printf("  %-28s %14s %14s %10s  %s\n", name, mv, tv, dv, unit);
+    char mv[24], tv[24], dv[24];
+    double diff = theory != 0 ? 100 * (measured / theory - 1) : NAN;
+    printf("  %-28s %14s %14s %10s  %s\n", name, cli_num(mv, sizeof mv, "%.6g", measured, "n/a"),
+           cli_num(tv, sizeof tv, "%.6g", theory, "-"),
+           cli_num(dv, sizeof dv, "%+.2f %%", diff, ""), unit);
 }
 
 static void print_table(const stats_opts *o, const srf_map *m, const srf_stats *s)

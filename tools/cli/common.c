@@ -178,6 +178,13 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
     return CLI_EXIT_OK;
 }
 
+const char *cli_num(char *buf, size_t n, const char *fmt, double v, const char *none)
+{
+    if (isfinite(v)) snprintf(buf, n, fmt, v);
+    else snprintf(buf, n, "%s", none);
+    return buf;
+}
+
 stc_status cli_parse_list(const char *key, const char *value, double **out, int *n)
 {
     *out = NULL;
