@@ -1,8 +1,8 @@
 /* Randomised inputs for every reader of user files: INI configurations
  * (stc_ini_load + stc_params_set), text height grids (srf_map_import_text),
  * HDF5 surface files (srf_map_read, srf_map_import_h5), and the CLI
- * (`formulas`, `surface stats`, `surface synth`) on random configurations,
- * argument lists and grids.
+ * (`formulas`, `surface stats`, `surface synth`, `asperity`'s normal step)
+ * on random configurations, argument lists and grids.
  *
  * Each case is generated from a fixed seed, so a failure repeats; the case
  * number is in the message.  Where the generator knows the answer (a grid
@@ -27,6 +27,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cmocka.h>
@@ -498,6 +499,30 @@ static int run_cli(const char *args, char *out, char *err, size_t n)
     return rc;
 }
 
+/* The first word of `out` that reads nan or inf (any case, signed) and is
+ * not itself one of the words of `args` (a file the user named "nan" is
+ * echoed back, not computed), or NULL. */
+static const char *non_number(const char *out, const char *args)
+{
+    static char word[64];
+    for (const char *p = out; *p;) {
+        size_t n = strcspn(p, " \t\n,;:()[]{}\"=");
+        if (n > 0 && n < sizeof word) {
+            memcpy(word, p, n);
+            word[n] = '\0';
+            const char *w = word + (word[0] == '-' || word[0] == '+');
+            if (!strcasecmp(w, "nan") || !strcasecmp(w, "inf") || !strcasecmp(w, "infinity")) {
+                char padded[80], pargs[1100];
+                snprintf(padded, sizeof padded, " %s ", word);
+                snprintf(pargs, sizeof pargs, " %s ", args);
+                if (!strstr(pargs, padded)) return word;
+            }
+        }
+        p += n ? n : 1;
+    }
+    return NULL;
+}
+
 /* Remove every out* entry of the scratch directory (keep = 0), or return
  * the name of the first one (keep = 1; NULL if none). */
 static const char *outputs(int keep)
@@ -548,13 +573,32 @@ static void test_cli(void **state)
                                         "0.01", "1e-300", "nan", "self-affine", "exponential",
                                         "rayleigh", "exact", "3", "4.5", "-0.5", "x", "out.png",
                                         "/nonexistent/out.png", "1,"};
-    long n = 150 * scale, ok = 0, ok_surface = 0, ok_synth = 0;
+    /* normal-step options only: a shear run takes tens of seconds */
+    static const char *const aopts[] = {"--delta", "--delta-mm", "--contact", "--surface-layers",
+                                        "--elements-per-contact", "--newton-reuse", "--krylov",
+                                        "--krylov-max", "--steps-per-node", "--return-map",
+                                        "--no-separation", "--threads", "--json", "--out",
+                                        "--t-over-R", "--E-ratio", "--nu", "--grade-3d"};
+    static const char *const avals[] = {"1", "0.5", "1:3:2", "2,1", "0", "-1", "nan", "1e9",
+                                        "slip", "stick", "x", "3", "0.025", "2", "outdir",
+                                        "/nonexistent/outdir", "exact", "radial", "1000",
+                                        "0.0001", "auto", "off"};
+    long n = 150 * scale, ok = 0, ok_surface = 0, ok_synth = 0, ok_asperity = 0;
     static char out[1 << 16], err[1 << 16];
     for (long c = 0; c < n; c++) {
         seed(200000 + (uint64_t)c);
         char cfg[512] = "", args[1024] = "formulas";
         size_t cl = 0, al = strlen(args);
-        int family = pick(3), surface = family == 1;
+        int family = pick(4), surface = family == 1;
+        if (family == 3) { /* `asperity`, normal step on the coarsest mesh */
+            al = (size_t)snprintf(args, sizeof args, "asperity --mesh 0%s",
+                                  pick(3) ? " --delta 1" : "");
+            for (int k = pick(5); k > 0; k--) {
+                al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(aopts));
+                if (pick(5))
+                    al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(avals));
+            }
+        }
         if (family == 2) { /* `surface synth` of a small map */
             al = (size_t)snprintf(args, sizeof args, "surface synth --out out.h5 --size %s",
                                   pick(3) ? "24" : ONE_OF(gvals));
@@ -614,18 +658,21 @@ static void test_cli(void **state)
             srf_map_destroy(&m);
             ok_synth++;
         }
-        if (strstr(out, "nan") || strstr(out, "inf") || strstr(out, "NaN"))
-            fail_msg("case %ld: 'stiction %s' printed a non-number: %.300s", c, args, out);
+        const char *bad = non_number(out, args);
+        if (bad) fail_msg("case %ld: 'stiction %s' printed '%s': %.300s", c, args, bad, out);
         if (strstr(args, "--json") && !strstr(args, "--csv") && *ws(out) &&
             !strstr(args, "--output"))
             assert_json(out);
         ok++;
         ok_surface += surface;
+        ok_asperity += family == 3;
     }
-    printf("# CLI: %ld runs of 'stiction formulas', 'surface stats' and 'surface synth' with "
-           "random options, configs and grids: %ld succeeded (%ld stats, %ld synth), the rest "
-           "refused with a message\n", n, ok, ok_surface, ok_synth);
-    assert_true(ok_surface > 0 && ok_synth > 0 && ok > ok_surface + ok_synth && ok < n);
+    printf("# CLI: %ld runs of 'stiction formulas', 'surface stats', 'surface synth' and "
+           "'asperity' with random options, configs and grids: %ld succeeded (%ld stats, %ld "
+           "synth, %ld asperity), the rest refused with a message\n", n, ok, ok_surface,
+           ok_synth, ok_asperity);
+    assert_true(ok_surface > 0 && ok_synth > 0 && ok_asperity > 0 &&
+                ok > ok_surface + ok_synth + ok_asperity && ok < n);
 }
 
 /* ------------------------------------------------------------ driver */
