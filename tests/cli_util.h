@@ -33,6 +33,17 @@ static int cli_locate(char *cli, size_t n)
     return 0;
 }
 
+/* dir/name in one of 8 rotating static buffers, so that several fit in one
+ * call's arguments. */
+static inline const char *cli_path(const char *dir, const char *name)
+{
+    static char ring[8][PATH_MAX];
+    static int k;
+    char *p = ring[k++ % 8];
+    snprintf(p, PATH_MAX, "%s/%s", dir, name);
+    return p;
+}
+
 /* Run the shell command `cmd`; `which` = 1 captures its stdout, 2 its
  * stderr, into out (NUL-terminated).  Returns the exit status (128 +
  * signal if killed). */

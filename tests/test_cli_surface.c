@@ -32,15 +32,8 @@ static char buf[1 << 17];
 
 /* ------------------------------------------------------------ helpers */
 
-/* dir/name into p (static rotating buffers, so several fit in one call). */
-static const char *P(const char *name)
-{
-    static char ring[8][PATH_MAX];
-    static int k;
-    char *p = ring[k++ % 8];
-    snprintf(p, PATH_MAX, "%s/%s", dir, name);
-    return p;
-}
+/* dir/name (cli_util.h's rotating buffers). */
+static const char *P(const char *name) { return cli_path(dir, name); }
 
 static void write_file(const char *name, const char *text)
 {

@@ -62,14 +62,7 @@ static double unif(double a, double b) /* uniform in [a, b): 53 random bits */
 static const char *one_of(const char *const *list, int n) { return list[pick(n)]; }
 #define ONE_OF(list) one_of(list, (int)(sizeof list / sizeof *list))
 
-static const char *path_in(const char *name)
-{
-    static char ring[4][PATH_MAX];
-    static int k;
-    char *p = ring[k++ % 4];
-    snprintf(p, PATH_MAX, "%s/%s", dir, name);
-    return p;
-}
+static const char *path_in(const char *name) { return cli_path(dir, name); }
 
 static void write_bytes(const char *path, const char *data, size_t n)
 {

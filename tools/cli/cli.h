@@ -49,6 +49,11 @@ typedef struct cli_out {
 } cli_out;
 FILE *cli_out_open(cli_out *o, const char *dir, const char *name);
 int cli_out_close(cli_out *o);
+/* Make sure the output directory `dir` exists (created if missing; then
+ * *made = 1 if made is not NULL, so a failed run can remove it) and can be
+ * written, before any work is done: returns CLI_EXIT_OK, or prints
+ * "stiction <cmd>: out = 'dir': ..." and returns CLI_EXIT_USAGE. */
+int cli_out_dir(const char *cmd, const char *dir, int *made);
 
 /* Print the common options' help. */
 void cli_common_help(FILE *f);

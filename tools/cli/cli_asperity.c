@@ -1,10 +1,8 @@
 /* stiction asperity: the FE model of one coated asperity under normal
  * loading (a thin layer over include/stiction/asperity.h). */
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "stiction/asperity.h"
@@ -324,10 +322,8 @@ static int run(const char *cmd, const stc_params *p, aopts *a)
                 cmd, a->delta[a->ndelta - 1] * scale, 0.01 * p->R);
         return CLI_EXIT_USAGE;
     }
-    if (a->out && mkdir(a->out, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "stiction %s: out = '%s': cannot create directory\n", cmd, a->out);
-        return CLI_EXIT_FAIL;
-    }
+    int rc_out = a->out ? cli_out_dir(cmd, a->out, NULL) : CLI_EXIT_OK;
+    if (rc_out != CLI_EXIT_OK) return rc_out;
     /* an axisymmetric curve samples the elastic node entries before its
      * points too, so P_smooth at a point near first yield is not a fit
      * across the bend (3D: 35 -> 24 increments on the level-0 curve, +12 %

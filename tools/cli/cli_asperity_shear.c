@@ -2,11 +2,9 @@
  * then the tangential ramp to sliding inception (issue 4).  A thin layer
  * over asp_solver_shear / asp_solver_load_to_P (include/stiction/asperity.h);
  * the option table and parser live here, cli_asperity.c dispatches. */
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
 #include "stiction/asperity.h"
@@ -431,10 +429,8 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
          * mesh for twice the guess (capped at the small-strain limit) */
         dmax = fmin(2.0 * asp_hertz_delta_guess(Pt, su.E, su.nu, p->R), 0.01 * p->R);
     }
-    if (out && mkdir(out, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "stiction %s: out = '%s': cannot create directory\n", cmd, out);
-        return CLI_EXIT_FAIL;
-    }
+    int rc_out = out ? cli_out_dir(cmd, out, NULL) : CLI_EXIT_OK;
+    if (rc_out != CLI_EXIT_OK) return rc_out;
     if (sa->placements > 1) return run_placements(cmd, p, o, sa, &c, dmm, json, out);
     asp_solver *sv;
     if ((s = asp_solver_create(p, o, dmax, &sv))) return cli_fail(cmd, s);

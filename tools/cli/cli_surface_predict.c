@@ -414,23 +414,6 @@ static int write_png(out_file *f, const char *csv, const context *c)
     return CLI_EXIT_OK;
 }
 
-/* --out DIR: create it if needed (*made = 1 then, so a failure removes it). */
-static int make_out_dir(const char *dir, int *made)
-{
-    struct stat sb;
-    *made = mkdir(dir, 0777) == 0;
-    if (!*made && errno != EEXIST) {
-        fprintf(stderr, "stiction surface predict: out = '%s': cannot create the directory (%s)\n",
-                dir, strerror(errno));
-        return CLI_EXIT_FAIL;
-    }
-    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-        fprintf(stderr, "stiction surface predict: out = '%s': must be a directory\n", dir);
-        return CLI_EXIT_FAIL;
-    }
-    return CLI_EXIT_OK;
-}
-
 /* All requested files; the PNG plots from the CSV (a scratch one if no CSV
  * was requested). */
 static int write_outputs(const predict_opts *o, const context *c, const srf_gw_point *pts, int n)
@@ -441,7 +424,8 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
     out_file *all[] = {&fj, &fc, &fp};
     int rc = CLI_EXIT_OK, made_dir = 0;
     if (o->out) {
-        if (make_out_dir(o->out, &made_dir) != CLI_EXIT_OK) return CLI_EXIT_FAIL;
+        int rc_dir = cli_out_dir("surface predict", o->out, &made_dir);
+        if (rc_dir != CLI_EXIT_OK) return rc_dir;
         snprintf(json, sizeof json, "%s/gw.json", o->out);
         snprintf(csv, sizeof csv, "%s/gw.csv", o->out);
         snprintf(png, sizeof png, "%s/gw.png", o->out);

@@ -1,7 +1,10 @@
 /* Option parsing shared by every subcommand: INI config, then argv. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -84,6 +87,24 @@ FILE *cli_out_open(cli_out *o, const char *dir, const char *name)
     snprintf(o->path, sizeof o->path, "%s/%s", dir, name);
     snprintf(o->tmp, sizeof o->tmp, "%s.tmp", o->path);
     return o->f = fopen(o->tmp, "w");
+}
+
+int cli_out_dir(const char *cmd, const char *dir, int *made)
+{
+    struct stat st;
+    char why[160] = "";
+    int new_dir = mkdir(dir, 0777) == 0;
+    if (made) *made = new_dir;
+    if (!new_dir && errno != EEXIST)
+        snprintf(why, sizeof why, "cannot create the directory (%s)", strerror(errno));
+    else if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        snprintf(why, sizeof why, "must be a directory");
+    else if (access(dir, W_OK | X_OK) != 0)
+        snprintf(why, sizeof why, "the directory is not writable");
+    if (!*why) return CLI_EXIT_OK;
+    fprintf(stderr, "stiction %s: out = '%s': %s (valid: a writable directory, created if "
+            "missing)\n", cmd, dir, why);
+    return CLI_EXIT_USAGE;
 }
 
 int cli_out_close(cli_out *o)
