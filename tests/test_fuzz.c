@@ -516,6 +516,22 @@ static const char *non_number(const char *out, const char *args)
     return NULL;
 }
 
+/* Remove a file, or a directory with the files in it (an --out DIR). */
+static void remove_tree(const char *path)
+{
+    if (unlink(path) == 0) return;
+    DIR *d = opendir(path);
+    struct dirent *e;
+    char sub[PATH_MAX + 256];
+    while (d && (e = readdir(d)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+            snprintf(sub, sizeof sub, "%s/%s", path, e->d_name);
+            unlink(sub);
+        }
+    if (d) closedir(d);
+    rmdir(path);
+}
+
 /* Remove every out* entry of the scratch directory (keep = 0), or return
  * the name of the first one (keep = 1; NULL if none). */
 static const char *outputs(int keep)
@@ -528,7 +544,7 @@ static const char *outputs(int keep)
     while ((e = readdir(d)))
         if (strncmp(e->d_name, "out", 3) == 0) {
             if (!keep) {
-                unlink(path_in(e->d_name));
+                remove_tree(path_in(e->d_name));
             } else if (!found) {
                 snprintf(name, sizeof name, "%s", e->d_name);
                 found = name;
@@ -688,7 +704,7 @@ static int teardown(void **state)
     DIR *d = opendir(dir);
     struct dirent *e;
     while (d && (e = readdir(d)))
-        if (e->d_name[0] != '.') unlink(path_in(e->d_name));
+        if (e->d_name[0] != '.') remove_tree(path_in(e->d_name));
     if (d) closedir(d);
     rmdir(dir);
     return 0;
