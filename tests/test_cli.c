@@ -106,6 +106,11 @@ static void test_bad_syntax(void **state)
     expect_fail("formulas --radius 3", "unknown option '--radius'", NULL);
     expect_fail("formulas --R", "--R: missing value", NULL);
     expect_fail("formulas --delta", "--delta: missing value", NULL);
+    /* a forgotten value is not filled with the next option (found by test_fuzz:
+     * `surface synth --png --json` wrote a PNG named --json) */
+    expect_fail("formulas --t-over-R --R 3", "--t-over-R: missing value",
+                "the next argument, '--R', is an option");
+    expect_fail("surface synth --out out.h5 --png --json", "--png: missing value", "'--json'");
     expect_fail("formulas --R ''", "R: missing value", "number");
     expect_fail("formulas 10", "unexpected argument '10'", NULL);
     expect_fail("formulas --json=maybe", "json = 'maybe'", "1/true/yes or 0/false/no");

@@ -186,6 +186,18 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
                     fprintf(stderr, "stiction %s: --%s: missing value\n", cmdname, key);
                     return CLI_EXIT_USAGE;
                 }
+                /* "--png --json": the value was forgotten, not a file named --json */
+                char next[64];
+                const char *nx = argv[i + 1], *nq = strchr(nx, '=');
+                snprintf(next, sizeof next, "%.*s", nq ? (int)(nq - nx) : 63, nx);
+                stc_key_normalise(next, next, sizeof next);
+                if (strncmp(nx, "--", 2) == 0 &&
+                    (find_opt(opts, next) || (params && is_common_key(next)) ||
+                     !strcmp(next, "config") || !strcmp(next, "help"))) {
+                    fprintf(stderr, "stiction %s: --%s: missing value (the next argument, '%s', "
+                            "is an option)\n", cmdname, key, nx);
+                    return CLI_EXIT_USAGE;
+                }
                 value = argv[++i];
             } else {
                 fprintf(stderr, "stiction %s: unknown option '--%s' (see --help)\n",
