@@ -1,7 +1,7 @@
 /* Randomised inputs for every reader of user files: INI configurations
  * (stc_ini_load + stc_params_set), text height grids (srf_map_import_text),
  * HDF5 surface files (srf_map_read, srf_map_import_h5), and the CLI
- * (`formulas`, `surface stats`, `surface synth`, `asperity`'s normal step)
+ * (`formulas`, `surface stats|synth|predict`, `asperity`'s normal step)
  * on random configurations, argument lists and grids.
  *
  * Each case is generated from a fixed seed, so a failure repeats; the case
@@ -582,6 +582,14 @@ static void test_cli(void **state)
                                         "0.01", "1e-300", "nan", "self-affine", "exponential",
                                         "rayleigh", "exact", "3", "4.5", "-0.5", "x", "out.png",
                                         "/nonexistent/out.png", "1,"};
+    static const char *const popts[] = {"--model", "--layer", "--mode", "--density",
+                                        "--pressures", "--separations", "--t-mm", "--rule",
+                                        "--sampled", "--csv", "--png", "--out", "--json",
+                                        "--surface", "--E-ratio", "--Y-co", "--config"};
+    static const char *const pvals[] = {"hertz", "wsp", "coating", "substrate", "statistical",
+                                        "deterministic", "gaussian", "kde", "1,10,100", "0.5",
+                                        "-1", "0", "1e9", "nan", "3,2,1", "1:100:5", "out.csv",
+                                        "out.png", "outdir", "srf.h5", "1.5e-3", "4", "7000"};
     /* normal-step options only: a shear run takes tens of seconds */
     static const char *const aopts[] = {"--delta", "--delta-mm", "--contact", "--surface-layers",
                                         "--elements-per-contact", "--newton-reuse", "--krylov",
@@ -592,13 +600,26 @@ static void test_cli(void **state)
                                         "slip", "stick", "x", "3", "0.025", "2", "outdir",
                                         "/nonexistent/outdir", "exact", "radial", "1000",
                                         "0.0001", "auto", "off"};
-    long n = 150 * scale, ok = 0, ok_surface = 0, ok_synth = 0, ok_asperity = 0;
+    long n = 150 * scale, ok = 0, ok_surface = 0, ok_synth = 0, ok_asperity = 0, ok_predict = 0;
     static char out[1 << 16], err[1 << 16];
+    /* a small map for `surface predict --surface` (not an out* file) */
+    if (run_cli("surface synth --size 64 --out srf.h5 --no-png", out, err, sizeof out) != 0)
+        fail_msg("cannot make the predict test's map: %s", err);
     for (long c = 0; c < n; c++) {
         seed(200000 + (uint64_t)c);
         char cfg[512] = "", args[1024] = "formulas";
         size_t cl = 0, al = strlen(args);
-        int family = pick(4), surface = family == 1;
+        int family = pick(5), surface = family == 1;
+        if (family == 4) { /* `surface predict`, statistical or on a small map */
+            al = (size_t)snprintf(args, sizeof args, "surface predict %s%s", pick(2)
+                                  ? "--summit-density 2303 --summit-radius 0.07 --sigma-s 4e-4"
+                                  : "--surface srf.h5", pick(3) ? " --pressures 1,10" : "");
+            for (int k = pick(5); k > 0; k--) {
+                al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(popts));
+                if (pick(5))
+                    al += (size_t)snprintf(args + al, sizeof args - al, " %s", ONE_OF(pvals));
+            }
+        }
         if (family == 3) { /* `asperity`, normal step on the coarsest mesh */
             al = (size_t)snprintf(args, sizeof args, "asperity --mesh 0%s",
                                   pick(3) ? " --delta 1" : "");
@@ -675,13 +696,14 @@ static void test_cli(void **state)
         ok++;
         ok_surface += surface;
         ok_asperity += family == 3;
+        ok_predict += family == 4;
     }
-    printf("# CLI: %ld runs of 'stiction formulas', 'surface stats', 'surface synth' and "
+    printf("# CLI: %ld runs of 'stiction formulas', 'surface stats|synth|predict' and "
            "'asperity' with random options, configs and grids: %ld succeeded (%ld stats, %ld "
-           "synth, %ld asperity), the rest refused with a message\n", n, ok, ok_surface,
-           ok_synth, ok_asperity);
-    assert_true(ok_surface > 0 && ok_synth > 0 && ok_asperity > 0 &&
-                ok > ok_surface + ok_synth + ok_asperity && ok < n);
+           "synth, %ld predict, %ld asperity), the rest refused with a message\n", n, ok,
+           ok_surface, ok_synth, ok_predict, ok_asperity);
+    assert_true(ok_surface > 0 && ok_synth > 0 && ok_asperity > 0 && ok_predict > 0 &&
+                ok > ok_surface + ok_synth + ok_asperity + ok_predict && ok < n);
 }
 
 /* ------------------------------------------------------------ driver */
