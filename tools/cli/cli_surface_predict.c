@@ -292,11 +292,17 @@ static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n
                "t_over_R_max,load_fraction_outside_model_range,err_P_over_An_MPa\n");
     for (int k = 0; k < n; k++) {
         const srf_gw_point *q = &pts[k];
-        fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g,%.6g,%.6g,%.6g,%.3g\n", q->h,
-                q->pressure_MPa, q->pressure_MPa / i->E_star_MPa, q->area_fraction,
-                q->contacts_per_mm2, q->Q_MPa / i->E_star_MPa, q->mu_s,
-                q->delta_max_over_omega_c, q->tR_min, q->tR_max, q->load_fraction_outside,
-                q->err_P_MPa);
+        /* a value that does not exist (Q and mu_s of the frictionless hertz
+         * model, mu_s where nothing touches) is an empty field */
+        const double v[12] = {q->h, q->pressure_MPa, q->pressure_MPa / i->E_star_MPa,
+                              q->area_fraction, q->contacts_per_mm2, q->Q_MPa / i->E_star_MPa,
+                              q->mu_s, q->delta_max_over_omega_c, q->tR_min, q->tR_max,
+                              q->load_fraction_outside, q->err_P_MPa};
+        for (int m = 0; m < 12; m++) {
+            char b[32];
+            fprintf(f, "%s%s", cli_num(b, sizeof b, m < 7 ? "%.10g" : m < 11 ? "%.6g" : "%.3g",
+                                       v[m], ""), m < 11 ? "," : "\n");
+        }
     }
 }
 
@@ -313,8 +319,11 @@ static void table_points(const context *c, const srf_gw_point *pts, int n)
            "N [/mm2]", "mu_s", "dmax/wc", "outside");
     for (int k = 0; k < n; k++) {
         const srf_gw_point *q = &pts[k];
-        printf("  %8.4f %12.5g %11.4e %11.4g %8.4f %10.3g %8.3f\n", q->h, q->pressure_MPa,
-               q->area_fraction, q->contacts_per_mm2, q->mu_s, q->delta_max_over_omega_c,
+        char mu[32], dm[32]; /* mu_s: n/a for hertz, and where nothing touches */
+        printf("  %8.4f %12.5g %11.4e %11.4g %8s %10s %8.3f\n", q->h, q->pressure_MPa,
+               q->area_fraction, q->contacts_per_mm2,
+               cli_num(mu, sizeof mu, "%.4f", q->mu_s, "n/a"),
+               cli_num(dm, sizeof dm, "%.3g", q->delta_max_over_omega_c, "n/a"),
                q->load_fraction_outside);
     }
     printf("  (outside = share of the load from summits outside the model's range "
