@@ -740,6 +740,23 @@ static void test_roundtrip_predict(void **state)
     for (int k = 1; k < 4; k++)
         assert_true(jnum_k(buf, "nominal_pressure_MPa", k) >
                     jnum_k(buf, "nominal_pressure_MPa", k - 1));
+    /* a mu_s that does not exist (no friction law; nothing touching) reads
+     * n/a in the table and an empty CSV field, never nan */
+    assert_int_equal(run("surface predict " ST "--pressures 1 --model hertz --csv out.csv", 1,
+                         buf, sizeof buf), 0);
+    printf("%s", buf);
+    assert_non_null(strstr(buf, "n/a"));
+    assert_null(strstr(buf, "nan"));
+    f = fopen(P("out.csv"), "r");
+    assert_non_null(f);
+    size_t got = fread(det, 1, sizeof det - 1, f);
+    det[got] = '\0';
+    fclose(f);
+    assert_non_null(strstr(det, ",,"));
+    assert_null(strstr(det, "nan"));
+    assert_int_equal(run("surface predict " ST "--separations 7000", 1, buf, sizeof buf), 0);
+    assert_non_null(strstr(buf, "n/a"));
+    assert_null(strstr(buf, "nan"));
     rm_outputs();
 }
 
