@@ -573,6 +573,9 @@ static void test_predict_no_partial_output(void **state)
                 "csv = 'out-no/x.csv'", "cannot write", NULL);
     expect_fail("surface predict " ST "--pressures 1 --out out-no/dir", "out = 'out-no/dir'",
                 "cannot create", NULL);
+    /* --out DIR is made before the summation, and removed when the run fails */
+    expect_fail("surface predict " ST "--pressures 1e6 --out out-d3", "pressure = 1e+06 MPa",
+                NULL, NULL);
     expect_done();
     write_file("out-file", "x");
     int rc = run("surface predict " ST "--pressures 1 --out out-file", 2, buf, sizeof buf);

@@ -25,6 +25,7 @@ typedef struct {
     double *pressures, *separations;
     int np, ns;
     cli_surface_import imp;
+    int out_made; /* --out DIR was created by this run (removed again if it fails) */
 } predict_opts;
 
 static const cli_opt opts[] = {
@@ -431,10 +432,8 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
     out_file fj = {"out", NULL, "", 0}, fc = {"csv", o->csv, "", 0}, fp = {"png", o->png, "", 0};
     out_file fs = {"png", NULL, "", 0}; /* scratch CSV for the PNG */
     out_file *all[] = {&fj, &fc, &fp};
-    int rc = CLI_EXIT_OK, made_dir = 0;
-    if (o->out) {
-        int rc_dir = cli_out_dir("surface predict", o->out, &made_dir);
-        if (rc_dir != CLI_EXIT_OK) return rc_dir;
+    int rc = CLI_EXIT_OK;
+    if (o->out) { /* checked (and made) before the summation */
         snprintf(json, sizeof json, "%s/gw.json", o->out);
         snprintf(csv, sizeof csv, "%s/gw.csv", o->out);
         snprintf(png, sizeof png, "%s/gw.png", o->out);
@@ -465,7 +464,6 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
         }
         if (rc != CLI_EXIT_OK) remove(f->tmp);
     }
-    if (rc != CLI_EXIT_OK && made_dir) rmdir(o->out);
     return rc;
 }
 
@@ -511,6 +509,9 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (rc != CLI_EXIT_OK || done) goto out;
     double t0 = now();
     stc_status s = check_opts(&o);
+    /* a bad --out is refused before any work is done */
+    if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
+        goto out;
     if (o.t_mm < 0) o.t_mm = stc_params_t(&p);
     if (s == STC_OK) s = make_model(&o, &p, &m);
     if (s == STC_OK) s = make_gw(&o, m, &g);
@@ -537,6 +538,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
         else table_points(&c, pts, n);
     }
 out:
+    if (rc != CLI_EXIT_OK && o.out_made) rmdir(o.out); /* empty: outputs go in by rename */
     free(pts);
     free(o.pressures);
     free(o.separations);
