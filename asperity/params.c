@@ -179,7 +179,9 @@ stc_status stc_params_validate(const stc_params *p)
         if (stc_critical_eval(layer[i], p->R, &c) != STC_OK) {
             char msg[512];
             snprintf(msg, sizeof msg, "%s", stc_errmsg());
-            return STC_FAIL(STC_EINVAL, "%s: %s", i ? "coating" : "substrate", msg);
+            return STC_FAIL(STC_EINVAL, "%s: %s", i ? "coating (set by R, E-su x E-ratio, "
+                            "E-over-Y or Y-co)" : "substrate (set by R, E-su, E-over-Y or Y-su)",
+                            msg);
         }
     }
     return STC_OK;
