@@ -86,11 +86,11 @@ stc_status srf_stats_compute(const srf_map *m, const srf_summits *s, srf_stats *
     /* heights so large, or pixels so small or large, that the moments
      * overflow or underflow (a file in the wrong unit): statistics of
      * infinities or of zero slopes are not results */
-    double zmax = 0;
-    for (size_t k = 0; k < (size_t)m->nx * m->ny; k++) zmax = fmax(zmax, fabs(m->z[k]));
     int finite = isfinite(out->sigma) && isfinite(mo.m0) && isfinite(mo.m2) &&
                  isfinite(mo.m4) && (out->sigma == 0 || isfinite(out->kurtosis)) &&
                  isfinite(m->lx * m->ly) && (out->sigma == 0 || (mo.m2 > 0 && mo.m4 > 0));
+    double zmax = 0; /* for the message only */
+    for (size_t k = 0; !finite && k < (size_t)m->nx * m->ny; k++) zmax = fmax(zmax, fabs(m->z[k]));
     STC_CHECK(finite, STC_ERANGE,
               "heights up to %g mm on pixels of %g x %g mm: their moments are not "
               "representable (sigma = %g mm, m2 = %g, m4 = %g mm^-2; valid: heights and pixel "

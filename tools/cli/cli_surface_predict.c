@@ -299,10 +299,12 @@ static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n
                               q->area_fraction, q->contacts_per_mm2, q->Q_MPa / i->E_star_MPa,
                               q->mu_s, q->delta_max_over_omega_c, q->tR_min, q->tR_max,
                               q->load_fraction_outside, q->err_P_MPa};
+        static const char *const fmt[12] = {"%.10g", "%.10g", "%.10g", "%.10g", "%.10g",
+                                            "%.10g", "%.10g", "%.6g",  "%.6g",  "%.6g",
+                                            "%.6g",  "%.3g"};
         for (int m = 0; m < 12; m++) {
             char b[32];
-            fprintf(f, "%s%s", cli_num(b, sizeof b, m < 7 ? "%.10g" : m < 11 ? "%.6g" : "%.3g",
-                                       v[m], ""), m < 11 ? "," : "\n");
+            fprintf(f, "%s%s", cli_num(b, sizeof b, fmt[m], v[m], ""), m < 11 ? "," : "\n");
         }
     }
 }

@@ -40,6 +40,19 @@ static stc_status dispatch(void *u, const char *section, const char *key,
                      "unknown option '%s' (see --help for the valid keys)", key);
 }
 
+/* The normalised option name of argument a ("--t_over_R=3" -> "t-over-R")
+ * into key[n]; returns the value after '=', or NULL when there is none. */
+static const char *arg_key(const char *a, char *key, size_t n)
+{
+    const char *eq = strchr(a, '=');
+    size_t len = eq ? (size_t)(eq - a) : strlen(a);
+    if (len >= n) len = n - 1;
+    memcpy(key, a, len);
+    key[len] = '\0';
+    stc_key_normalise(key, key, (int)n);
+    return eq ? eq + 1 : NULL;
+}
+
 static int is_common_key(const char *key)
 {
     stc_params scratch;
@@ -160,21 +173,9 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
                     cmdname, a);
             return CLI_EXIT_USAGE;
         }
-        const char *eq = strchr(a, '=');
-        const char *value;
-        if (eq) {
-            size_t n = (size_t)(eq - a);
-            if (n >= sizeof key) n = sizeof key - 1;
-            memcpy(key, a, n);
-            key[n] = '\0';
-            stc_key_normalise(key, key, sizeof key);
-            value = eq + 1;
-        } else {
-            stc_key_normalise(a, key, sizeof key);
-            value = NULL;
-        }
+        const char *value = arg_key(a, key, sizeof key);
         if (strcmp(key, "config") == 0) {
-            if (!eq) i++;
+            if (!value) i++;
             continue;
         }
         const cli_opt *o = find_opt(opts, key);
@@ -188,9 +189,8 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
                 }
                 /* "--png --json": the value was forgotten, not a file named --json */
                 char next[64];
-                const char *nx = argv[i + 1], *nq = strchr(nx, '=');
-                snprintf(next, sizeof next, "%.*s", nq ? (int)(nq - nx) : 63, nx);
-                stc_key_normalise(next, next, sizeof next);
+                const char *nx = argv[i + 1];
+                arg_key(nx, next, sizeof next);
                 if (strncmp(nx, "--", 2) == 0 &&
                     (find_opt(opts, next) || (params && is_common_key(next)) ||
                      !strcmp(next, "config") || !strcmp(next, "help"))) {
