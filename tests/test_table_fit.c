@@ -1,0 +1,554 @@
+/* Gaussian-process smoothing surrogate (asperity/table_fit.c): smoothing of
+ * a noisy 1D curve (coverage of the truth, error below the noise), an
+ * understated noise recovered by the noise scale, held-out points of a 3D
+ * grid, a constant input dimension, interpolation at tiny noise, the
+ * closed-form leave-one-out against refits without each point, the
+ * likelihood against a direct computation and its optimality, invalid
+ * input, and bit-identical refits. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <cmocka.h>
+
+#include <gsl/gsl_linalg.h>
+
+#include "table_fit.h"
+
+/* ---- deterministic noise --------------------------------------------- */
+
+/* splitmix64 (Steele, Lea & Flood 2014): uniform in (0, 1). */
+static double unif(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    z ^= z >> 31;
+    return ((z >> 11) + 0.5) / 9007199254740992.0;
+}
+
+/* Standard normal by Box-Muller. */
+static double gauss(uint64_t *s)
+{
+    double u = unif(s), v = unif(s);
+    return sqrt(-2.0 * log(u)) * cos(2.0 * M_PI * v);
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static tbl_gp *fit_ok(int n, int dim, const double *x, const double *y, const double *sy)
+{
+    tbl_gp *g = NULL;
+    stc_status st = tbl_gp_fit(n, dim, x, y, sy, &g);
+    if (st != STC_OK) fail_msg("tbl_gp_fit: %s: %s", stc_strerror(st), stc_errmsg());
+    assert_non_null(g);
+    return g;
+}
+
+static void print_info(const char *what, const tbl_gp_info *in)
+{
+    printf("%s: ell = (", what);
+    for (int d = 0; d < in->dim; d++) printf("%s%.4g", d ? ", " : "", in->ell[d]);
+    printf("), sf = %.4g, c = %.4f, mean = %.4g, log_ml = %.4f, LOO rms %.4g max %.4g cover2 "
+           "%.3f, %d evaluations%s, jitter %g\n",
+           in->sf, in->noise_scale, in->mean, in->log_ml, in->loo_rms, in->loo_max,
+           in->loo_cover2, in->evaluations, in->converged ? "" : " (NOT converged)", in->jitter);
+}
+
+/* ---- 1D smoothing -------------------------------------------------------- */
+
+#define N1 30
+#define SD1 0.1
+
+static double f1(double x) { return sin(2.0 * M_PI * x) + 0.5 * x; }
+
+/* 30 points on [0, 1] with noise of sd SD1 (a fixed draw). */
+static void data1(double *x, double *y)
+{
+    uint64_t s = 20240601u;
+    for (int i = 0; i < N1; i++) {
+        x[i] = (double)i / (N1 - 1);
+        y[i] = f1(x[i]) + SD1 * gauss(&s);
+    }
+}
+
+/* Fraction of 200 test points with |mu - f| <= k sd, and the rms of mu - f. */
+static void score1(const tbl_gp *g, double k, double *frac, double *rms)
+{
+    int in = 0, m = 200;
+    double ss = 0.0;
+    for (int j = 0; j < m; j++) {
+        double x = (j + 0.5) / m, mu, sd;
+        tbl_gp_predict(g, &x, &mu, &sd);
+        double e = mu - f1(x);
+        ss += e * e;
+        in += fabs(e) <= k * sd;
+    }
+    *frac = (double)in / m;
+    *rms = sqrt(ss / m);
+}
+
+static void test_smooth_1d(void **state)
+{
+    (void)state;
+    double x[N1], y[N1], sy[N1];
+    data1(x, y);
+    for (int i = 0; i < N1; i++) sy[i] = SD1;
+    double t0 = now();
+    tbl_gp *g = fit_ok(N1, 1, x, y, sy);
+    double dt = now() - t0;
+    tbl_gp_info in;
+    tbl_gp_get_info(g, &in);
+    print_info("1D, n = 30, noise sd 0.1", &in);
+    double frac, rms;
+    score1(g, 3.0, &frac, &rms);
+    printf("1D: truth within 3 posterior sd at %.1f %% of 200 test points; rms(mean - truth) = "
+           "%.4f = %.2f x noise sd; noise scale c = %.3f; fit %.1f ms\n",
+           100 * frac, rms, rms / SD1, in.noise_scale, 1e3 * dt);
+    assert_true(frac >= 0.95);
+    assert_true(rms < 0.5 * SD1);
+    assert_true(in.noise_scale >= 1.0 && in.noise_scale < 1.5);
+    assert_true(in.converged);
+    tbl_gp_destroy(&g);
+    assert_null(g);
+}
+
+/* The same data with sy = true sd / 4: c must make up the difference. */
+static void test_understated_noise(void **state)
+{
+    (void)state;
+    double x[N1], y[N1], sy[N1];
+    data1(x, y);
+    for (int i = 0; i < N1; i++) sy[i] = SD1 / 4;
+    tbl_gp *g = fit_ok(N1, 1, x, y, sy);
+    tbl_gp_info in;
+    tbl_gp_get_info(g, &in);
+    print_info("1D, sy = true sd / 4", &in);
+    double frac, rms;
+    score1(g, 3.0, &frac, &rms);
+    printf("understated noise: c = %.3f (true 4), LOO 2-sd coverage %.3f, truth within 3 sd at "
+           "%.1f %%, rms(mean - truth) = %.2f x noise sd\n",
+           in.noise_scale, in.loo_cover2, 100 * frac, rms / SD1);
+    assert_true(in.noise_scale > 2.0);
+    assert_true(in.loo_cover2 >= 0.85);
+    tbl_gp_destroy(&g);
+}
+
+/* ---- 3D grid --------------------------------------------------------------- */
+
+static double f3(const double *x)
+{
+    return exp(-x[0]) * (1.0 + 0.5 * x[1]) + 0.3 * sin(2.0 * x[2]) * x[0];
+}
+
+static void test_grid_3d(void **state)
+{
+    (void)state;
+    enum { NA = 6, NB = 3, NC = 3, N = NA * NB * NC };
+    double x[N][3], y[N], sy[N], sd_noise = 0.01;
+    uint64_t s = 77u;
+    int n = 0;
+    for (int a = 0; a < NA; a++)
+        for (int b = 0; b < NB; b++)
+            for (int c = 0; c < NC; c++, n++) {
+                x[n][0] = 2.0 * a / (NA - 1); /* inputs on different scales */
+                x[n][1] = 10.0 * b / (NB - 1);
+                x[n][2] = 0.5 * c / (NC - 1);
+                double u[3] = {x[n][0], x[n][1] / 10.0, x[n][2] * 2.0};
+                sy[n] = sd_noise * (1.0 + 0.5 * unif(&s)); /* per-point error estimates */
+                y[n] = f3(u) + sy[n] * gauss(&s);
+            }
+    tbl_gp *g = fit_ok(N, 3, &x[0][0], y, sy);
+    tbl_gp_info in;
+    tbl_gp_get_info(g, &in);
+    print_info("3D 6x3x3 grid", &in);
+    /* held out: every cell centre */
+    int inside = 0, m = 0;
+    double worst = 0.0;
+    for (int a = 0; a < NA - 1; a++)
+        for (int b = 0; b < NB - 1; b++)
+            for (int c = 0; c < NC - 1; c++, m++) {
+                double q[3] = {2.0 * (a + 0.5) / (NA - 1), 10.0 * (b + 0.5) / (NB - 1),
+                               0.5 * (c + 0.5) / (NC - 1)};
+                double u[3] = {q[0], q[1] / 10.0, q[2] * 2.0}, mu, sd;
+                tbl_gp_predict(g, q, &mu, &sd);
+                double z = fabs(mu - f3(u)) / sd;
+                worst = fmax(worst, z);
+                inside += z <= 2.0;
+            }
+    printf("3D: %d of %d cell centres within 2 posterior sd (worst %.2f sd); LOO 2-sd coverage "
+           "%.3f\n", inside, m, worst, in.loo_cover2);
+    assert_true(inside >= 0.9 * m);
+    assert_true(in.loo_cover2 >= 0.85);
+    tbl_gp_destroy(&g);
+}
+
+/* x_2 equal everywhere: the dimension is ignored, ell[1] = inf. */
+static void test_constant_dim(void **state)
+{
+    (void)state;
+    enum { N = 12 };
+    double x[N][2], y[N], sy[N];
+    uint64_t s = 5u;
+    for (int i = 0; i < N; i++) {
+        x[i][0] = (double)i / (N - 1);
+        x[i][1] = 0.7;
+        sy[i] = 0.05;
+        y[i] = f1(x[i][0]) + sy[i] * gauss(&s);
+    }
+    tbl_gp *g = fit_ok(N, 2, &x[0][0], y, sy);
+    tbl_gp_info in;
+    tbl_gp_get_info(g, &in);
+    print_info("2D with x_2 constant", &in);
+    double q1[2] = {0.33, 0.7}, q2[2] = {0.33, 5.0}, m1, s1, m2, s2;
+    tbl_gp_predict(g, q1, &m1, &s1);
+    tbl_gp_predict(g, q2, &m2, &s2);
+    printf("constant x_2: ell[1] = %g (bounds %g..%g); prediction at x_2 = 0.7 and 5: "
+           "%.6f +- %.6f, %.6f +- %.6f\n",
+           in.ell[1], in.ell_lo[1], in.ell_hi[1], m1, s1, m2, s2);
+    assert_true(isinf(in.ell[1]) && in.ell[1] > 0 && isfinite(in.ell[0]));
+    assert_true(m1 == m2 && s1 == s2);
+    tbl_gp_destroy(&g);
+
+    /* every input equal: repeated measurements of one value; the mean is the
+     * inverse-variance weighted mean, its sd c / sqrt(sum 1/sy^2) */
+    double xr[5] = {3, 3, 3, 3, 3}, yr[5] = {1.0, 1.2, 0.9, 1.1, 1.0};
+    double sr[5] = {0.1, 0.1, 0.2, 0.1, 0.05}, sw = 0, swy = 0, mr, sdr;
+    for (int i = 0; i < 5; i++) sw += 1 / (sr[i] * sr[i]), swy += yr[i] / (sr[i] * sr[i]);
+    g = fit_ok(5, 1, xr, yr, sr);
+    tbl_gp_get_info(g, &in);
+    tbl_gp_predict(g, &xr[0], &mr, &sdr);
+    printf("all inputs equal: mean %.12f (weighted mean %.12f), sd %.6g (c / sqrt(sum sy^-2) "
+           "= %.6g), c = %.4f, sf = %g\n",
+           mr, swy / sw, sdr, in.noise_scale / sqrt(sw), in.noise_scale, in.sf);
+    assert_true(isinf(in.ell[0]) && in.sf == 0.0);
+    assert_true(fabs(mr - swy / sw) < 1e-12 && fabs(sdr - in.noise_scale / sqrt(sw)) < 1e-12);
+    tbl_gp_destroy(&g);
+}
+
+/* ---- exactness ------------------------------------------------------------ */
+
+static void test_interpolation(void **state)
+{
+    (void)state;
+    enum { N = 15 };
+    double x[N], y[N], sy[N], worst = 0.0, sdmax = 0.0;
+    for (int i = 0; i < N; i++) {
+        x[i] = 3.0 * i / (N - 1);
+        y[i] = f1(x[i] / 3.0);
+        sy[i] = 1e-7;
+    }
+    tbl_gp *g = fit_ok(N, 1, x, y, sy);
+    tbl_gp_info in;
+    tbl_gp_get_info(g, &in);
+    print_info("tiny noise (sy = 1e-7)", &in);
+    for (int i = 0; i < N; i++) {
+        double mu, sd;
+        tbl_gp_predict(g, &x[i], &mu, &sd);
+        worst = fmax(worst, fabs(mu - y[i]));
+        sdmax = fmax(sdmax, sd);
+    }
+    printf("tiny noise: max |mean(x_i) - y_i| = %.2e, max sd(x_i) = %.2e (c sy = %.1e)\n", worst,
+           sdmax, in.noise_scale * 1e-7);
+    assert_true(worst < 1e-5);
+    assert_true(sdmax < 1e-5);
+    tbl_gp_destroy(&g);
+}
+
+/* Direct computation with the fitted hyperparameters (GSL Cholesky):
+ * covariance of the points in keep[0..m), kernel to a point, restricted log
+ * likelihood, universal-kriging prediction. */
+typedef struct direct {
+    int dim;
+    double ell[3], sf, c, jitter;
+} direct;
+
+static double dk(const direct *p, const double *a, const double *b)
+{
+    double s = 0.0;
+    for (int d = 0; d < p->dim; d++)
+        if (isfinite(p->ell[d])) s += pow((a[d] - b[d]) / p->ell[d], 2);
+    return p->sf * p->sf * exp(-0.5 * s);
+}
+
+/* K of the m points idx[] (factorised), K^-1 y, K^-1 1. */
+static void direct_factor(const direct *p, int m, const int *idx, const double *x, const double *y,
+                          const double *sy, gsl_matrix *K, gsl_vector *ky, gsl_vector *k1)
+{
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++)
+            gsl_matrix_set(K, i, j, dk(p, x + idx[i] * p->dim, x + idx[j] * p->dim));
+    for (int i = 0; i < m; i++)
+        *gsl_matrix_ptr(K, i, i) += pow(p->c * sy[idx[i]], 2) + p->jitter;
+    assert_int_equal(gsl_linalg_cholesky_decomp1(K), GSL_SUCCESS);
+    for (int i = 0; i < m; i++) {
+        gsl_vector_set(ky, i, y[idx[i]]);
+        gsl_vector_set(k1, i, 1.0);
+    }
+    gsl_linalg_cholesky_svx(K, ky);
+    gsl_linalg_cholesky_svx(K, k1);
+}
+
+static double direct_reml(const direct *p, int n, const double *x, const double *y,
+                          const double *sy)
+{
+    int idx[64];
+    gsl_matrix *K = gsl_matrix_alloc(n, n);
+    gsl_vector *ky = gsl_vector_alloc(n), *k1 = gsl_vector_alloc(n);
+    for (int i = 0; i < n; i++) idx[i] = i;
+    direct_factor(p, n, idx, x, y, sy, K, ky, k1);
+    double yky = 0, oky = 0, ok1 = 0, logdet = 0;
+    for (int i = 0; i < n; i++) {
+        yky += y[i] * gsl_vector_get(ky, i);
+        oky += gsl_vector_get(ky, i);
+        ok1 += gsl_vector_get(k1, i);
+        logdet += 2 * log(gsl_matrix_get(K, i, i));
+    }
+    gsl_matrix_free(K);
+    gsl_vector_free(ky);
+    gsl_vector_free(k1);
+    return -0.5 * (yky - oky * oky / ok1) - 0.5 * logdet - 0.5 * log(ok1) -
+           0.5 * (n - 1) * log(2 * M_PI);
+}
+
+/* Refit without point i (hyperparameters fixed, GLS mean re-estimated):
+ * mean and sd of y_i. */
+static void direct_loo(const direct *p, int n, const double *x, const double *y, const double *sy,
+                       int i, double *mu, double *sd)
+{
+    int idx[64], m = 0;
+    for (int j = 0; j < n; j++)
+        if (j != i) idx[m++] = j;
+    gsl_matrix *K = gsl_matrix_alloc(m, m);
+    gsl_vector *ky = gsl_vector_alloc(m), *k1 = gsl_vector_alloc(m), *ks = gsl_vector_alloc(m);
+    direct_factor(p, m, idx, x, y, sy, K, ky, k1);
+    double ok1 = 0, oky = 0;
+    for (int j = 0; j < m; j++) ok1 += gsl_vector_get(k1, j), oky += gsl_vector_get(ky, j);
+    double mhat = oky / ok1, f = mhat, kKk = 0, kK1 = 0;
+    for (int j = 0; j < m; j++) {
+        double kj = dk(p, x + i * p->dim, x + idx[j] * p->dim);
+        gsl_vector_set(ks, j, kj);
+        f += kj * (gsl_vector_get(ky, j) - mhat * gsl_vector_get(k1, j));
+        kK1 += kj * gsl_vector_get(k1, j);
+    }
+    gsl_vector *v = gsl_vector_alloc(m);
+    gsl_vector_memcpy(v, ks);
+    gsl_linalg_cholesky_svx(K, v);
+    for (int j = 0; j < m; j++) kKk += gsl_vector_get(ks, j) * gsl_vector_get(v, j);
+    double var = p->sf * p->sf - kKk + (1 - kK1) * (1 - kK1) / ok1 + pow(p->c * sy[i], 2) +
+                 p->jitter;
+    *mu = f;
+    *sd = sqrt(var);
+    gsl_matrix_free(K);
+    gsl_vector_free(ky);
+    gsl_vector_free(k1);
+    gsl_vector_free(ks);
+    gsl_vector_free(v);
+}
+
+static direct direct_from(const tbl_gp_info *in)
+{
+    direct p = {.dim = in->dim, .sf = in->sf, .c = in->noise_scale, .jitter = in->jitter};
+    for (int d = 0; d < 3; d++) p.ell[d] = in->ell[d];
+    return p;
+}
+
+/* Closed-form LOO against refits without each point, log_ml against the
+ * direct computation, and optimality of the fitted hyperparameters. */
+static void check_exact(const char *what, int n, int dim, const double *x, const double *y,
+                        const double *sy)
+{
+    tbl_gp *g = fit_ok(n, dim, x, y, sy);
+    tbl_gp_info in;
+    tbl_gp_get_info(g, &in);
+    print_info(what, &in);
+    direct p = direct_from(&in);
+    double mu[64], sd[64], emu = 0, esd = 0;
+    tbl_gp_loo(g, mu, sd);
+    for (int i = 0; i < n; i++) {
+        double m, v;
+        direct_loo(&p, n, x, y, sy, i, &m, &v);
+        emu = fmax(emu, fabs(m - mu[i]));
+        esd = fmax(esd, fabs(v - sd[i]));
+    }
+    double lml = direct_reml(&p, n, x, y, sy);
+    printf("%s: LOO closed form vs %d refits without the point: max |d mean| = %.2e, "
+           "max |d sd| = %.2e; log_ml %.10f vs direct %.10f\n",
+           what, n, emu, esd, in.log_ml, lml);
+    assert_true(emu < 1e-8 && esd < 1e-8);
+    assert_true(fabs(lml - in.log_ml) < 1e-8 * fmax(1.0, fabs(lml)));
+
+    /* optimality: +-5 % in each interior hyperparameter lowers the likelihood */
+    double worst_gain = -INFINITY;
+    for (int k = 0; k < dim + 2; k++) {
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+            direct q = p;
+            double fac = exp(0.05 * sgn);
+            if (k < dim) {
+                if (in.ell_at_bound[k] || !isfinite(q.ell[k])) continue;
+                q.ell[k] *= fac;
+            } else if (k == dim) {
+                q.sf *= fac;
+            } else {
+                if (q.c * fac < 1.0 || q.c * fac > 10.0) continue;
+                q.c *= fac;
+            }
+            worst_gain = fmax(worst_gain, direct_reml(&q, n, x, y, sy) - lml);
+        }
+    }
+    printf("%s: best change of log_ml under +-5 %% steps in ell, sf, c: %.3e (must be <= 0)\n",
+           what, worst_gain);
+    assert_true(worst_gain <= 1e-9);
+    tbl_gp_destroy(&g);
+}
+
+static void test_loo_and_likelihood(void **state)
+{
+    (void)state;
+    enum { N = 24, NA = 6, NB = 3, NC = 3, NG = NA * NB * NC };
+    double x[N][2], y[N], sy[N];
+    uint64_t s = 99u;
+    for (int i = 0; i < N; i++) {
+        x[i][0] = unif(&s);
+        x[i][1] = 4.0 * unif(&s);
+        sy[i] = 0.05 * (1 + unif(&s));
+        y[i] = sin(3 * x[i][0]) * cos(x[i][1]) + sy[i] * gauss(&s);
+    }
+    check_exact("2D scattered, n = 24", N, 2, &x[0][0], y, sy);
+    /* a grid: K is built from per-dim tables of kernel factors */
+    double xg[NG][3], yg[NG], sg[NG];
+    int k = 0;
+    for (int a = 0; a < NA; a++)
+        for (int b = 0; b < NB; b++)
+            for (int c = 0; c < NC; c++, k++) {
+                xg[k][0] = 0.2 * a, xg[k][1] = 0.5 * b, xg[k][2] = 0.5 * c;
+                sg[k] = 0.02;
+                yg[k] = f3(xg[k]) + sg[k] * gauss(&s);
+            }
+    check_exact("3D grid 6x3x3", NG, 3, &xg[0][0], yg, sg);
+}
+
+/* ---- invalid input and determinism ------------------------------------------ */
+
+static void expect_bad(int n, int dim, const double *x, const double *y, const double *sy,
+                       const char *needle)
+{
+    tbl_gp *g = (tbl_gp *)&g; /* must be reset to NULL */
+    stc_error_clear();
+    assert_int_equal(tbl_gp_fit(n, dim, x, y, sy, &g), STC_EINVAL);
+    assert_null(g);
+    printf("refused: %s\n", stc_errmsg());
+    if (!strstr(stc_errmsg(), needle)) fail_msg("message '%s' lacks '%s'", stc_errmsg(), needle);
+}
+
+static void test_invalid(void **state)
+{
+    (void)state;
+    double x[6] = {0, 1, 2, 3, 4, 5}, y[6] = {1, 2, 3, 4, 5, 6}, sy[6] = {1, 1, 1, 1, 1, 1};
+    expect_bad(1, 1, x, y, sy, "n = 1: must be >= 2");
+    expect_bad(6, 0, x, y, sy, "dim = 0: must be in 1..3");
+    expect_bad(6, 4, x, y, sy, "dim = 4");
+    expect_bad(6, 1, NULL, y, sy, "x = NULL");
+    double xb[6] = {0, 1, 2, 3, 4, 5};
+    xb[3] = NAN;
+    expect_bad(3, 2, xb, y, sy, "x[1][1] = nan: must be finite");
+    double yb[6] = {1, 2, 3, 4, 5, 6};
+    yb[2] = INFINITY;
+    expect_bad(6, 1, x, yb, sy, "y[2] = inf: must be finite");
+    double sb[6] = {1, 1, 1, 1, -1, 1};
+    expect_bad(6, 1, x, y, sb, "sy[4] = -1: must be finite and > 0");
+    sb[4] = 0;
+    expect_bad(6, 1, x, y, sb, "sy[4] = 0");
+    assert_int_equal(tbl_gp_fit(6, 1, x, y, sy, NULL), STC_EINVAL);
+}
+
+static int same_info(const tbl_gp_info *a, const tbl_gp_info *b)
+{
+    return a->n == b->n && a->dim == b->dim && !memcmp(a->ell, b->ell, sizeof a->ell) &&
+           !memcmp(&a->sf, &b->sf, sizeof a->sf) &&
+           !memcmp(&a->noise_scale, &b->noise_scale, sizeof a->sf) &&
+           !memcmp(&a->mean, &b->mean, sizeof a->sf) && !memcmp(&a->log_ml, &b->log_ml, sizeof a->sf) &&
+           !memcmp(&a->loo_rms, &b->loo_rms, sizeof a->sf) &&
+           !memcmp(&a->loo_max, &b->loo_max, sizeof a->sf) &&
+           !memcmp(&a->loo_cover2, &b->loo_cover2, sizeof a->sf) &&
+           a->evaluations == b->evaluations && a->converged == b->converged &&
+           a->subset_n == b->subset_n && !memcmp(a->ell_lo, b->ell_lo, sizeof a->ell_lo) &&
+           !memcmp(a->ell_hi, b->ell_hi, sizeof a->ell_hi) &&
+           !memcmp(a->ell_at_bound, b->ell_at_bound, sizeof a->ell_at_bound) &&
+           !memcmp(&a->jitter, &b->jitter, sizeof a->sf);
+}
+
+/* Two fits of the same data: info, LOO and a prediction bit-identical. */
+static void check_same(const char *what, int n, const double *x, const double *y,
+                       const double *sy)
+{
+    double t0 = now();
+    tbl_gp *a = fit_ok(n, 3, x, y, sy);
+    double dt = now() - t0;
+    tbl_gp *b = fit_ok(n, 3, x, y, sy);
+    tbl_gp_info ia, ib;
+    tbl_gp_get_info(a, &ia);
+    tbl_gp_get_info(b, &ib);
+    print_info(what, &ia);
+    double q[3] = {0.3, 0.6, 0.9}, ma, sa, mb, sb;
+    tbl_gp_predict(a, q, &ma, &sa);
+    tbl_gp_predict(b, q, &mb, &sb);
+    double *la = malloc(4 * (size_t)n * sizeof *la), *lb = la + 2 * n;
+    tbl_gp_loo(a, la, la + n);
+    tbl_gp_loo(b, lb, lb + n);
+    int same = same_info(&ia, &ib) && !memcmp(&ma, &mb, sizeof ma) &&
+               !memcmp(&sa, &sb, sizeof sa) && !memcmp(la, lb, 2 * (size_t)n * sizeof *la);
+    printf("determinism, %s (fit %.0f ms, subset stage %d points): info, LOO and prediction "
+           "%s\n", what, 1e3 * dt, ia.subset_n, same ? "bit-identical" : "DIFFER");
+    assert_true(same);
+    assert_true(ia.converged);
+    free(la);
+    tbl_gp_destroy(&a);
+    tbl_gp_destroy(&b);
+}
+
+static void test_determinism(void **state)
+{
+    (void)state;
+    enum { N = 100, NA = 10, NB = 6, NC = 5, NG = NA * NB * NC };
+    static double x[NG * 3], y[NG], sy[NG];
+    uint64_t s = 4242u;
+    for (int i = 0; i < N; i++) { /* scattered: kernel evaluated directly */
+        double *xi = x + 3 * i;
+        for (int d = 0; d < 3; d++) xi[d] = unif(&s);
+        sy[i] = 0.02;
+        y[i] = f3(xi) + sy[i] * gauss(&s);
+    }
+    check_same("3D scattered, n = 100", N, x, y, sy);
+    int k = 0; /* a grid above the subset size: subset stage, kernel tables */
+    for (int a = 0; a < NA; a++)
+        for (int b = 0; b < NB; b++)
+            for (int c = 0; c < NC; c++, k++) {
+                double *xk = x + 3 * k;
+                xk[0] = a / (NA - 1.0), xk[1] = b / (NB - 1.0), xk[2] = c / (NC - 1.0);
+                sy[k] = 0.02 * (1 + unif(&s));
+                y[k] = f3(xk) + sy[k] * gauss(&s);
+            }
+    check_same("3D grid 10x6x5, n = 300", NG, x, y, sy);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_smooth_1d),          cmocka_unit_test(test_understated_noise),
+        cmocka_unit_test(test_grid_3d),            cmocka_unit_test(test_constant_dim),
+        cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_loo_and_likelihood),
+        cmocka_unit_test(test_invalid),            cmocka_unit_test(test_determinism),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
