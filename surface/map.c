@@ -12,6 +12,7 @@
 #include <hdf5.h>
 
 #include "srf_impl.h"
+#include "stc_h5.h"
 #include "stc_check.h"
 
 #define SRF_FORMAT_NAME "stiction-surface-1"
@@ -229,98 +230,6 @@ done:
     return st;
 }
 
-/* ------------------------------------------------------------ HDF5 helpers */
-
-static int attr_exists(hid_t obj, const char *name)
-{
-    htri_t e;
-    H5E_BEGIN_TRY { e = H5Aexists(obj, name); } H5E_END_TRY;
-    return e > 0;
-}
-
-static int attr_write(hid_t obj, const char *name, hid_t type, const void *v)
-{
-    hid_t sp = H5Screate(H5S_SCALAR);
-    hid_t a = H5Acreate2(obj, name, type, sp, H5P_DEFAULT, H5P_DEFAULT);
-    int ok = a >= 0 && H5Awrite(a, type, v) >= 0;
-    if (a >= 0) H5Aclose(a);
-    H5Sclose(sp);
-    return ok ? 0 : -1;
-}
-
-static int put_d(hid_t o, const char *n, double v) { return attr_write(o, n, H5T_NATIVE_DOUBLE, &v); }
-static int put_i(hid_t o, const char *n, int v) { return attr_write(o, n, H5T_NATIVE_INT, &v); }
-static int put_u(hid_t o, const char *n, unsigned long v) { return attr_write(o, n, H5T_NATIVE_ULONG, &v); }
-
-static int put_s(hid_t o, const char *n, const char *v)
-{
-    hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, strlen(v) + 1);
-    H5Tset_strpad(t, H5T_STR_NULLTERM);
-    int r = attr_write(o, n, t, v);
-    H5Tclose(t);
-    return r;
-}
-
-/* Open attribute n of o if it holds exactly one element (an array attribute
- * in a foreign file would overrun the single value read into); -1 if not. */
-static hid_t attr_open_one(hid_t o, const char *n)
-{
-    if (!attr_exists(o, n)) return -1;
-    hid_t a = H5Aopen(o, n, H5P_DEFAULT);
-    if (a < 0) return -1;
-    hid_t sp = H5Aget_space(a);
-    hssize_t cnt = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-    if (sp >= 0) H5Sclose(sp);
-    if (cnt != 1) {
-        H5Aclose(a);
-        return -1;
-    }
-    return a;
-}
-
-static int get_d(hid_t o, const char *n, double *v)
-{
-    hid_t a = attr_open_one(o, n);
-    int ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, v) >= 0;
-    if (a >= 0) H5Aclose(a);
-    return ok ? 0 : -1;
-}
-
-static int get_i(hid_t o, const char *n, int *v)
-{
-    hid_t a = attr_open_one(o, n);
-    int ok = a >= 0 && H5Aread(a, H5T_NATIVE_INT, v) >= 0;
-    if (a >= 0) H5Aclose(a);
-    return ok ? 0 : -1;
-}
-
-static int get_u(hid_t o, const char *n, unsigned long *v)
-{
-    hid_t a = attr_open_one(o, n);
-    int ok = a >= 0 && H5Aread(a, H5T_NATIVE_ULONG, v) >= 0;
-    if (a >= 0) H5Aclose(a);
-    return ok ? 0 : -1;
-}
-
-static int get_s(hid_t o, const char *n, char *buf, size_t cap)
-{
-    hid_t a = attr_open_one(o, n);
-    if (a < 0) return -1;
-    hid_t ft = H5Aget_type(a);
-    int ok = H5Tget_class(ft) == H5T_STRING && !H5Tis_variable_str(ft) && H5Tget_size(ft) < cap;
-    if (ok) {
-        hid_t t = H5Tcopy(H5T_C_S1);
-        H5Tset_size(t, cap);
-        H5Tset_strpad(t, H5T_STR_NULLTERM);
-        ok = H5Aread(a, t, buf) >= 0;
-        H5Tclose(t);
-    }
-    H5Tclose(ft);
-    H5Aclose(a);
-    return ok ? 0 : -1;
-}
-
 /* ------------------------------------------------------------ HDF5 import */
 
 /* Every height of a map read from `path` (dataset `name`) must be finite;
@@ -408,38 +317,38 @@ static int write_synth_attrs(hid_t d, const srf_map *m)
     const srf_synth_params *p = &m->synth;
     double lL, lr, ls;
     srf_band(p, &lL, &lr, &ls);
-    int e = put_u(d, "seed", m->seed) | put_s(d, "rng", "gsl mt19937") |
-            put_s(d, "spectrum", srf_spectrum_name(p->spectrum)) | put_d(d, "rms_mm", p->rms) |
-            put_s(d, "amplitude", p->amplitude == SRF_AMP_EXACT ? "exact" : "rayleigh") |
-            put_i(d, "non_gaussian", p->non_gaussian) |
-            put_d(d, "skewness_target", p->skewness) | put_d(d, "kurtosis_target", p->kurtosis) |
-            put_d(d, "skewness_reached", m->skewness_reached) |
-            put_d(d, "kurtosis_reached", m->kurtosis_reached);
+    int e = stc_h5_put_u(d, "seed", m->seed) | stc_h5_put_s(d, "rng", "gsl mt19937") |
+            stc_h5_put_s(d, "spectrum", srf_spectrum_name(p->spectrum)) | stc_h5_put_d(d, "rms_mm", p->rms) |
+            stc_h5_put_s(d, "amplitude", p->amplitude == SRF_AMP_EXACT ? "exact" : "rayleigh") |
+            stc_h5_put_i(d, "non_gaussian", p->non_gaussian) |
+            stc_h5_put_d(d, "skewness_target", p->skewness) | stc_h5_put_d(d, "kurtosis_target", p->kurtosis) |
+            stc_h5_put_d(d, "skewness_reached", m->skewness_reached) |
+            stc_h5_put_d(d, "kurtosis_reached", m->kurtosis_reached);
     if (p->non_gaussian)
-        e |= put_s(d, "johnson_family", m->johnson) | put_d(d, "johnson_gamma", m->johnson_gamma) |
-             put_d(d, "johnson_delta", m->johnson_delta);
+        e |= stc_h5_put_s(d, "johnson_family", m->johnson) | stc_h5_put_d(d, "johnson_gamma", m->johnson_gamma) |
+             stc_h5_put_d(d, "johnson_delta", m->johnson_delta);
     if (p->spectrum == SRF_SPECTRUM_EXPONENTIAL)
-        e |= put_d(d, "corr_length_x_mm", p->beta_x) | put_d(d, "corr_length_y_mm", p->beta_y) |
-             put_s(d, "acf", "sigma^2 exp(-ln10 sqrt((tx/bx)^2 + (ty/by)^2))");
+        e |= stc_h5_put_d(d, "corr_length_x_mm", p->beta_x) | stc_h5_put_d(d, "corr_length_y_mm", p->beta_y) |
+             stc_h5_put_s(d, "acf", "sigma^2 exp(-ln10 sqrt((tx/bx)^2 + (ty/by)^2))");
     if (p->spectrum == SRF_SPECTRUM_SELF_AFFINE)
-        e |= put_d(d, "hurst", p->hurst) | put_d(d, "long_wavelength_mm", lL) |
-             put_d(d, "rolloff_wavelength_mm", lr) | put_d(d, "cutoff_wavelength_mm", ls);
+        e |= stc_h5_put_d(d, "hurst", p->hurst) | stc_h5_put_d(d, "long_wavelength_mm", lL) |
+             stc_h5_put_d(d, "rolloff_wavelength_mm", lr) | stc_h5_put_d(d, "cutoff_wavelength_mm", ls);
     return e;
 }
 
 static int write_attrs(hid_t d, const srf_map *m)
 {
-    int e = put_s(d, "format", SRF_FORMAT_NAME) | put_s(d, "units", "mm") |
-            put_s(d, "layout", "[ny][nx] row-major, x = i*dx, y = j*dy, periodic") |
-            put_i(d, "nx", m->nx) | put_i(d, "ny", m->ny) | put_d(d, "lx_mm", m->lx) |
-            put_d(d, "ly_mm", m->ly) | put_d(d, "dx_mm", m->lx / m->nx) |
-            put_d(d, "dy_mm", m->ly / m->ny) | put_s(d, "origin", origin_name(m->origin)) |
-            put_i(d, "periodic", m->periodic);
+    int e = stc_h5_put_s(d, "format", SRF_FORMAT_NAME) | stc_h5_put_s(d, "units", "mm") |
+            stc_h5_put_s(d, "layout", "[ny][nx] row-major, x = i*dx, y = j*dy, periodic") |
+            stc_h5_put_i(d, "nx", m->nx) | stc_h5_put_i(d, "ny", m->ny) | stc_h5_put_d(d, "lx_mm", m->lx) |
+            stc_h5_put_d(d, "ly_mm", m->ly) | stc_h5_put_d(d, "dx_mm", m->lx / m->nx) |
+            stc_h5_put_d(d, "dy_mm", m->ly / m->ny) | stc_h5_put_s(d, "origin", origin_name(m->origin)) |
+            stc_h5_put_i(d, "periodic", m->periodic);
     if (m->origin == SRF_ORIGIN_SYNTH) e |= write_synth_attrs(d, m);
     if (m->origin == SRF_ORIGIN_IMPORT)
-        e |= put_s(d, "source", m->source) | put_d(d, "z_scale", m->zscale) |
-             put_d(d, "detrend_tilt_x", m->tilt_x) | put_d(d, "detrend_tilt_y", m->tilt_y) |
-             put_d(d, "detrend_offset_mm", m->offset);
+        e |= stc_h5_put_s(d, "source", m->source) | stc_h5_put_d(d, "z_scale", m->zscale) |
+             stc_h5_put_d(d, "detrend_tilt_x", m->tilt_x) | stc_h5_put_d(d, "detrend_tilt_y", m->tilt_y) |
+             stc_h5_put_d(d, "detrend_offset_mm", m->offset);
     return e;
 }
 
@@ -501,35 +410,35 @@ static void read_meta(hid_t d, srf_map *m)
     p->ny = m->ny;
     p->lx = m->lx;
     p->ly = m->ly;
-    if (get_s(d, "origin", buf, sizeof buf) == 0)
+    if (stc_h5_get_s(d, "origin", buf, sizeof buf) == 0)
         m->origin = strcmp(buf, "synth") == 0    ? SRF_ORIGIN_SYNTH
                     : strcmp(buf, "import") == 0 ? SRF_ORIGIN_IMPORT
                                                  : SRF_ORIGIN_NONE;
-    get_u(d, "seed", &m->seed);
-    get_i(d, "periodic", &m->periodic);
-    if (get_s(d, "spectrum", buf, sizeof buf) == 0) p->spectrum = spectrum_from_name(buf);
-    if (get_s(d, "amplitude", buf, sizeof buf) == 0)
+    stc_h5_get_u(d, "seed", &m->seed);
+    stc_h5_get_i(d, "periodic", &m->periodic);
+    if (stc_h5_get_s(d, "spectrum", buf, sizeof buf) == 0) p->spectrum = spectrum_from_name(buf);
+    if (stc_h5_get_s(d, "amplitude", buf, sizeof buf) == 0)
         p->amplitude = strcmp(buf, "rayleigh") == 0 ? SRF_AMP_RAYLEIGH : SRF_AMP_EXACT;
-    get_d(d, "rms_mm", &p->rms);
-    get_d(d, "corr_length_x_mm", &p->beta_x);
-    get_d(d, "corr_length_y_mm", &p->beta_y);
-    get_d(d, "hurst", &p->hurst);
-    get_d(d, "long_wavelength_mm", &p->lambda_long);
-    get_d(d, "rolloff_wavelength_mm", &p->lambda_rolloff);
-    get_d(d, "cutoff_wavelength_mm", &p->lambda_cutoff);
-    get_i(d, "non_gaussian", &p->non_gaussian);
-    get_d(d, "skewness_target", &p->skewness);
-    get_d(d, "kurtosis_target", &p->kurtosis);
-    get_d(d, "skewness_reached", &m->skewness_reached);
-    get_d(d, "kurtosis_reached", &m->kurtosis_reached);
-    get_s(d, "johnson_family", m->johnson, sizeof m->johnson);
-    get_d(d, "johnson_gamma", &m->johnson_gamma);
-    get_d(d, "johnson_delta", &m->johnson_delta);
-    get_s(d, "source", m->source, sizeof m->source);
-    get_d(d, "z_scale", &m->zscale);
-    get_d(d, "detrend_tilt_x", &m->tilt_x);
-    get_d(d, "detrend_tilt_y", &m->tilt_y);
-    get_d(d, "detrend_offset_mm", &m->offset);
+    stc_h5_get_d(d, "rms_mm", &p->rms);
+    stc_h5_get_d(d, "corr_length_x_mm", &p->beta_x);
+    stc_h5_get_d(d, "corr_length_y_mm", &p->beta_y);
+    stc_h5_get_d(d, "hurst", &p->hurst);
+    stc_h5_get_d(d, "long_wavelength_mm", &p->lambda_long);
+    stc_h5_get_d(d, "rolloff_wavelength_mm", &p->lambda_rolloff);
+    stc_h5_get_d(d, "cutoff_wavelength_mm", &p->lambda_cutoff);
+    stc_h5_get_i(d, "non_gaussian", &p->non_gaussian);
+    stc_h5_get_d(d, "skewness_target", &p->skewness);
+    stc_h5_get_d(d, "kurtosis_target", &p->kurtosis);
+    stc_h5_get_d(d, "skewness_reached", &m->skewness_reached);
+    stc_h5_get_d(d, "kurtosis_reached", &m->kurtosis_reached);
+    stc_h5_get_s(d, "johnson_family", m->johnson, sizeof m->johnson);
+    stc_h5_get_d(d, "johnson_gamma", &m->johnson_gamma);
+    stc_h5_get_d(d, "johnson_delta", &m->johnson_delta);
+    stc_h5_get_s(d, "source", m->source, sizeof m->source);
+    stc_h5_get_d(d, "z_scale", &m->zscale);
+    stc_h5_get_d(d, "detrend_tilt_x", &m->tilt_x);
+    stc_h5_get_d(d, "detrend_tilt_y", &m->tilt_y);
+    stc_h5_get_d(d, "detrend_offset_mm", &m->offset);
 }
 
 stc_status srf_map_read(const char *path, srf_map **out)
@@ -551,7 +460,7 @@ stc_status srf_map_read(const char *path, srf_map **out)
                    "%s: dataset '%s' is not 2-D", path, SRF_DATASET);
     H5Sget_simple_extent_dims(sp, dims, NULL);
     double lx, ly;
-    STC_CHECK_GOTO(get_d(d, "lx_mm", &lx) == 0 && get_d(d, "ly_mm", &ly) == 0, st, done,
+    STC_CHECK_GOTO(stc_h5_get_d(d, "lx_mm", &lx) == 0 && stc_h5_get_d(d, "ly_mm", &ly) == 0, st, done,
                    STC_EFORMAT, "%s: attributes lx_mm, ly_mm missing: not a stiction surface "
                    "file", path);
     STC_CHECK_GOTO(dims[0] >= 3 && dims[1] >= 3 && dims[0] <= 65536 && dims[1] <= 65536, st, done,
