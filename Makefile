@@ -19,7 +19,7 @@ CSTD      := -std=c11 -D_DEFAULT_SOURCE
 WARN      := -Wall -Wextra -Werror
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
-CPPFLAGS  += -Iinclude -Iasperity -Isurface -I/usr/include/suitesparse
+CPPFLAGS  += -Iinclude -Iasperity -Isurface -I/usr/include/suitesparse -DSTC_VERSION='"$(VERSION)"'
 CFLAGS    += $(CSTD) $(OPTFLAGS) $(WARN) -fopenmp -fPIC $(PKG_CFLAGS)
 # GSL's CBLAS calls are served by OpenBLAS (no -lgslcblas: one CBLAS only)
 LDLIBS    += -lgsl -lfftw3_omp $(PKG_LIBS) -lcholmod -lopenblas -lpng -lm

@@ -91,6 +91,7 @@ void cj_done(cli_json *j); /* final newline */
 int cli_formulas(const cli_cmd *cmd, int argc, char **argv);
 int cli_asperity(const cli_cmd *cmd, int argc, char **argv);
 int cli_halfspace(const cli_cmd *cmd, int argc, char **argv);
+int cli_table(const cli_cmd *cmd, int argc, char **argv); /* build|info|query|merge */
 
 /* --- asperity --shear (cli_asperity_shear.c) --- */
 #include "stiction/asperity.h"

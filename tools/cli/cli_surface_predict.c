@@ -15,9 +15,10 @@
 #include "stiction/gw.h"
 #include "stiction/model.h"
 #include "stiction/surface.h"
+#include "stiction/table.h"
 
 typedef struct {
-    char *surface, *out, *csv, *png; /* owned */
+    char *surface, *out, *csv, *png, *table; /* owned */
     int rule, json, deterministic, kde, wsp, sampled, timing;
     unsigned long long seen; /* cli_opt_bit() of every option given */
     asp_layer layer;
@@ -36,7 +37,10 @@ static const cli_opt opts[] = {
     {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},
     {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"},
     {"t-mm", "MM", "coating thickness, mm (default: t-over-R × R of the common options)"},
-    {"model", "hertz|wsp", "asperity model (default wsp; hertz has no friction law)"},
+    {"table", "FILE", "asperity response from an FE friction table (`stiction table build`): "
+                      "the coating counts, each summit with its own t/R; mu_s with an error band"},
+    {"model", "hertz|wsp", "closed-form asperity model (default wsp; hertz has no friction "
+                           "law)"},
     {"layer", "substrate|coating", "layer whose properties the closed-form model uses "
                                    "(default substrate)"},
     {"sampled", NULL, "evaluate the model through the table path (sampled + interpolated)"},
@@ -84,6 +88,7 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
     int c = 0;
     stc_status s = STC_OK;
     if (strcmp(key, "surface") == 0) s = cli_set_string(key, v, &o->surface);
+    else if (strcmp(key, "table") == 0) s = cli_set_string(key, v, &o->table);
     else if (strcmp(key, "out") == 0) s = cli_set_string(key, v, &o->out);
     else if (strcmp(key, "csv") == 0) s = cli_set_string(key, v, &o->csv);
     else if (strcmp(key, "png") == 0) s = cli_set_string(key, v, &o->png);
@@ -147,6 +152,11 @@ static stc_status check_opts(const predict_opts *o)
         return cli_conflict("density", "mode deterministic", "the deterministic sums run over "
                             "the map's own summits; a height density (gaussian|kde) is only "
                             "used by --mode statistical");
+    static const char *const CLOSED_FORM_KEYS[] = {"model", "layer", "sampled", NULL};
+    for (const char *const *k = CLOSED_FORM_KEYS; o->table && *k; k++)
+        if (given(o, *k))
+            return cli_conflict(*k, "table", "the table is the asperity model; --model, --layer "
+                                "and --sampled choose a closed-form one");
     stc_status s = cli_surface_import_check(&o->imp);
     if (s != STC_OK) return s;
     if ((o->np > 0) == (o->ns > 0))
@@ -157,6 +167,35 @@ static stc_status check_opts(const predict_opts *o)
 }
 
 /* ------------------------------------------------------------ set-up */
+
+/* With --table: the sums at the main model's separations with P at inception
+ * (aux[0]) and with Qmax = σ(μs) P (aux[1], the error band). */
+typedef struct {
+    tbl_table *t;
+    asp_model *m[2];
+    srf_gw *g[2];
+} table_aux;
+
+static stc_status make_table_models(const predict_opts *o, const stc_params *p, table_aux *x,
+                                    asp_model **out)
+{
+    stc_status s = tbl_read(o->table, &x->t);
+    if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_PRELOAD, out);
+    if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_SLIDE, &x->m[0]);
+    if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_ERR, &x->m[1]);
+    if (s != STC_OK && strncmp(stc_errmsg(), "table =", 7) != 0) {
+        char msg[1024];
+        snprintf(msg, sizeof msg, "%s", stc_errmsg());
+        s = stc_error(s, __FILE__, __LINE__, "table = '%s': %s", o->table, msg);
+    }
+    return s;
+}
+
+static void table_aux_free(table_aux *x)
+{
+    for (int k = 0; k < 2; k++) srf_gw_destroy(&x->g[k]), asp_model_destroy(&x->m[k]);
+    tbl_destroy(&x->t);
+}
 
 static stc_status make_model(const predict_opts *o, const stc_params *p, asp_model **out)
 {
@@ -192,13 +231,26 @@ static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **ou
     return s;
 }
 
-static stc_status run_points(const predict_opts *o, srf_gw *g, srf_gw_point *pts)
+/* Per load point with --table: μs's error band and μs with P at inception. */
+typedef struct {
+    double mu_s_err, mu_s_slide;
+} table_extra;
+
+static stc_status run_points(const predict_opts *o, srf_gw *g, const table_aux *x,
+                             srf_gw_point *pts, table_extra *ex)
 {
     int n = o->np ? o->np : o->ns;
     for (int i = 0; i < n; i++) {
         stc_status s = o->np ? srf_gw_at_pressure(g, o->pressures[i], &pts[i])
                              : srf_gw_at_separation(g, o->separations[i], &pts[i]);
         if (s != STC_OK) return s;
+        if (!x->t) continue;
+        srf_gw_point a, b; /* the same summits at the same separation */
+        if ((s = srf_gw_at_separation(x->g[0], pts[i].h, &a)) ||
+            (s = srf_gw_at_separation(x->g[1], pts[i].h, &b)))
+            return s;
+        ex[i].mu_s_slide = pts[i].Q_MPa / a.pressure_MPa;
+        ex[i].mu_s_err = b.Q_MPa / pts[i].pressure_MPa; /* errors taken fully correlated */
     }
     return STC_OK;
 }
@@ -207,6 +259,7 @@ static stc_status run_points(const predict_opts *o, srf_gw *g, srf_gw_point *pts
 
 typedef struct {
     const predict_opts *o;
+    const table_extra *ex; /* [n] with --table, else NULL */
     const asp_model *m;
     srf_gw_info info;
     asp_model_range range;
@@ -216,7 +269,8 @@ typedef struct {
 static const char *DATUM =
     "separation d from the mean summit height (Greenwood & Williamson 1966), in units of sigma_s";
 
-static void json_point(cli_json *j, const context *c, const srf_gw_point *q)
+static void json_point(cli_json *j, const context *c, const srf_gw_point *q,
+                       const table_extra *e)
 {
     double Es = c->info.E_star_MPa;
     cj_obj(j, NULL);
@@ -227,6 +281,11 @@ static void json_point(cli_json *j, const context *c, const srf_gw_point *q)
     cj_num(j, "contacts_per_mm2", q->contacts_per_mm2);
     cj_num(j, "Q_over_An_Estar", q->Q_MPa / Es);
     cj_num(j, "mu_s", q->mu_s);
+    if (e) {
+        cj_num(j, "mu_s_err", e->mu_s_err);
+        cj_num(j, "mu_s_P_at_inception", e->mu_s_slide);
+    }
+    cj_bool(j, "in_range", !(q->load_fraction_outside > 0.0));
     cj_num(j, "delta_max_over_omega_c", q->delta_max_over_omega_c);
     cj_num(j, "t_over_R_min", q->tR_min);
     cj_num(j, "t_over_R_max", q->tR_max);
@@ -250,6 +309,12 @@ static void json_points(FILE *f, const context *c, const srf_gw_point *pts, int 
         cj_str(&j, "model", asp_model_name(c->m));
         cj_str(&j, "layer", asp_model_layer_name(c->m));
         cj_str(&j, "mode", srf_gw_mode_name(i->mode));
+        if (c->o->table) {
+            cj_str(&j, "table", c->o->table);
+            cj_str(&j, "mu_s_definition", "sum Qmax / sum P with P the preload at the "
+                                          "separation; mu_s_P_at_inception uses the asperities' "
+                                          "P at sliding inception");
+        }
         cj_str(&j, "surface", c->o->surface);
         cj_str(&j, "separation_datum", DATUM);
         cj_num(&j, "coating_t_mm", asp_model_t(c->m));
@@ -273,7 +338,7 @@ static void json_points(FILE *f, const context *c, const srf_gw_point *pts, int 
         cj_end_obj(&j);
         cj_arr(&j, "points");
     } else cj_arr(&j, NULL);
-    for (int k = 0; k < n; k++) json_point(&j, c, &pts[k]);
+    for (int k = 0; k < n; k++) json_point(&j, c, &pts[k], c->ex ? &c->ex[k] : NULL);
     cj_end_arr(&j);
     if (meta) cj_end_obj(&j);
     cj_done(&j);
@@ -290,7 +355,8 @@ static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n
             i->H_MPa, i->plasticity_index, DATUM);
     fprintf(f, "separation_over_sigma_s,nominal_pressure_MPa,P_over_An_Estar,A_over_An,"
                "contacts_per_mm2,Q_over_An_Estar,mu_s,delta_max_over_omega_c,t_over_R_min,"
-               "t_over_R_max,load_fraction_outside_model_range,err_P_over_An_MPa\n");
+               "t_over_R_max,load_fraction_outside_model_range,err_P_over_An_MPa%s\n",
+            c->ex ? ",mu_s_err,mu_s_P_at_inception" : "");
     for (int k = 0; k < n; k++) {
         const srf_gw_point *q = &pts[k];
         /* a value that does not exist (Q and mu_s of the frictionless hertz
@@ -304,8 +370,14 @@ static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n
                                             "%.6g",  "%.3g"};
         for (int m = 0; m < 12; m++) {
             char b[32];
-            fprintf(f, "%s%s", cli_num(b, sizeof b, fmt[m], v[m], ""), m < 11 ? "," : "\n");
+            fprintf(f, "%s%s", cli_num(b, sizeof b, fmt[m], v[m], ""), m < 11 ? "," : "");
         }
+        if (c->ex) {
+            char b[2][32];
+            fprintf(f, ",%s,%s", cli_num(b[0], sizeof b[0], "%.4g", c->ex[k].mu_s_err, ""),
+                    cli_num(b[1], sizeof b[1], "%.10g", c->ex[k].mu_s_slide, ""));
+        }
+        fputc('\n', f);
     }
 }
 
@@ -318,17 +390,26 @@ static void table_points(const context *c, const srf_gw_point *pts, int n)
            "(E*/H sqrt(sigma_s/R), H = 2.8 Y)\n", i->eta_per_mm2, i->sigma_s_mm, i->R_mm,
            i->plasticity_index);
     printf("  %s\n", DATUM);
-    printf("  %8s %12s %11s %11s %8s %10s %8s\n", "d/sig_s", "P/An [MPa]", "A/An",
-           "N [/mm2]", "mu_s", "dmax/wc", "outside");
+    printf("  %8s %12s %11s %11s %8s%s %10s %8s\n", "d/sig_s", "P/An [MPa]", "A/An",
+           "N [/mm2]", "mu_s", c->ex ? "   +- err  mu_s(Pi)" : "", "dmax/wc", "outside");
     for (int k = 0; k < n; k++) {
         const srf_gw_point *q = &pts[k];
-        char mu[32], dm[32]; /* mu_s: n/a for hertz, and where nothing touches */
-        printf("  %8.4f %12.5g %11.4e %11.4g %8s %10s %8.3f\n", q->h, q->pressure_MPa,
+        char mu[32], dm[32], ex[64] = ""; /* mu_s: n/a for hertz, and where nothing touches */
+        if (c->ex) {
+            char b[2][32];
+            snprintf(ex, sizeof ex, " %9s %9s",
+                     cli_num(b[0], sizeof b[0], "%.4f", c->ex[k].mu_s_err, "n/a"),
+                     cli_num(b[1], sizeof b[1], "%.4f", c->ex[k].mu_s_slide, "n/a"));
+        }
+        printf("  %8.4f %12.5g %11.4e %11.4g %8s%s %10s %8.3f\n", q->h, q->pressure_MPa,
                q->area_fraction, q->contacts_per_mm2,
-               cli_num(mu, sizeof mu, "%.4f", q->mu_s, "n/a"),
+               cli_num(mu, sizeof mu, "%.4f", q->mu_s, "n/a"), ex,
                cli_num(dm, sizeof dm, "%.3g", q->delta_max_over_omega_c, "n/a"),
                q->load_fraction_outside);
     }
+    if (c->ex)
+        printf("  (mu_s = sum Qmax / sum P with P the preload; +- err: the table's one-standard-"
+               "error band; mu_s(Pi): P at sliding inception)\n");
     printf("  (outside = share of the load from summits outside the model's range "
            "delta/omega_c in [%g, %g])\n", c->range.w_lo, c->range.w_hi);
 }
@@ -469,6 +550,24 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
     return rc;
 }
 
+/* A share of the load above this from summits outside the model's range is
+ * worth a warning (the numbers are then partly extrapolated). */
+#define OUTSIDE_WARN 0.05
+
+static void warn_outside(const char *cmd, const context *c, const srf_gw_point *pts, int n)
+{
+    double worst = 0.0;
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (pts[i].load_fraction_outside > worst) worst = pts[i].load_fraction_outside, k = i;
+    if (worst > OUTSIDE_WARN)
+        fprintf(stderr, "stiction %s: warning: up to %.1f %% of the load (at P/An = %.4g MPa) "
+                "comes from summits outside the model's range (delta/omega_c in [%g, %g], "
+                "t/R in [%g, %g]): those points are partly extrapolated\n", cmd, 100 * worst,
+                pts[k].pressure_MPa, c->range.w_lo, c->range.w_hi, c->range.tR_lo,
+                c->range.tR_hi);
+}
+
 static double now(void)
 {
     struct timespec ts;
@@ -498,6 +597,8 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
 {
     predict_opts o = {0};
     stc_params p;
+    table_aux aux = {0};
+    table_extra *ex = NULL;
     asp_model *m = NULL;
     srf_gw *g = NULL;
     srf_gw_point *pts = NULL;
@@ -515,13 +616,15 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
         goto out;
     if (o.t_mm < 0) o.t_mm = stc_params_t(&p);
-    if (s == STC_OK) s = make_model(&o, &p, &m);
+    if (s == STC_OK) s = o.table ? make_table_models(&o, &p, &aux, &m) : make_model(&o, &p, &m);
     if (s == STC_OK) s = make_gw(&o, m, &g);
+    for (int k = 0; k < 2 && s == STC_OK && o.table; k++) s = make_gw(&o, aux.m[k], &aux.g[k]);
     int n = o.np ? o.np : o.ns;
-    if (s == STC_OK && !(pts = calloc((size_t)n, sizeof *pts)))
+    if (s == STC_OK && (!(pts = calloc((size_t)n, sizeof *pts)) ||
+                        !(ex = calloc((size_t)n, sizeof *ex))))
         s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
     double t1 = now();
-    if (s == STC_OK) s = run_points(&o, g, pts);
+    if (s == STC_OK) s = run_points(&o, g, &aux, pts, ex);
     double t2 = now();
     if (s != STC_OK) {
         rc = cli_fail(cmd->name, s);
@@ -530,6 +633,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (o.timing) report_timing(g, n, t1 - t0, t2 - t1);
     context c;
     c.o = &o;
+    c.ex = o.table ? ex : NULL;
     c.m = m;
     c.p = &p;
     srf_gw_get_info(g, &c.info);
@@ -538,10 +642,14 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (rc == CLI_EXIT_OK) {
         if (o.json) json_points(stdout, &c, pts, n, 0);
         else table_points(&c, pts, n);
+        warn_outside(cmd->name, &c, pts, n);
     }
 out:
     if (rc != CLI_EXIT_OK && o.out_made) rmdir(o.out); /* empty: outputs go in by rename */
     free(pts);
+    free(ex);
+    free(o.table);
+    table_aux_free(&aux);
     free(o.pressures);
     free(o.separations);
     free(o.surface);

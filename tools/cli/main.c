@@ -4,7 +4,6 @@
 
 #include "cli.h"
 
-#define STICTION_VERSION "0.1.0"
 
 static const cli_cmd commands[] = {
     {"formulas", "closed-form contact models (Hertz, yield inception, coated fits, WSP)",
@@ -12,6 +11,7 @@ static const cli_cmd commands[] = {
     {"surface", "rough surfaces: synth, stats, predict (stiction surface --help)", cli_surface},
     {"asperity", "FE model of one coated asperity under normal load (P, A, first yield)",
      cli_asperity},
+    {"table", "FE friction tables: build, info, query, merge (stiction table --help)", cli_table},
     {"halfspace", "elastic half-space reference: sphere on a rigid flat, full-slip junction growth",
      cli_halfspace},
     {NULL, NULL, NULL},
@@ -37,7 +37,7 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (strcmp(argv[1], "--version") == 0) {
-        printf("stiction %s\n", STICTION_VERSION);
+        printf("stiction %s\n", STC_VERSION);
         return CLI_EXIT_OK;
     }
     for (const cli_cmd *c = commands; c->name; c++)

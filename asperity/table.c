@@ -1,0 +1,411 @@
+/* Friction tables: the handle, the family, and one point's FE run
+ * (include/stiction/table.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "stiction/formulas.h"
+#include "stc_check.h"
+#include "table_impl.h"
+
+/* ---- family and numerics ------------------------------------------------- */
+
+void tbl_family_default(tbl_family *f)
+{
+    f->E_over_Y_su = f->E_over_Y_co = 1000.0; /* thesis Table 4.1 */
+    f->nu_su = f->nu_co = 0.32;
+    f->contact = ASP_CONTACT_STICK;
+    f->tau_c_over_Y_co = 1.0 / sqrt(3.0); /* von Mises shear strength (WSP 2012) */
+    f->criterion = ASP_SHEAR_CRIT_SHEAR;
+    f->alpha = 0.1; /* Brizmer, Kligerman & Etsion 2007 */
+}
+
+stc_status tbl_family_validate(const tbl_family *f)
+{
+    STC_CALL(stc_check_range("E-over-Y-su", f->E_over_Y_su, 10.0, 1, 1e5, 1));
+    STC_CALL(stc_check_range("E-over-Y-co", f->E_over_Y_co, 10.0, 1, 1e5, 1));
+    STC_CALL(stc_check_range("nu-su", f->nu_su, 0.0, 1, 0.5, 0));
+    STC_CALL(stc_check_range("nu-co", f->nu_co, 0.0, 1, 0.5, 0));
+    STC_CHECK(f->contact == ASP_CONTACT_SLIP || f->contact == ASP_CONTACT_STICK, STC_EINVAL,
+              "contact = %d: must be slip or stick", (int)f->contact);
+    STC_CALL(stc_check_range("tau-c-over-Y-co", f->tau_c_over_Y_co, 0.0, 0, 1.0, 1));
+    STC_CHECK(f->criterion == ASP_SHEAR_CRIT_SHEAR || f->criterion == ASP_SHEAR_CRIT_STIFFNESS,
+              STC_EINVAL, "criterion = %d: must be shear or stiffness", (int)f->criterion);
+    STC_CALL(stc_check_range("alpha", f->alpha, 0.0, 0, 1.0, 0));
+    return STC_OK;
+}
+
+void tbl_family_describe(const tbl_family *f, char *buf, int n)
+{
+    int k = snprintf(buf, (size_t)n, "E/Y substrate %g, coating %g; nu %g, %g; %s normal step; "
+                     "tau_c = %.6g Y_co; %s criterion", f->E_over_Y_su, f->E_over_Y_co,
+                     f->nu_su, f->nu_co, f->contact == ASP_CONTACT_STICK ? "stick" : "slip",
+                     f->tau_c_over_Y_co,
+                     f->criterion == ASP_SHEAR_CRIT_SHEAR ? "shear" : "stiffness");
+    if (f->criterion == ASP_SHEAR_CRIT_STIFFNESS && k > 0 && k < n)
+        snprintf(buf + k, (size_t)(n - k), " (alpha %g)", f->alpha);
+}
+
+void tbl_family_of_params(const stc_params *p, const tbl_family *like, tbl_family *out)
+{
+    stc_material su, co;
+    stc_params_materials(p, &su, &co);
+    *out = *like;
+    out->E_over_Y_su = su.E / su.Y;
+    out->E_over_Y_co = co.E / co.Y;
+    out->nu_su = su.nu;
+    out->nu_co = co.nu;
+}
+
+void tbl_numerics_default(tbl_numerics *n)
+{
+    n->mesh_level = 0;
+    n->elements_per_contact = 0.0;
+    n->placements = 2;
+    /* measured: four-member means move by +0.04 / +1.5 % from the default 3D
+     * mesh to one full refinement (t/R .025, Eco/Esu 2, δ = 1 / 30 ωc_su,
+     * docs/tangential-step.md §24, §26) */
+    n->err_floor = 0.015;
+    /* one mesh: ±4–8 % with where the nodes fall (WSP sphere, §19, §29) */
+    n->err_single = 0.06;
+}
+
+stc_status tbl_numerics_validate(const tbl_numerics *n)
+{
+    STC_CHECK(n->mesh_level >= 0 && n->mesh_level <= 3, STC_EINVAL,
+              "mesh-level = %d: must be in [0, 3]", n->mesh_level);
+    STC_CHECK(n->placements >= 1 && n->placements <= ASP_PLACEMENTS_MAX, STC_EINVAL,
+              "placements = %d: must be in [1, %d]", n->placements, ASP_PLACEMENTS_MAX);
+    STC_CHECK(n->elements_per_contact == 0.0 ||
+                  (n->elements_per_contact >= 2.0 && n->elements_per_contact <= 200.0),
+              STC_EINVAL, "elements-per-contact = %g: must be 0 (the mesh level's) or in "
+              "[2, 200]", n->elements_per_contact);
+    STC_CALL(stc_check_range("err-floor", n->err_floor, 0.0, 1, 0.5, 1));
+    STC_CALL(stc_check_range("err-single", n->err_single, 0.0, 0, 0.5, 1));
+    return STC_OK;
+}
+
+const char *tbl_state_name(tbl_state s)
+{
+    switch (s) {
+    case TBL_PENDING: return "pending";
+    case TBL_DONE: return "done";
+    case TBL_FAILED: return "failed";
+    }
+    return "unknown";
+}
+
+/* ---- one point --------------------------------------------------------------- */
+
+void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_params *p)
+{
+    stc_params_default(p);
+    p->R = TBL_REF_R_MM;
+    p->t_over_R = t_over_R;
+    p->E_su = TBL_REF_E_SU_MPA;
+    p->E_ratio = E_ratio;
+    p->Y_su = TBL_REF_E_SU_MPA / f->E_over_Y_su;
+    p->Y_co = TBL_REF_E_SU_MPA * E_ratio / f->E_over_Y_co;
+    p->nu = f->nu_su;
+    p->nu_co = f->nu_co;
+    p->nu_co_set = 1;
+}
+
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* The members' spread and the mesh bias, one standard error (table.h). */
+static double mu_s_error(const tbl_numerics *num, const asp_placement_result *e)
+{
+    int k = e->k;
+    if (k == 1) return num->err_single * e->mu_s;
+    double ss = 0.0;
+    for (int j = 0; j < k; j++) ss += pow(e->m[j].res.mu_s - e->mu_s, 2);
+    double se2 = ss / (k - 1) / k; /* standard error of the mean, squared */
+    return sqrt(se2 + pow(num->err_floor * e->mu_s, 2));
+}
+
+static void fill_done(const stc_critical *c, const asp_placement_result *e,
+                      const tbl_numerics *num, tbl_point *out)
+{
+    double P0 = 0.0, A0 = 0.0, ux = 0.0;
+    int k = e->k;
+    for (int j = 0; j < k; j++) {
+        P0 += e->m[j].pt.P / k;
+        A0 += e->m[j].pt.A / k;
+        ux += e->m[j].res.ux_slide / k;
+        out->newton_iterations += e->m[j].pt.newton_iterations + e->m[j].res.newton_iterations;
+        out->factorizations += e->m[j].pt.factorizations + e->m[j].res.factorizations;
+    }
+    out->state = TBL_DONE;
+    out->P_Pc = P0 / c->P_c;
+    out->A_Ac = A0 / c->A_c;
+    out->P_slide_Pc = e->P_slide / c->P_c;
+    out->Q_max_Pc = e->Q_max / c->P_c;
+    out->mu_s = e->mu_s;
+    out->mu_s_err = mu_s_error(num, e);
+    out->mu_s_preload = e->mu_s_preload;
+    out->mu_s_min = e->mu_s_min;
+    out->mu_s_max = e->mu_s_max;
+    out->ux_slide_wc = ux / c->omega_c;
+    out->members = e->n_ok;
+    snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, e->m[0].res.reason);
+}
+
+stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
+                             double t_over_R, double E_ratio, tbl_point *out)
+{
+    STC_CHECK(f && num && out, STC_EINVAL, "tbl_point_compute: NULL argument");
+    STC_CALL(tbl_family_validate(f));
+    STC_CALL(tbl_numerics_validate(num));
+    STC_CHECK(isfinite(w) && w > 0.0, STC_EINVAL, "delta/omega_c = %g: must be > 0", w);
+    stc_params p;
+    tbl_point_params(f, t_over_R, E_ratio, &p);
+    STC_CALL(stc_params_validate(&p));
+    stc_material su, co;
+    stc_critical c;
+    stc_params_materials(&p, &su, &co);
+    STC_CALL(stc_critical_eval(&su, p.R, &c));
+    double delta = w * c.omega_c;
+    STC_CHECK(delta <= 0.01 * p.R, STC_EINVAL, "delta/omega_c = %g: beyond the small-strain "
+              "limit delta <= 0.01 R (delta/omega_c <= %g)", w, 0.01 * p.R / c.omega_c);
+
+    asp_options o;
+    asp_options_default(&o);
+    o.geom = ASP_GEOM_3D;
+    o.contact = f->contact;
+    o.mesh_level = num->mesh_level;
+    o.elements_per_contact = num->elements_per_contact;
+    o.threads = 1;
+    asp_shear_options so;
+    asp_shear_options_default(&so);
+    so.criterion = f->criterion;
+    so.alpha = f->alpha;
+    so.tau_c = f->tau_c_over_Y_co * co.Y;
+
+    memset(out, 0, sizeof *out);
+    asp_placement_result *e = malloc(sizeof *e);
+    STC_CHECK(e, STC_ENOMEM, "tbl_point_compute: out of memory");
+    double t0 = wall_now(), c0 = cpu_now();
+    stc_status st = asp_shear_placements(&p, &o, &so, delta, num->placements, e);
+    if (st == STC_OK) {
+        fill_done(&c, e, num, out);
+    } else {
+        out->state = TBL_FAILED;
+        out->members = e->n_ok;
+        snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, stc_errmsg());
+    }
+    out->wall_s = wall_now() - t0;
+    out->cpu_s = cpu_now() - c0;
+    free(e);
+    stc_error_clear();
+    return STC_OK;
+}
+
+/* ---- the handle ----------------------------------------------------------------- */
+
+static stc_status check_axis(const char *name, const double *v, int n, double lo)
+{
+    STC_CHECK(v && n >= 1 && n <= 10000, STC_EINVAL, "%s: %d values: must be 1 to 10000", name,
+              n);
+    for (int i = 0; i < n; i++) {
+        STC_CHECK(isfinite(v[i]) && v[i] > lo, STC_EINVAL, "%s = %g: must be > %g", name, v[i],
+                  lo);
+        STC_CHECK(i == 0 || v[i] > v[i - 1], STC_EINVAL,
+                  "%s = %g after %g: values must increase", name, v[i], v[i - 1]);
+    }
+    return STC_OK;
+}
+
+stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double *w, int n_w,
+                      const double *t_over_R, int n_tR, const double *E_ratio, int n_E,
+                      tbl_table **out)
+{
+    STC_CHECK(out, STC_EINVAL, "tbl_create: out must not be NULL");
+    *out = NULL;
+    STC_CHECK(f && num, STC_EINVAL, "tbl_create: family and numerics required");
+    STC_CALL(tbl_family_validate(f));
+    STC_CALL(tbl_numerics_validate(num));
+    STC_CALL(check_axis("delta/omega_c", w, n_w, 0.0));
+    STC_CALL(check_axis("t/R", t_over_R, n_tR, 0.0));
+    STC_CALL(check_axis("E-ratio", E_ratio, n_E, 0.0));
+    STC_CHECK(t_over_R[n_tR - 1] < 1.0, STC_EINVAL, "t/R = %g: must be < 1", t_over_R[n_tR - 1]);
+    long np = (long)n_w * n_tR * n_E;
+    STC_CHECK(np <= 1000000, STC_EINVAL, "table of %ld points: at most 1000000", np);
+    tbl_table *t = calloc(1, sizeof *t);
+    STC_CHECK(t, STC_ENOMEM, "tbl_create: out of memory");
+    t->fam = *f;
+    t->num = *num;
+    const double *src[3] = {w, t_over_R, E_ratio};
+    int n[3] = {n_w, n_tR, n_E};
+    for (int k = 0; k < 3; k++) {
+        t->n[k] = n[k];
+        t->ax[k] = malloc((size_t)n[k] * sizeof(double));
+        if (t->ax[k]) memcpy(t->ax[k], src[k], (size_t)n[k] * sizeof(double));
+    }
+    t->pt = calloc((size_t)np, sizeof *t->pt);
+    if (!t->ax[0] || !t->ax[1] || !t->ax[2] || !t->pt) {
+        tbl_destroy(&t);
+        return STC_FAIL(STC_ENOMEM, "tbl_create: out of memory");
+    }
+    *out = t;
+    return STC_OK;
+}
+
+void tbl_destroy(tbl_table **pt)
+{
+    if (!pt || !*pt) return;
+    tbl_table *t = *pt;
+    for (int k = 0; k < 3; k++) free(t->ax[k]);
+    free(t->pt);
+    tbl_gp_destroy(&t->gp);
+    free(t);
+    *pt = NULL;
+}
+
+void tbl_get_family(const tbl_table *t, tbl_family *f) { *f = t->fam; }
+void tbl_get_numerics(const tbl_table *t, tbl_numerics *n) { *n = t->num; }
+int tbl_points(const tbl_table *t) { return t->n[0] * t->n[1] * t->n[2]; }
+
+int tbl_axis(const tbl_table *t, int axis, const double **values)
+{
+    if (axis < 0 || axis > 2) return 0;
+    if (values) *values = t->ax[axis];
+    return t->n[axis];
+}
+
+void tbl_coords(const tbl_table *t, int i, double *w, double *t_over_R, double *E_ratio)
+{
+    int iw = i % t->n[0], it = (i / t->n[0]) % t->n[1], iE = i / (t->n[0] * t->n[1]);
+    if (w) *w = t->ax[0][iw];
+    if (t_over_R) *t_over_R = t->ax[1][it];
+    if (E_ratio) *E_ratio = t->ax[2][iE];
+}
+
+const tbl_point *tbl_point_get(const tbl_table *t, int i)
+{
+    return i >= 0 && i < tbl_points(t) ? &t->pt[i] : NULL;
+}
+
+stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p)
+{
+    STC_CHECK(i >= 0 && i < tbl_points(t), STC_EINVAL, "point %d: must be in [0, %d)", i,
+              tbl_points(t));
+    STC_CHECK(p->state == TBL_PENDING || p->state == TBL_DONE || p->state == TBL_FAILED,
+              STC_EINVAL, "point %d: state %d is not pending, done or failed", i, p->state);
+    t->pt[i] = *p;
+    t->pt[i].reason[TBL_REASON_MAX - 1] = '\0';
+    tbl_gp_destroy(&t->gp);
+    return STC_OK;
+}
+
+void tbl_count(const tbl_table *t, int *done, int *failed, int *pending)
+{
+    int c[3] = {0, 0, 0};
+    for (int i = 0; i < tbl_points(t); i++) c[t->pt[i].state]++;
+    if (done) *done = c[TBL_DONE];
+    if (failed) *failed = c[TBL_FAILED];
+    if (pending) *pending = c[TBL_PENDING];
+}
+
+void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s)
+{
+    snprintf(t->command, sizeof t->command, "%s", command ? command : "");
+    t->build_wall_s = build_wall_s;
+}
+
+const char *tbl_provenance(const tbl_table *t, double *build_wall_s)
+{
+    if (build_wall_s) *build_wall_s = t->build_wall_s;
+    return t->command;
+}
+
+/* ---- identity of a build ------------------------------------------------------- */
+
+static unsigned long long fnv(unsigned long long h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 1099511628211ULL;
+    return h;
+}
+
+static unsigned long long fnv_d(unsigned long long h, double v) { return fnv(h, &v, sizeof v); }
+static unsigned long long fnv_i(unsigned long long h, int v) { return fnv(h, &v, sizeof v); }
+
+unsigned long long tbl_build_hash(const tbl_table *t)
+{
+    const tbl_family *f = &t->fam;
+    const tbl_numerics *n = &t->num;
+    unsigned long long h = 14695981039346656037ULL;
+    h = fnv_i(h, TBL_FORMAT_VERSION);
+    h = fnv_i(h, (int)sizeof(tbl_point)); /* the journal stores points as bytes */
+    h = fnv_d(h, f->E_over_Y_su), h = fnv_d(h, f->E_over_Y_co);
+    h = fnv_d(h, f->nu_su), h = fnv_d(h, f->nu_co);
+    h = fnv_i(h, (int)f->contact), h = fnv_d(h, f->tau_c_over_Y_co);
+    h = fnv_i(h, (int)f->criterion), h = fnv_d(h, f->alpha);
+    h = fnv_i(h, n->mesh_level), h = fnv_i(h, n->placements);
+    h = fnv_d(h, n->elements_per_contact);
+    h = fnv_d(h, n->err_floor), h = fnv_d(h, n->err_single);
+    for (int k = 0; k < 3; k++) {
+        h = fnv_i(h, t->n[k]);
+        for (int i = 0; i < t->n[k]; i++) h = fnv_d(h, t->ax[k][i]);
+    }
+    return h;
+}
+
+int tbl_same_build(const tbl_table *a, const tbl_table *b)
+{
+    return tbl_build_hash(a) == tbl_build_hash(b);
+}
+
+stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)
+{
+    STC_CHECK(out, STC_EINVAL, "tbl_merge: out must not be NULL");
+    *out = NULL;
+    STC_CHECK(parts && n >= 1, STC_EINVAL, "tbl_merge: %d tables: need at least one", n);
+    for (int j = 1; j < n; j++)
+        STC_CHECK(tbl_same_build(parts[0], parts[j]), STC_EINVAL,
+                  "merge: table %d is of another build than table 1 (family, numerics or "
+                  "axes differ)", j + 1);
+    const tbl_table *a = parts[0];
+    STC_CALL(tbl_create(&a->fam, &a->num, a->ax[0], a->n[0], a->ax[1], a->n[1], a->ax[2],
+                        a->n[2], out));
+    tbl_table *m = *out;
+    double wall = 0.0;
+    for (int j = 0; j < n; j++) {
+        for (int i = 0; i < tbl_points(m); i++)
+            if (m->pt[i].state == TBL_PENDING && parts[j]->pt[i].state != TBL_PENDING)
+                m->pt[i] = parts[j]->pt[i];
+        wall = fmax(wall, parts[j]->build_wall_s); /* shards run side by side */
+    }
+    tbl_set_provenance(m, a->command, wall);
+    return STC_OK;
+}
+
+/* ---- axes ------------------------------------------------------------------------ */
+
+int tbl_bracket(const double *ax, int n, double x, double *frac)
+{
+    if (n == 1) {
+        *frac = 0.0;
+        return 0;
+    }
+    int i = 0;
+    while (i < n - 2 && x >= ax[i + 1]) i++;
+    double f = (log(x) - log(ax[i])) / (log(ax[i + 1]) - log(ax[i]));
+    *frac = fmin(1.0, fmax(0.0, f));
+    return i;
+}

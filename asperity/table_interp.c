@@ -1,0 +1,288 @@
+/* Interpolation of a friction table with error bars, and the asperity model
+ * the surface prediction sums (include/stiction/table.h).
+ *
+ * P, A and P at inception are nearly free of numerical noise (SPEC §8): along
+ * δ they follow monotone Steffen (1990) cubics in ln P versus ln w through
+ * each (t/R, Eco/Esu) column's done points (exact for power laws such as
+ * Hertz), between columns linear in ln t/R and ln Eco/Esu.  Their error bar
+ * is the difference between that cubic and the straight line in ln–ln
+ * between the same two points: zero on a power law, the curvature's share
+ * where the column bends.
+ *
+ * μs carries a few per cent of node-placement noise per point, so it is not
+ * interpolated but smoothed: a Gaussian process (asperity/table_fit.h) on
+ * r = ln μs − ln μs_WSP(w), the Wu–Shi–Polycarpou (2012) curve as the trend,
+ * in (ln w, ln t/R, ln Eco/Esu), each point weighted by its own error
+ * estimate.  The query returns the posterior mean and standard deviation. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_interp.h>
+
+#include "stiction/formulas.h"
+#include "stc_check.h"
+#include "table_impl.h"
+
+/* ln μs_WSP(w): the trend the surrogate smooths the residual of */
+static double trend(double w)
+{
+    unsigned fl;
+    return log(stc_wsp_mu(w, &fl));
+}
+
+stc_status tbl_fit(tbl_table *t)
+{
+    STC_CHECK(t, STC_EINVAL, "tbl_fit: table required");
+    tbl_gp_destroy(&t->gp);
+    int np = tbl_points(t), n = 0;
+    double *x = malloc((size_t)np * 3 * sizeof *x);
+    double *y = malloc((size_t)np * sizeof *y), *sy = malloc((size_t)np * sizeof *sy);
+    double *lm = malloc((size_t)np * sizeof *lm), *ls = malloc((size_t)np * sizeof *ls);
+    stc_status st = STC_OK;
+    STC_CHECK_GOTO(x && y && sy && lm && ls, st, done, STC_ENOMEM, "tbl_fit: out of memory");
+    for (int i = 0; i < np; i++) {
+        const tbl_point *p = &t->pt[i];
+        if (p->state != TBL_DONE) continue;
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        x[3 * n] = log(w), x[3 * n + 1] = log(tR), x[3 * n + 2] = log(E);
+        y[n] = log(p->mu_s) - trend(w);
+        sy[n] = p->mu_s_err / p->mu_s; /* relative error = error of ln μs */
+        n++;
+    }
+    STC_CHECK_GOTO(n >= 3, st, done, STC_ERANGE, "table fit: %d done points: need at least 3",
+                   n);
+    STC_CALL_GOTO(tbl_gp_fit(n, 3, x, y, sy, &t->gp), st, done);
+    tbl_gp_info gi;
+    tbl_gp_get_info(t->gp, &gi);
+    tbl_gp_loo(t->gp, lm, ls);
+    double ss = 0.0, mx = 0.0;
+    int in2 = 0;
+    for (int i = 0; i < n; i++) {
+        double rel = expm1(y[i] - lm[i]); /* μs / μs_LOO − 1 */
+        ss += rel * rel;
+        mx = fmax(mx, fabs(rel));
+        in2 += fabs(y[i] - lm[i]) <= 2.0 * ls[i];
+    }
+    t->fit = (tbl_fit_info){n, {gi.ell[0], gi.ell[1], gi.ell[2]}, gi.noise_scale,
+                            sqrt(ss / n), mx, (double)in2 / n};
+done:
+    free(x), free(y), free(sy), free(lm), free(ls);
+    return st;
+}
+
+stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out)
+{
+    STC_CHECK(t && t->gp, STC_EINVAL, "table fit: not fitted (no done points, or tbl_fit not "
+              "called)");
+    *out = t->fit;
+    return STC_OK;
+}
+
+/* ---- P, A, P at inception along one column ---------------------------------- */
+
+enum { F_P = 0, F_A = 1, F_PS = 2 };
+
+static double field_of(const tbl_point *p, int f)
+{
+    return f == F_P ? p->P_Pc : f == F_A ? p->A_Ac : p->P_slide_Pc;
+}
+
+/* ln of field f at ln w = lw in column (iE, it): the monotone cubic (*cub)
+ * and the straight ln–ln line between the bracketing points (*lin).  Beyond
+ * the column's done points both continue the end interval's power law.
+ * Returns 0, or -1 when fewer than 2 points of the column are done; *gap
+ * set when a grid point of the column inside the bracket is not done. */
+static int column_eval(const tbl_table *t, int iE, int it, int f, double lw, double *cub,
+                       double *lin, int *gap)
+{
+    int nw = t->n[0], n = 0, base = (iE * t->n[1] + it) * nw;
+    double xs[64], ys[64];
+    double *xa = nw <= 64 ? xs : malloc((size_t)nw * sizeof *xa);
+    double *ya = nw <= 64 ? ys : malloc((size_t)nw * sizeof *ya);
+    if (!xa || !ya) {
+        if (xa != xs) free(xa);
+        if (ya != ys) free(ya);
+        return -1;
+    }
+    for (int i = 0; i < nw; i++) {
+        const tbl_point *p = &t->pt[base + i];
+        if (p->state != TBL_DONE) {
+            if (i > 0 && i < nw - 1 && log(t->ax[0][i - 1]) < lw && lw < log(t->ax[0][i + 1]))
+                *gap = 1;
+            continue;
+        }
+        xa[n] = log(t->ax[0][i]);
+        ya[n] = log(field_of(p, f));
+        n++;
+    }
+    int rc = 0;
+    if (n < 2) {
+        rc = -1;
+    } else {
+        int k = 0;
+        while (k < n - 2 && lw >= xa[k + 1]) k++;
+        double s = (ya[k + 1] - ya[k]) / (xa[k + 1] - xa[k]);
+        *lin = ya[k] + s * (lw - xa[k]);
+        *cub = *lin;
+        if (n >= 3 && lw > xa[0] && lw < xa[n - 1]) {
+            gsl_interp *ip = gsl_interp_alloc(gsl_interp_steffen, (size_t)n);
+            if (ip && gsl_interp_init(ip, xa, ya, (size_t)n) == GSL_SUCCESS)
+                *cub = gsl_interp_eval(ip, xa, ya, lw, NULL);
+            gsl_interp_free(ip);
+        }
+    }
+    if (xa != xs) free(xa);
+    if (ya != ys) free(ya);
+    return rc;
+}
+
+/* Field f at (ln w, t/R, Eco/Esu): bilinear in ln t/R, ln Eco/Esu of the
+ * columns' ln values.  Returns -1 when a column it needs has < 2 points. */
+static int field_eval(const tbl_table *t, int f, double lw, double tR, double E, double *val,
+                      double *err, int *gap)
+{
+    double ft, fe;
+    int it = tbl_bracket(t->ax[1], t->n[1], tR, &ft);
+    int iE = tbl_bracket(t->ax[2], t->n[2], E, &fe);
+    double c = 0.0, l = 0.0;
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            double wgt = (a ? ft : 1.0 - ft) * (b ? fe : 1.0 - fe);
+            if (wgt == 0.0) continue;
+            double cc, ll;
+            if (column_eval(t, iE + b, it + a, f, lw, &cc, &ll, gap) != 0) return -1;
+            c += wgt * cc, l += wgt * ll;
+        }
+    *val = exp(c);
+    *err = fabs(exp(c) - exp(l));
+    return 0;
+}
+
+static unsigned range_flags(const tbl_table *t, double w, double tR, double E)
+{
+    const double eps = 1e-9;
+    unsigned fl = 0;
+    if (w < t->ax[0][0] * (1 - eps)) fl |= TBL_OUT_W_LOW;
+    if (w > t->ax[0][t->n[0] - 1] * (1 + eps)) fl |= TBL_OUT_W_HIGH;
+    if (tR < t->ax[1][0] * (1 - eps) || tR > t->ax[1][t->n[1] - 1] * (1 + eps))
+        fl |= TBL_OUT_T_OVER_R;
+    if (E < t->ax[2][0] * (1 - eps) || E > t->ax[2][t->n[2] - 1] * (1 + eps))
+        fl |= TBL_OUT_E_RATIO;
+    return fl;
+}
+
+static double clamp_axis(const tbl_table *t, int k, double v)
+{
+    return fmin(fmax(v, t->ax[k][0]), t->ax[k][t->n[k] - 1]);
+}
+
+stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
+                     tbl_value *out)
+{
+    STC_CHECK(t && out, STC_EINVAL, "tbl_query: table and out required");
+    STC_CHECK(isfinite(w) && w > 0, STC_EINVAL, "delta/omega_c = %g: must be > 0", w);
+    STC_CHECK(isfinite(t_over_R) && t_over_R > 0, STC_EINVAL, "t/R = %g: must be > 0",
+              t_over_R);
+    STC_CHECK(isfinite(E_ratio) && E_ratio > 0, STC_EINVAL, "E-ratio = %g: must be > 0",
+              E_ratio);
+    STC_CHECK(t->gp, STC_ERANGE, "table query: the table has no fitted points (fewer than 3 "
+              "done)");
+    memset(out, 0, sizeof *out);
+    out->flags = range_flags(t, w, t_over_R, E_ratio);
+    double tR = clamp_axis(t, 1, t_over_R), E = clamp_axis(t, 2, E_ratio), lw = log(w);
+    int gap = 0, bad = 0;
+    double e_ps;
+    bad |= field_eval(t, F_P, lw, tR, E, &out->P_Pc, &out->P_Pc_err, &gap);
+    bad |= field_eval(t, F_A, lw, tR, E, &out->A_Ac, &out->A_Ac_err, &gap);
+    bad |= field_eval(t, F_PS, lw, tR, E, &out->P_slide_Pc, &e_ps, &gap);
+    STC_CHECK(!bad, STC_ERANGE, "table query at t/R = %g, E-ratio = %g: a neighbouring "
+              "(t/R, E-ratio) column has fewer than 2 done points", t_over_R, E_ratio);
+    if (gap) out->flags |= TBL_GAP;
+    double xq[3] = {log(clamp_axis(t, 0, w)), log(tR), log(E)}, m, sd;
+    tbl_gp_predict(t->gp, xq, &m, &sd);
+    out->mu_s = exp(trend(w) + m);
+    out->mu_s_err = out->mu_s * sd;
+    out->Q_max_Pc = out->mu_s * out->P_slide_Pc;
+    out->Q_max_Pc_err = out->mu_s_err * out->P_slide_Pc;
+    return STC_OK;
+}
+
+/* ---- the asperity model ---------------------------------------------------------- */
+
+static int near(double a, double b) { return fabs(a - b) <= 1e-6 * fabs(b); }
+
+static stc_status check_family(const tbl_table *t, const stc_params *p)
+{
+    tbl_family pf;
+    tbl_family_of_params(p, &t->fam, &pf);
+    const tbl_family *f = &t->fam;
+    if (near(pf.E_over_Y_su, f->E_over_Y_su) && near(pf.E_over_Y_co, f->E_over_Y_co) &&
+        near(pf.nu_su, f->nu_su) && near(pf.nu_co, f->nu_co))
+        return STC_OK;
+    char a[256], b[256];
+    tbl_family_describe(&pf, a, sizeof a);
+    tbl_family_describe(f, b, sizeof b);
+    return STC_FAIL(STC_EINVAL, "the materials are of another family than the table's: "
+                    "materials: %s; table: %s", a, b);
+}
+
+/* Samples per table interval of the dense resampling (the data model
+ * interpolates between them: Steffen in ln w, linear in t/R). */
+enum { DENSE_W = 8, DENSE_TR = 4 };
+
+stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
+                            tbl_model_kind kind, asp_model **out)
+{
+    STC_CHECK(out, STC_EINVAL, "tbl_model_create: out must not be NULL");
+    *out = NULL;
+    STC_CHECK(t && p, STC_EINVAL, "tbl_model_create: table and parameters required");
+    STC_CHECK(kind >= TBL_MODEL_PRELOAD && kind <= TBL_MODEL_ERR, STC_EINVAL,
+              "tbl_model_create: kind = %d: must be preload, slide or err", (int)kind);
+    STC_CHECK(t->gp, STC_ERANGE, "the table has fewer than 3 done points: no model");
+    STC_CALL(check_family(t, p));
+    STC_CHECK(!(range_flags(t, t->ax[0][0], t->ax[1][0], p->E_ratio) & TBL_OUT_E_RATIO),
+              STC_ERANGE, "E-ratio = %g: outside the table's [%g, %g]", p->E_ratio, t->ax[2][0],
+              t->ax[2][t->n[2] - 1]);
+    int nw = t->n[0] >= 2 ? (t->n[0] - 1) * DENSE_W + 1 : 3;
+    int nt = t->n[1] >= 2 ? (t->n[1] - 1) * DENSE_TR + 1 : 1;
+    STC_CHECK(t->n[0] >= 2, STC_ERANGE, "the table has one delta value: no model along delta");
+    double *w = malloc((size_t)nw * sizeof *w), *tR = malloc((size_t)nt * sizeof *tR);
+    double *P = malloc((size_t)nw * nt * sizeof *P), *A = malloc((size_t)nw * nt * sizeof *A);
+    double *Q = malloc((size_t)nw * nt * sizeof *Q);
+    stc_status st = STC_OK;
+    STC_CHECK_GOTO(w && tR && P && A && Q, st, done, STC_ENOMEM, "tbl_model_create: out of "
+                   "memory");
+    for (int i = 0; i < nw; i++) {
+        int k = i / DENSE_W;
+        double f = (double)(i % DENSE_W) / DENSE_W;
+        w[i] = k >= t->n[0] - 1 ? t->ax[0][t->n[0] - 1]
+                                : exp((1 - f) * log(t->ax[0][k]) + f * log(t->ax[0][k + 1]));
+    }
+    for (int j = 0; j < nt; j++) {
+        int k = j / DENSE_TR;
+        double f = (double)(j % DENSE_TR) / DENSE_TR;
+        tR[j] = k >= t->n[1] - 1 ? t->ax[1][t->n[1] - 1]
+                                 : exp((1 - f) * log(t->ax[1][k]) + f * log(t->ax[1][k + 1]));
+    }
+    for (int j = 0; j < nt; j++)
+        for (int i = 0; i < nw; i++) {
+            tbl_value v;
+            STC_CALL_GOTO(tbl_query(t, w[i], tR[j], p->E_ratio, &v), st, done);
+            size_t k = (size_t)j * nw + i;
+            P[k] = kind == TBL_MODEL_SLIDE ? v.P_slide_Pc : v.P_Pc;
+            A[k] = v.A_Ac;
+            Q[k] = kind == TBL_MODEL_ERR ? v.Q_max_Pc_err : v.Q_max_Pc;
+        }
+    stc_material su;
+    stc_params_materials(p, &su, NULL);
+    static const char *const kname[3] = {"table", "table (P at inception)", "table (error)"};
+    asp_model_data d = {kname[kind], su, t_mm, nw, nt, w, tR, P, A, Q, 1};
+    st = asp_model_create_data(&d, out);
+done:
+    free(w), free(tR), free(P), free(A), free(Q);
+    return st;
+}

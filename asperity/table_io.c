@@ -1,0 +1,437 @@
+/* Friction tables in HDF5 (include/stiction/table.h; the format is
+ * docs/table-format.md).  Written atomically: a temporary file beside the
+ * target, flushed to disk, renamed over it. */
+#include <errno.h>
+#include <fcntl.h>
+#include <libgen.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <hdf5.h>
+
+#include "stc_check.h"
+#include "stc_h5.h"
+#include "table_impl.h"
+
+#ifndef STC_VERSION
+#define STC_VERSION "unknown"
+#endif
+
+static const char *const axis_name[3] = {"delta_over_omega_c", "t_over_R", "E_ratio"};
+
+/* The per-point datasets: name, offset of the double (or int) in tbl_point. */
+typedef struct {
+    const char *name;
+    size_t off;
+    int is_int;
+    const char *doc; /* the dataset's "description" attribute */
+} field;
+
+#define D(n, m, doc) {n, offsetof(tbl_point, m), 0, doc}
+#define I(n, m, doc) {n, offsetof(tbl_point, m), 1, doc}
+static const field fields[] = {
+    I("state", state, "0 pending, 1 done, 2 failed"),
+    D("P_over_P_c", P_Pc, "preload P / Pc_su (end of the normal step, mean of the members)"),
+    D("A_over_A_c", A_Ac, "preload contact area A / Ac_su"),
+    D("P_slide_over_P_c", P_slide_Pc, "normal load at sliding inception / Pc_su"),
+    D("Q_max_over_P_c", Q_max_Pc, "tangential load at sliding inception / Pc_su"),
+    D("mu_s", mu_s, "static friction coefficient Q_max / P at inception (mean of the members)"),
+    D("mu_s_err", mu_s_err, "error estimate of mu_s, one standard error (absolute)"),
+    D("mu_s_preload", mu_s_preload, "Q_max / preload"),
+    D("mu_s_min", mu_s_min, "smallest member mu_s"),
+    D("mu_s_max", mu_s_max, "largest member mu_s"),
+    D("ux_slide_over_omega_c", ux_slide_wc, "flat displacement at inception / omega_c_su"),
+    I("members", members, "node-placement members that reached inception"),
+    I("newton_iterations", newton_iterations, "Newton iterations, both steps, all members"),
+    I("factorizations", factorizations, "Cholesky factorizations, both steps, all members"),
+    D("wall_s", wall_s, "wall time of the point, s"),
+    D("cpu_s", cpu_s, "CPU time of the point, s"),
+};
+#undef D
+#undef I
+enum { NFIELD = sizeof fields / sizeof *fields };
+
+/* ---- write -------------------------------------------------------------------- */
+
+static int write_family(hid_t g, const tbl_table *t)
+{
+    const tbl_family *f = &t->fam;
+    const tbl_numerics *n = &t->num;
+    return stc_h5_put_d(g, "E_over_Y_su", f->E_over_Y_su) |
+           stc_h5_put_d(g, "E_over_Y_co", f->E_over_Y_co) | stc_h5_put_d(g, "nu_su", f->nu_su) |
+           stc_h5_put_d(g, "nu_co", f->nu_co) |
+           stc_h5_put_s(g, "contact", f->contact == ASP_CONTACT_STICK ? "stick" : "slip") |
+           stc_h5_put_d(g, "tau_c_over_Y_co", f->tau_c_over_Y_co) |
+           stc_h5_put_s(g, "criterion", f->criterion == ASP_SHEAR_CRIT_SHEAR ? "shear"
+                                                                             : "stiffness") |
+           stc_h5_put_d(g, "alpha", f->alpha) | stc_h5_put_i(g, "mesh_level", n->mesh_level) |
+           stc_h5_put_i(g, "placements", n->placements) |
+           stc_h5_put_d(g, "elements_per_contact", n->elements_per_contact) |
+           stc_h5_put_d(g, "err_floor", n->err_floor) |
+           stc_h5_put_d(g, "err_single", n->err_single);
+}
+
+static int write_root(hid_t f, const tbl_table *t)
+{
+    int done, failed, pending;
+    tbl_count(t, &done, &failed, &pending);
+    char when[32];
+    time_t now = time(NULL);
+    struct tm tm;
+    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&now, &tm));
+    return stc_h5_put_s(f, "format", TBL_FORMAT_NAME) |
+           stc_h5_put_i(f, "format_version", TBL_FORMAT_VERSION) |
+           stc_h5_put_s(f, "stiction_version", STC_VERSION) | stc_h5_put_s(f, "created", when) |
+           stc_h5_put_s(f, "command", t->command) |
+           stc_h5_put_d(f, "build_wall_s", t->build_wall_s) |
+           stc_h5_put_s(f, "units", "responses normalised by omega_c, P_c, A_c of the "
+                                    "substrate (SPEC 3)") |
+           stc_h5_put_s(f, "layout", "points/* are [n_E_ratio][n_t_over_R][n_delta]") |
+           stc_h5_put_d(f, "R_mm", TBL_REF_R_MM) | stc_h5_put_d(f, "E_su_MPa", TBL_REF_E_SU_MPA) |
+           stc_h5_put_i(f, "points_done", done) | stc_h5_put_i(f, "points_failed", failed) |
+           stc_h5_put_i(f, "points_pending", pending) | write_family(f, t);
+}
+
+static int write_array(hid_t g, const char *name, int rank, const hsize_t *dims, hid_t ftype,
+                       hid_t mtype, const void *v, const char *doc)
+{
+    hid_t sp = H5Screate_simple(rank, dims, NULL);
+    hid_t d = H5Dcreate2(g, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int e = d < 0 || H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0;
+    if (!e && doc) e = stc_h5_put_s(d, "description", doc) != 0;
+    if (d >= 0) H5Dclose(d);
+    H5Sclose(sp);
+    return e ? -1 : 0;
+}
+
+static int write_points(hid_t f, const tbl_table *t)
+{
+    int np = tbl_points(t), e = 0;
+    hsize_t dims[3] = {(hsize_t)t->n[2], (hsize_t)t->n[1], (hsize_t)t->n[0]};
+    hid_t g = H5Gcreate2(f, "points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0) return -1;
+    double *dv = malloc((size_t)np * sizeof *dv);
+    int *iv = malloc((size_t)np * sizeof *iv);
+    char *rs = malloc((size_t)np * TBL_REASON_MAX);
+    e = !dv || !iv || !rs;
+    for (int k = 0; !e && k < NFIELD; k++) {
+        for (int i = 0; i < np; i++) {
+            const char *p = (const char *)&t->pt[i] + fields[k].off;
+            /* numbers of a point that is not done are not an answer */
+            int keep = t->pt[i].state == TBL_DONE || fields[k].is_int ||
+                       !strcmp(fields[k].name, "wall_s") || !strcmp(fields[k].name, "cpu_s");
+            if (fields[k].is_int) iv[i] = *(const int *)p;
+            else dv[i] = keep ? *(const double *)p : NAN;
+        }
+        e = fields[k].is_int
+                ? write_array(g, fields[k].name, 3, dims, H5T_STD_I32LE, H5T_NATIVE_INT, iv,
+                              fields[k].doc)
+                : write_array(g, fields[k].name, 3, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dv,
+                              fields[k].doc);
+    }
+    if (!e) {
+        for (int i = 0; i < np; i++) {
+            memset(rs + (size_t)i * TBL_REASON_MAX, 0, TBL_REASON_MAX);
+            snprintf(rs + (size_t)i * TBL_REASON_MAX, TBL_REASON_MAX, "%s", t->pt[i].reason);
+        }
+        hid_t st = H5Tcopy(H5T_C_S1);
+        H5Tset_size(st, TBL_REASON_MAX);
+        H5Tset_strpad(st, H5T_STR_NULLTERM);
+        e = write_array(g, "reason", 3, dims, st, st, rs, "why a point failed, or the "
+                        "criterion's reason at inception");
+        H5Tclose(st);
+    }
+    free(dv);
+    free(iv);
+    free(rs);
+    H5Gclose(g);
+    return e ? -1 : 0;
+}
+
+static int write_axes(hid_t f, const tbl_table *t)
+{
+    hid_t g = H5Gcreate2(f, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0) return -1;
+    static const char *const doc[3] = {"interference delta / omega_c of the substrate",
+                                       "coating thickness / substrate radius",
+                                       "coating / substrate Young's modulus"};
+    int e = 0;
+    for (int k = 0; k < 3 && !e; k++) {
+        hsize_t n = (hsize_t)t->n[k];
+        e = write_array(g, axis_name[k], 1, &n, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, t->ax[k],
+                        doc[k]);
+    }
+    H5Gclose(g);
+    return e;
+}
+
+static int write_fit(hid_t f, const tbl_table *t)
+{
+    if (!t->gp) return 0;
+    const tbl_fit_info *fi = &t->fit;
+    hid_t g = H5Gcreate2(f, "fit", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0) return -1;
+    int e = stc_h5_put_s(g, "model", "Gaussian process on ln mu_s - ln mu_WSP(w) in (ln w, "
+                                     "ln t/R, ln E_ratio); recomputed when read") |
+            stc_h5_put_i(g, "n", fi->n) | stc_h5_put_d(g, "ell_ln_w", fi->ell[0]) |
+            stc_h5_put_d(g, "ell_ln_t_over_R", fi->ell[1]) |
+            stc_h5_put_d(g, "ell_ln_E_ratio", fi->ell[2]) |
+            stc_h5_put_d(g, "noise_scale", fi->noise_scale) |
+            stc_h5_put_d(g, "loo_rms_rel", fi->loo_rms) |
+            stc_h5_put_d(g, "loo_max_rel", fi->loo_max) |
+            stc_h5_put_d(g, "loo_cover2", fi->loo_cover2);
+    H5Gclose(g);
+    return e;
+}
+
+/* Temporary name beside path (same file system, so rename is atomic). */
+static stc_status tmp_beside(const char *path, char *buf, size_t n)
+{
+    int k = snprintf(buf, n, "%s.tmp", path); /* one writer per path */
+    STC_CHECK(k > 0 && (size_t)k < n, STC_EINVAL, "%s: path too long", path);
+    return STC_OK;
+}
+
+/* Flush a closed file and its directory entry to disk. */
+static int sync_path(const char *path)
+{
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return -1;
+    int r = fsync(fd);
+    close(fd);
+    return r;
+}
+
+static void sync_dir_of(const char *path)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", path);
+    int fd = open(dirname(buf), O_RDONLY | O_DIRECTORY);
+    if (fd >= 0) {
+        fsync(fd); /* best effort: some file systems refuse it */
+        close(fd);
+    }
+}
+
+stc_status tbl_write(const tbl_table *t, const char *path)
+{
+    STC_CHECK(t && path && *path, STC_EINVAL, "tbl_write: table and path required");
+    char tmp[4200];
+    STC_CALL(tmp_beside(path, tmp, sizeof tmp));
+    stc_status st = STC_OK;
+    hid_t f = -1;
+    H5E_BEGIN_TRY { f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(f >= 0, STC_EIO, "%s: cannot create the table file (%s)", tmp, strerror(errno));
+    int e;
+    H5E_BEGIN_TRY {
+        e = write_root(f, t) | write_axes(f, t) | write_points(f, t) | write_fit(f, t);
+    } H5E_END_TRY;
+    herr_t c;
+    H5E_BEGIN_TRY { c = H5Fclose(f); } H5E_END_TRY;
+    STC_CHECK_GOTO(e == 0 && c >= 0, st, fail, STC_EIO, "%s: cannot write the table (disk "
+                   "full?)", tmp);
+    STC_CHECK_GOTO(sync_path(tmp) == 0, st, fail, STC_EIO, "%s: cannot sync: %s", tmp,
+                   strerror(errno));
+    STC_CHECK_GOTO(rename(tmp, path) == 0, st, fail, STC_EIO, "%s: cannot rename from %s: %s",
+                   path, tmp, strerror(errno));
+    sync_dir_of(path);
+    return STC_OK;
+fail:
+    remove(tmp);
+    return st;
+}
+
+/* ---- read ---------------------------------------------------------------------- */
+
+static stc_status read_array(hid_t g, const char *path, const char *name, hid_t mtype,
+                             const hsize_t *want, int rank, void *out)
+{
+    hid_t d = -1, sp = -1;
+    stc_status st = STC_OK;
+    H5E_BEGIN_TRY { d = H5Dopen2(g, name, H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(d >= 0, STC_EFORMAT, "%s: not a friction table: dataset '%s' missing", path, name);
+    sp = H5Dget_space(d);
+    hsize_t dims[3] = {0, 0, 0};
+    int r = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+    if (r == rank) H5Sget_simple_extent_dims(sp, dims, NULL);
+    int ok = r == rank;
+    for (int k = 0; ok && k < rank; k++) ok = dims[k] == want[k];
+    STC_CHECK_GOTO(ok, st, done, STC_EFORMAT, "%s: dataset '%s' has the wrong shape (rank %d)",
+                   path, name, r);
+    herr_t rr;
+    H5E_BEGIN_TRY { rr = H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, out); } H5E_END_TRY;
+    STC_CHECK_GOTO(rr >= 0, st, done, STC_EFORMAT, "%s: cannot read dataset '%s'", path, name);
+done:
+    if (sp >= 0) H5Sclose(sp);
+    H5Dclose(d);
+    return st;
+}
+
+static stc_status read_family(hid_t f, const char *path, tbl_family *fam, tbl_numerics *num)
+{
+    char contact[16] = "", crit[16] = "";
+    int bad = stc_h5_get_d(f, "E_over_Y_su", &fam->E_over_Y_su) |
+              stc_h5_get_d(f, "E_over_Y_co", &fam->E_over_Y_co) |
+              stc_h5_get_d(f, "nu_su", &fam->nu_su) | stc_h5_get_d(f, "nu_co", &fam->nu_co) |
+              stc_h5_get_s(f, "contact", contact, sizeof contact) |
+              stc_h5_get_d(f, "tau_c_over_Y_co", &fam->tau_c_over_Y_co) |
+              stc_h5_get_s(f, "criterion", crit, sizeof crit) |
+              stc_h5_get_d(f, "alpha", &fam->alpha) |
+              stc_h5_get_i(f, "mesh_level", &num->mesh_level) |
+              stc_h5_get_i(f, "placements", &num->placements) |
+              stc_h5_get_d(f, "elements_per_contact", &num->elements_per_contact) |
+              stc_h5_get_d(f, "err_floor", &num->err_floor) |
+              stc_h5_get_d(f, "err_single", &num->err_single);
+    STC_CHECK(!bad, STC_EFORMAT, "%s: friction table without its family or numerics "
+              "attributes", path);
+    STC_CHECK(!strcmp(contact, "stick") || !strcmp(contact, "slip"), STC_EFORMAT,
+              "%s: contact = '%s': must be stick or slip", path, contact);
+    STC_CHECK(!strcmp(crit, "shear") || !strcmp(crit, "stiffness"), STC_EFORMAT,
+              "%s: criterion = '%s': must be shear or stiffness", path, crit);
+    fam->contact = !strcmp(contact, "stick") ? ASP_CONTACT_STICK : ASP_CONTACT_SLIP;
+    fam->criterion = !strcmp(crit, "shear") ? ASP_SHEAR_CRIT_SHEAR : ASP_SHEAR_CRIT_STIFFNESS;
+    stc_status s = tbl_family_validate(fam);
+    if (s == STC_OK) s = tbl_numerics_validate(num);
+    STC_CHECK(s == STC_OK, STC_EFORMAT, "%s: %s", path, stc_errmsg());
+    return STC_OK;
+}
+
+static stc_status read_axes(hid_t f, const char *path, double *ax[3], int n[3])
+{
+    hid_t g = -1;
+    H5E_BEGIN_TRY { g = H5Gopen2(f, "axes", H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(g >= 0, STC_EFORMAT, "%s: not a friction table: group 'axes' missing", path);
+    stc_status st = STC_OK;
+    for (int k = 0; k < 3 && st == STC_OK; k++) {
+        hid_t d = -1;
+        H5E_BEGIN_TRY { d = H5Dopen2(g, axis_name[k], H5P_DEFAULT); } H5E_END_TRY;
+        STC_CHECK_GOTO(d >= 0, st, done, STC_EFORMAT, "%s: axis '%s' missing", path,
+                       axis_name[k]);
+        hid_t sp = H5Dget_space(d);
+        hssize_t np = H5Sget_simple_extent_npoints(sp);
+        H5Sclose(sp);
+        H5Dclose(d);
+        STC_CHECK_GOTO(np >= 1 && np <= 10000, st, done, STC_EFORMAT,
+                       "%s: axis '%s' has %lld values: must be 1 to 10000", path, axis_name[k],
+                       (long long)np);
+        n[k] = (int)np;
+        ax[k] = malloc((size_t)np * sizeof(double));
+        STC_CHECK_GOTO(ax[k], st, done, STC_ENOMEM, "tbl_read: out of memory");
+        hsize_t want = (hsize_t)np;
+        st = read_array(g, path, axis_name[k], H5T_NATIVE_DOUBLE, &want, 1, ax[k]);
+    }
+done:
+    H5Gclose(g);
+    return st;
+}
+
+static stc_status read_points(hid_t f, const char *path, tbl_table *t)
+{
+    int np = tbl_points(t);
+    hsize_t dims[3] = {(hsize_t)t->n[2], (hsize_t)t->n[1], (hsize_t)t->n[0]};
+    hid_t g = -1;
+    H5E_BEGIN_TRY { g = H5Gopen2(f, "points", H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(g >= 0, STC_EFORMAT, "%s: not a friction table: group 'points' missing", path);
+    stc_status st = STC_OK;
+    double *dv = malloc((size_t)np * sizeof *dv);
+    int *iv = malloc((size_t)np * sizeof *iv);
+    char *rs = malloc((size_t)np * TBL_REASON_MAX);
+    STC_CHECK_GOTO(dv && iv && rs, st, done, STC_ENOMEM, "tbl_read: out of memory");
+    for (int k = 0; k < NFIELD; k++) {
+        int isi = fields[k].is_int;
+        STC_CALL_GOTO(read_array(g, path, fields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
+                                 dims, 3, isi ? (void *)iv : (void *)dv), st, done);
+        for (int i = 0; i < np; i++) {
+            char *p = (char *)&t->pt[i] + fields[k].off;
+            if (isi) *(int *)p = iv[i];
+            else *(double *)p = dv[i];
+        }
+    }
+    hid_t stype = H5Tcopy(H5T_C_S1);
+    H5Tset_size(stype, TBL_REASON_MAX);
+    H5Tset_strpad(stype, H5T_STR_NULLTERM);
+    st = read_array(g, path, "reason", stype, dims, 3, rs);
+    H5Tclose(stype);
+    for (int i = 0; st == STC_OK && i < np; i++) {
+        tbl_point *p = &t->pt[i];
+        memcpy(p->reason, rs + (size_t)i * TBL_REASON_MAX, TBL_REASON_MAX);
+        p->reason[TBL_REASON_MAX - 1] = '\0';
+        STC_CHECK_GOTO(p->state >= TBL_PENDING && p->state <= TBL_FAILED, st, done, STC_EFORMAT,
+                       "%s: point %d: state %d is not 0, 1 or 2", path, i, p->state);
+        STC_CHECK_GOTO(p->state != TBL_DONE ||
+                           (isfinite(p->P_Pc) && p->P_Pc > 0 && isfinite(p->A_Ac) &&
+                            p->A_Ac > 0 && isfinite(p->mu_s) && p->mu_s > 0 &&
+                            isfinite(p->mu_s_err) && p->mu_s_err > 0 &&
+                            isfinite(p->P_slide_Pc) && p->P_slide_Pc > 0),
+                       st, done, STC_EFORMAT, "%s: point %d is marked done but its P, A, mu_s "
+                       "or error is not a positive number", path, i);
+    }
+done:
+    free(dv);
+    free(iv);
+    free(rs);
+    H5Gclose(g);
+    return st;
+}
+
+stc_status tbl_read(const char *path, tbl_table **out)
+{
+    STC_CHECK(out, STC_EINVAL, "tbl_read: out must not be NULL");
+    *out = NULL;
+    STC_CHECK(path && *path, STC_EINVAL, "tbl_read: path required");
+    struct stat sb;
+    STC_CHECK(stat(path, &sb) == 0, STC_EIO, "%s: cannot open: %s", path, strerror(errno));
+    STC_CHECK(!S_ISDIR(sb.st_mode), STC_EIO, "%s: is a directory (expected a friction table "
+              "file from `stiction table build`)", path);
+    hid_t f = -1;
+    H5E_BEGIN_TRY { f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(f >= 0, STC_EFORMAT, "%s: %s", path,
+              access(path, R_OK) == 0 ? "not an HDF5 file (expected a friction table from "
+                                        "`stiction table build`)"
+                                      : "cannot read");
+    stc_status st = STC_OK;
+    double *ax[3] = {NULL, NULL, NULL};
+    int n[3] = {0, 0, 0}, ver = 0;
+    char fmt[64] = "";
+    H5E_BEGIN_TRY {
+        stc_h5_get_s(f, "format", fmt, sizeof fmt);
+        stc_h5_get_i(f, "format_version", &ver);
+    } H5E_END_TRY;
+    STC_CHECK_GOTO(!strcmp(fmt, TBL_FORMAT_NAME), st, done, STC_EFORMAT,
+                   "%s: not a friction table (format attribute '%s', expected '%s')", path, fmt,
+                   TBL_FORMAT_NAME);
+    STC_CHECK_GOTO(ver == TBL_FORMAT_VERSION, st, done, STC_EFORMAT,
+                   "%s: table format version %d: this stiction reads version %d", path, ver,
+                   TBL_FORMAT_VERSION);
+    tbl_family fam;
+    tbl_numerics num;
+    H5E_BEGIN_TRY { st = read_family(f, path, &fam, &num); } H5E_END_TRY;
+    if (st) goto done;
+    H5E_BEGIN_TRY { st = read_axes(f, path, ax, n); } H5E_END_TRY;
+    if (st) goto done;
+    STC_CALL_GOTO(tbl_create(&fam, &num, ax[0], n[0], ax[1], n[1], ax[2], n[2], out), st, done);
+    H5E_BEGIN_TRY { st = read_points(f, path, *out); } H5E_END_TRY;
+    if (st) goto done;
+    char cmd[512] = "";
+    double wall = NAN;
+    H5E_BEGIN_TRY {
+        stc_h5_get_s(f, "command", cmd, sizeof cmd);
+        stc_h5_get_d(f, "build_wall_s", &wall);
+    } H5E_END_TRY;
+    tbl_set_provenance(*out, cmd, wall);
+    int done_pts;
+    tbl_count(*out, &done_pts, NULL, NULL);
+    if (done_pts >= 3) st = tbl_fit(*out);
+done:
+    if (st != STC_OK && st != STC_EFORMAT && st != STC_ENOMEM && *out == NULL) st = STC_EFORMAT;
+    if (st != STC_OK) tbl_destroy(out);
+    for (int k = 0; k < 3; k++) free(ax[k]);
+    H5Fclose(f);
+    return st;
+}

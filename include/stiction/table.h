@@ -1,0 +1,261 @@
+/* stiction — FE friction tables (SPEC §8): sweeps of the single-asperity
+ * solver over (δ/ωc_su, t/R, Eco/Esu) for one material family, stored in
+ * HDF5, interpolated with error bars, and turned into an asperity model for
+ * the Greenwood–Williamson sum (include/stiction/gw.h).
+ *
+ * Similarity: in the small-strain elastic–perfectly plastic model the
+ * response normalised by ωc_su, Pc_su, Ac_su depends only on δ/ωc_su, t/R,
+ * Eco/Esu and the family (E/Y and ν of each layer, the normal step's contact
+ * condition, the τc rule, the sliding criterion), not on R or on Esu itself.
+ * A point is therefore computed once, at R = 10 mm and Esu = 200 GPa, and
+ * serves every radius and modulus of its family.
+ *
+ * Layout of the grid: point (iE, it, iw) has index (iE n_tR + it) n_w + iw.
+ *
+ * Files: docs/table-format.md.  Units: mm, N, MPa; every stored response is
+ * normalised (P/Pc_su, A/Ac_su, Q/Pc_su, ux/ωc_su).
+ *
+ * Thread safety: a table handle is not locked; tbl_query and tbl_model_create
+ * only read it and may run concurrently once the fit exists (tbl_fit).
+ */
+#ifndef STICTION_TABLE_H
+#define STICTION_TABLE_H
+
+#include "stiction/asperity.h"
+#include "stiction/model.h"
+#include "stiction/params.h"
+#include "stiction/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- material family and numerical settings ----------------------------- */
+
+/* What the normalised response depends on besides the three axes.  Along
+ * the Eco/Esu axis E/Y of each layer is held (so Yco/Ysu = Eco/Esu × (E/Y)_su
+ * / (E/Y)_co), as in the thesis's grid. */
+typedef struct tbl_family {
+    double E_over_Y_su, E_over_Y_co; /* E/Y of substrate and coating; default 1000, 1000 */
+    double nu_su, nu_co;             /* Poisson ratios; default 0.32, 0.32 */
+    asp_contact_law contact;         /* normal step; default ASP_CONTACT_STICK */
+    double tau_c_over_Y_co;          /* τc = this × Y of the coating; default 1/√3 */
+    asp_shear_criterion criterion;   /* sliding criterion; default ASP_SHEAR_CRIT_SHEAR */
+    double alpha;                    /* stiffness criterion's KT ratio; default 0.1 */
+} tbl_family;
+
+/* The thesis's family (Table 4.1; SPEC §8). */
+void tbl_family_default(tbl_family *f);
+/* Ranges of every field; STC_EINVAL naming the field. */
+stc_status tbl_family_validate(const tbl_family *f);
+/* One line naming every field, e.g. for messages. */
+void tbl_family_describe(const tbl_family *f, char *buf, int n);
+
+/* How each point is computed (written into the file with the results). */
+typedef struct tbl_numerics {
+    int mesh_level;    /* 3D mesh level of asp_options (0 = the default 3D mesh); default 0 */
+    double elements_per_contact; /* asp_options.elements_per_contact: 0 = the level's;
+                                    a smaller value (>= 2) makes a quick, coarse table
+                                    for tests; default 0 */
+    int placements;    /* node-placement members averaged per point (asp_shear_placements),
+                          in [1, ASP_PLACEMENTS_MAX]; default 2 */
+    double err_floor;  /* relative μs error added in quadrature to the members' standard
+                          error (the mesh bias the placements do not average out);
+                          default 0.015 */
+    double err_single; /* relative μs error of a point with one member (the single-mesh
+                          node-placement scatter); default 0.06 */
+} tbl_numerics;
+void tbl_numerics_default(tbl_numerics *n);
+stc_status tbl_numerics_validate(const tbl_numerics *n);
+
+/* ---- points --------------------------------------------------------------- */
+
+typedef enum tbl_state {
+    TBL_PENDING = 0, /* not computed (yet, or in another shard) */
+    TBL_DONE = 1,    /* computed: the numbers are an answer */
+    TBL_FAILED = 2   /* computed and failed: reason says why, no numbers */
+} tbl_state;
+const char *tbl_state_name(tbl_state s); /* "pending", "done", "failed" */
+
+enum { TBL_REASON_MAX = 192 };
+
+/* One grid point.  Responses normalised by the substrate's ωc, Pc, Ac
+ * (SPEC §3) at the point's R. */
+typedef struct tbl_point {
+    int state;            /* tbl_state */
+    double P_Pc, A_Ac;    /* preload (end of the normal step), means over the members */
+    double P_slide_Pc;    /* normal load at sliding inception */
+    double Q_max_Pc;      /* tangential load at inception */
+    double mu_s;          /* Q_max / P at inception (mean over the members) */
+    double mu_s_err;      /* error estimate of mu_s (absolute, one standard error) */
+    double mu_s_preload;  /* Q_max / preload */
+    double mu_s_min, mu_s_max; /* over the members */
+    double ux_slide_wc;   /* ux at inception / ωc_su (mean) */
+    int members;          /* members that reached inception */
+    int newton_iterations, factorizations; /* summed over members, both steps */
+    double wall_s;        /* wall time of the point, s */
+    double cpu_s;         /* CPU time of the point, s */
+    char reason[TBL_REASON_MAX]; /* why it failed, or the first member's criterion reason */
+} tbl_point;
+
+/* Compute one point: params at R = 10 mm, Esu = 200 GPa, the family's
+ * ratios, Eco/Esu = E_ratio, t/R; the normal step to δ = w ωc_su, then the
+ * shear ramp on `placements` node placements (asp_shear_placements), one
+ * thread.  Never fails for a point that does not converge: out->state is
+ * TBL_FAILED and out->reason says why; returns STC_EINVAL for bad arguments
+ * only (then *out is untouched). */
+stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
+                             double t_over_R, double E_ratio, tbl_point *out);
+
+/* ---- the table ------------------------------------------------------------- */
+
+typedef struct tbl_table tbl_table;
+
+/* Axes: strictly increasing, > 0 (w and t/R), >= 1 (E_ratio is not checked
+ * beyond > 0); copied.  Every point starts pending.  Returns new in *out. */
+stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double *w, int n_w,
+                      const double *t_over_R, int n_tR, const double *E_ratio, int n_E,
+                      tbl_table **out);
+void tbl_destroy(tbl_table **t); /* sets *t = NULL */
+
+void tbl_get_family(const tbl_table *t, tbl_family *f);
+void tbl_get_numerics(const tbl_table *t, tbl_numerics *n);
+int tbl_points(const tbl_table *t); /* n_E n_tR n_w */
+/* Axis 0 (w), 1 (t/R) or 2 (E_ratio): its length, and a borrowed array. */
+int tbl_axis(const tbl_table *t, int axis, const double **values);
+/* Coordinates of point i. */
+void tbl_coords(const tbl_table *t, int i, double *w, double *t_over_R, double *E_ratio);
+const tbl_point *tbl_point_get(const tbl_table *t, int i); /* borrowed */
+/* Store a computed point (copied); invalidates the fit. */
+stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p);
+/* Counts by state; any pointer nullable. */
+void tbl_count(const tbl_table *t, int *done, int *failed, int *pending);
+
+/* Same family, numerics and axes (bitwise on the numbers): a journal or a
+ * shard belongs to the build. */
+int tbl_same_build(const tbl_table *a, const tbl_table *b);
+
+/* Provenance written into the file (borrowed strings, copied). */
+void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s);
+const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
+
+/* ---- files (docs/table-format.md) ------------------------------------------ */
+
+/* Write atomically: a temporary file beside `path`, synced, renamed over it;
+ * a failure leaves no file. */
+stc_status tbl_write(const tbl_table *t, const char *path);
+/* Read a table; STC_EFORMAT naming what is wrong for a file that is not one. */
+stc_status tbl_read(const char *path, tbl_table **out);
+
+/* ---- building -------------------------------------------------------------- */
+
+/* Progress of a build, after each finished point. */
+typedef struct tbl_progress {
+    int index;              /* the point just finished */
+    const tbl_point *point; /* its result (borrowed) */
+    int done, total;        /* points finished of this build's share (resumed included) */
+    int resumed;            /* points taken from an earlier run */
+    int failed;             /* failed points so far */
+    double elapsed_s, eta_s; /* wall time of this run; estimate of the rest (NaN unknown) */
+} tbl_progress;
+/* Nonzero return stops the build after the points under way (reason
+ * "stopped by the caller"; the finished points are kept). */
+typedef int (*tbl_progress_fn)(void *ctx, const tbl_progress *p);
+
+typedef struct tbl_build_opts {
+    int jobs;           /* points computed at once, one thread each; 0 = one per core */
+    int shard, shards;  /* compute only points with index % shards == shard; default 0, 1 */
+    tbl_progress_fn progress; /* nullable */
+    void *ctx;
+} tbl_build_opts;
+void tbl_build_opts_default(tbl_build_opts *o);
+
+typedef struct tbl_build_summary {
+    int computed, resumed, failed, share; /* points of this run, from before, failed, in shard */
+    double wall_s, cpu_s;    /* this run */
+} tbl_build_summary;
+
+/* Compute the pending points of t that fall in the shard and write the table
+ * to `path`.  Crash-safe and resumable: each finished point is appended to
+ * the journal `path`.journal (synced) before anything else; a build started
+ * again with the same table (tbl_same_build) takes the journal's points and
+ * those of an existing `path` instead of recomputing them, so a build killed
+ * at any moment loses at most the points under way.  At the end the table is
+ * written atomically and the journal removed.  The points of t that are not
+ * pending stay as they are.  A journal or `path` of another build is refused
+ * (STC_EINVAL, naming the difference).  Returns STC_OK when every point of the
+ * share is done or failed (failed points are counted in the summary). */
+stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opts *o,
+                     tbl_build_summary *sum);
+
+/* Join tables of one build (shards of it, or partial runs): each point is
+ * taken from the table that has it done or failed; new in *out.  Refused
+ * (STC_EINVAL) when the tables are of different builds. */
+stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out);
+
+/* ---- interpolation ----------------------------------------------------------- */
+
+/* Flags of a query (bitwise OR; ASP_OUT_* of model.h for w and t/R). */
+enum {
+    TBL_OUT_W_LOW = ASP_OUT_W_LOW,
+    TBL_OUT_W_HIGH = ASP_OUT_W_HIGH,
+    TBL_OUT_T_OVER_R = ASP_OUT_T_OVER_R,
+    TBL_OUT_E_RATIO = 1 << 4, /* Eco/Esu outside the axis (clamped) */
+    TBL_GAP = 1 << 5          /* a neighbouring grid point is not done */
+};
+
+/* Fit the μs surrogate (required before tbl_query / tbl_model_create; done
+ * by tbl_read for a table with done points): a Gaussian process in (ln w,
+ * ln t/R, ln Eco/Esu) on ln μs less the Wu–Shi–Polycarpou trend, each point
+ * weighted by its own error estimate (asperity/table_fit.h).  STC_ERANGE with
+ * fewer than 3 done points. */
+stc_status tbl_fit(tbl_table *t);
+
+typedef struct tbl_fit_info {
+    int n;                /* done points fitted */
+    double ell[3];        /* length scales in ln w, ln t/R, ln Eco/Esu (inf: one value) */
+    double noise_scale;   /* factor on the points' error estimates the data asked for */
+    double loo_rms, loo_max; /* leave-one-out relative μs errors, rms and largest */
+    double loo_cover2;    /* share of points within 2 LOO standard deviations */
+} tbl_fit_info;
+stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out);
+
+/* Interpolated response with one-standard-error bars. */
+typedef struct tbl_value {
+    double P_Pc, P_Pc_err;  /* preload: monotone cubic in ln P vs ln w, linear in ln t/R,
+                               ln Eco/Esu; err = |cubic - linear| along w */
+    double A_Ac, A_Ac_err;
+    double P_slide_Pc;
+    double mu_s, mu_s_err;  /* the surrogate and its standard error */
+    double Q_max_Pc, Q_max_Pc_err; /* mu_s P_slide_Pc */
+    unsigned flags;
+} tbl_value;
+stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
+                     tbl_value *out);
+
+/* ---- the surface prediction's asperity model --------------------------------- */
+
+/* What the model's P and Qmax are (the GW sum's μs = ΣQmax/ΣP, SPEC §8). */
+typedef enum tbl_model_kind {
+    TBL_MODEL_PRELOAD = 0, /* P = preload, Qmax = μs P_slide: the sum at a separation */
+    TBL_MODEL_SLIDE = 1,   /* P = P at inception, Qmax as above */
+    TBL_MODEL_ERR = 2      /* P = preload, Qmax = σ(μs) P_slide: the error band's sum */
+} tbl_model_kind;
+
+/* The table's response for the materials `p` (E_su, E_ratio, Y and ν of both
+ * layers; R and t/R unused) with a coating of t_mm, resampled on a dense
+ * (w, t/R) grid at p's Eco/Esu and returned as an asperity model (model.h's
+ * data model: in-range flags as there).  Refused (STC_EINVAL) when p is not
+ * of the table's family, naming both; STC_ERANGE when Eco/Esu is outside the
+ * table's axis.  Returns new in *out. */
+stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
+                            tbl_model_kind kind, asp_model **out);
+
+/* The family of the materials p (E/Y and ν of each layer from p; the rest
+ * from `like`): to compare with a table's. */
+void tbl_family_of_params(const stc_params *p, const tbl_family *like, tbl_family *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

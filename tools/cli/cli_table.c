@@ -1,0 +1,657 @@
+/* stiction table build|info|query|merge: FE friction tables
+ * (include/stiction/table.h).  A thin layer: the sweep, the file, the
+ * interpolation and its error bars are the library's. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "stiction/table.h"
+
+/* ---- shared ------------------------------------------------------------------ */
+
+static stc_status bad(const char *key, const char *value, const char *what)
+{
+    return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s", key, value, what);
+}
+
+static stc_status set_num(const char *key, const char *value, double lo, double hi,
+                          double *out)
+{
+    stc_status s = stc_parse_double(key, value, out);
+    if (s) return s;
+    return stc_check_range(key, *out, lo, 1, hi, 1);
+}
+
+static stc_status set_int(const char *key, const char *value, long lo, long hi, int *out)
+{
+    long l;
+    if (stc_parse_long(key, value, &l) != STC_OK || l < lo || l > hi) {
+        char what[64];
+        snprintf(what, sizeof what, "a whole number in [%ld, %ld]", lo, hi);
+        return bad(key, value, what);
+    }
+    *out = (int)l;
+    return STC_OK;
+}
+
+/* Every positional argument before the first option (input files). */
+static int peel_files(int *argc, char ***argv, const char **files, int cap)
+{
+    int n = 0;
+    while (*argc > 0 && strncmp((*argv)[0], "--", 2) != 0 && n < cap) {
+        files[n++] = (*argv)[0];
+        (*argc)--, (*argv)++;
+    }
+    return n;
+}
+
+static const char *flags_text(unsigned fl, char *buf, size_t n)
+{
+    buf[0] = '\0';
+    static const struct { unsigned bit; const char *name; } names[] = {
+        {TBL_OUT_W_LOW, "delta below the table"}, {TBL_OUT_W_HIGH, "delta above the table"},
+        {TBL_OUT_T_OVER_R, "t/R outside (clamped)"}, {TBL_OUT_E_RATIO, "E-ratio outside (clamped)"},
+        {TBL_GAP, "a neighbouring point is missing"}};
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++)
+        if (fl & names[k].bit) {
+            size_t l = strlen(buf);
+            snprintf(buf + l, n - l, "%s%s", l ? "; " : "", names[k].name);
+        }
+    return buf;
+}
+
+/* ---- build ---------------------------------------------------------------------- */
+
+typedef struct {
+    tbl_family fam;
+    tbl_numerics num;
+    tbl_build_opts bo;
+    double *ax[3];
+    int n[3];
+    char *out;
+    int quiet;
+} build_args;
+
+static const cli_opt build_opts[] = {
+    {"deltas", "LIST", "delta/omega_c_su values (axis 1), e.g. 0.5,1,2,4,8,15,30,60"},
+    {"t-over-R", "LIST", "coating thickness / substrate radius values (axis 2)"},
+    {"E-ratio", "LIST", "Eco/Esu values (axis 3)"},
+    {"E-over-Y", "X", "E/Y of both layers (family; default 1000)"},
+    {"E-over-Y-su", "X", "E/Y of the substrate (family)"},
+    {"E-over-Y-co", "X", "E/Y of the coating (family; held along the E-ratio axis)"},
+    {"nu", "X", "Poisson ratio of both layers (family; default 0.32)"},
+    {"nu-su", "X", "Poisson ratio of the substrate (family)"},
+    {"nu-co", "X", "Poisson ratio of the coating (family)"},
+    {"contact", "stick|slip", "contact of the normal step (family; default stick)"},
+    {"tau-c-over-Y-co", "X", "tau_c / Y of the coating (family; default 1/sqrt(3))"},
+    {"criterion", "shear|stiffness", "sliding criterion (family; default shear)"},
+    {"alpha", "A", "stiffness criterion ratio (family; default 0.1)"},
+    {"mesh-level", "N", "3D mesh level of every point, 0..3 (default 0)"},
+    {"placements", "K", "node placements averaged per point, 1..8 (default 2)"},
+    {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
+                                  "(default); a small value (>= 2) gives a quick coarse table"},
+    {"out", "FILE", "the table file (resumes from FILE.journal and FILE if they exist)"},
+    {"jobs", "N", "points computed at once, one thread each (default: one per core)"},
+    {"shard", "I/N", "compute only points with index % N == I (job arrays; join with merge)"},
+    {"quiet", NULL, "no progress lines"},
+    {NULL, NULL, NULL},
+};
+
+static stc_status set_axis(build_args *a, int k, const char *key, const char *value)
+{
+    free(a->ax[k]);
+    a->ax[k] = NULL;
+    return cli_parse_list(key, value, &a->ax[k], &a->n[k]);
+}
+
+static stc_status build_set(void *ctx, const char *key, const char *value)
+{
+    build_args *a = ctx;
+    tbl_family *f = &a->fam;
+    double v;
+    stc_status s = STC_OK;
+    if (!strcmp(key, "deltas")) return set_axis(a, 0, key, value);
+    if (!strcmp(key, "t-over-R")) return set_axis(a, 1, key, value);
+    if (!strcmp(key, "E-ratio")) return set_axis(a, 2, key, value);
+    if (!strcmp(key, "E-over-Y")) {
+        if (!(s = set_num(key, value, 10, 1e5, &v))) f->E_over_Y_su = f->E_over_Y_co = v;
+    } else if (!strcmp(key, "E-over-Y-su")) {
+        s = set_num(key, value, 10, 1e5, &f->E_over_Y_su);
+    } else if (!strcmp(key, "E-over-Y-co")) {
+        s = set_num(key, value, 10, 1e5, &f->E_over_Y_co);
+    } else if (!strcmp(key, "nu")) {
+        if (!(s = set_num(key, value, 0, 0.4999, &v))) f->nu_su = f->nu_co = v;
+    } else if (!strcmp(key, "nu-su")) {
+        s = set_num(key, value, 0, 0.4999, &f->nu_su);
+    } else if (!strcmp(key, "nu-co")) {
+        s = set_num(key, value, 0, 0.4999, &f->nu_co);
+    } else if (!strcmp(key, "contact")) {
+        if (!strcmp(value, "stick")) f->contact = ASP_CONTACT_STICK;
+        else if (!strcmp(value, "slip")) f->contact = ASP_CONTACT_SLIP;
+        else s = bad(key, value, "stick or slip");
+    } else if (!strcmp(key, "tau-c-over-Y-co")) {
+        s = set_num(key, value, 1e-3, 1, &f->tau_c_over_Y_co);
+    } else if (!strcmp(key, "criterion")) {
+        if (!strcmp(value, "shear")) f->criterion = ASP_SHEAR_CRIT_SHEAR;
+        else if (!strcmp(value, "stiffness")) f->criterion = ASP_SHEAR_CRIT_STIFFNESS;
+        else s = bad(key, value, "shear or stiffness");
+    } else if (!strcmp(key, "alpha")) {
+        s = set_num(key, value, 1e-3, 0.999, &f->alpha);
+    } else if (!strcmp(key, "mesh-level")) {
+        s = set_int(key, value, 0, 3, &a->num.mesh_level);
+    } else if (!strcmp(key, "placements")) {
+        s = set_int(key, value, 1, ASP_PLACEMENTS_MAX, &a->num.placements);
+    } else if (!strcmp(key, "elements-per-contact")) {
+        s = stc_parse_double(key, value, &a->num.elements_per_contact);
+    } else if (!strcmp(key, "out")) {
+        s = cli_set_string(key, value, &a->out);
+    } else if (!strcmp(key, "jobs")) {
+        s = set_int(key, value, 1, 1024, &a->bo.jobs);
+    } else if (!strcmp(key, "shard")) {
+        int i, n, used = 0;
+        if (sscanf(value, "%d/%d%n", &i, &n, &used) != 2 || value[used] || n < 1 || i < 0 ||
+            i >= n)
+            s = bad(key, value, "I/N with 0 <= I < N (e.g. 0/4)");
+        else a->bo.shard = i, a->bo.shards = n;
+    } else if (!strcmp(key, "quiet")) {
+        s = cli_parse_flag(key, value, &a->quiet);
+    } else {
+        s = STC_EUNSUPPORTED;
+    }
+    return s;
+}
+
+typedef struct {
+    int tty, quiet;
+    double last;
+    const tbl_table *t;
+} progress_ctx;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void fmt_dur(double s, char *buf, size_t n)
+{
+    if (!isfinite(s)) snprintf(buf, n, "?");
+    else if (s < 120) snprintf(buf, n, "%.0f s", s);
+    else if (s < 7200) snprintf(buf, n, "%.1f min", s / 60);
+    else snprintf(buf, n, "%.1f h", s / 3600);
+}
+
+/* A line per finished point (stderr): on a terminal one line rewritten in
+ * place, else a line each. */
+static int progress(void *ctx, const tbl_progress *p)
+{
+    progress_ctx *c = ctx;
+    if (c->quiet) return 0;
+    double w, tR, E;
+    tbl_coords(c->t, p->index, &w, &tR, &E);
+    char el[32], eta[32], mu[64];
+    fmt_dur(p->elapsed_s, el, sizeof el);
+    fmt_dur(p->eta_s, eta, sizeof eta);
+    if (p->point->state == TBL_DONE)
+        snprintf(mu, sizeof mu, "mu_s %.4f +- %.4f", p->point->mu_s, p->point->mu_s_err);
+    else snprintf(mu, sizeof mu, "FAILED");
+    fprintf(stderr, "%s[%d/%d] delta %g t/R %g E-ratio %g: %s (%.1f s); elapsed %s, eta %s%s",
+            c->tty ? "\r\033[K" : "", p->done, p->total, w, tR, E, mu, p->point->wall_s, el, eta,
+            c->tty ? "" : "\n");
+    if (p->point->state == TBL_FAILED)
+        fprintf(stderr, "%s  point %d failed: %s\n", c->tty ? "\n" : "", p->index,
+                p->point->reason);
+    fflush(stderr);
+    c->last = now_s();
+    return 0;
+}
+
+static void command_line(char *buf, size_t n, const char *cmd, int argc, char **argv)
+{
+    snprintf(buf, n, "stiction %s", cmd);
+    for (int i = 0; i < argc; i++) {
+        size_t l = strlen(buf);
+        snprintf(buf + l, n - l, " %s", argv[i]);
+    }
+}
+
+static int table_build(const cli_cmd *cmd, int argc, char **argv)
+{
+    build_args a;
+    memset(&a, 0, sizeof a);
+    tbl_family_default(&a.fam);
+    tbl_numerics_default(&a.num);
+    tbl_build_opts_default(&a.bo);
+    int done, rc;
+    const char *usage = "stiction table build --config FAMILY.ini --out FILE [options]\n"
+                        "Sweep the FE asperity solver over the axes and store the table "
+                        "(resumable: run it again after a crash).";
+    rc = cli_parse(cmd->name, usage, argc, argv, build_opts, NULL, build_set, &a, &done);
+    tbl_table *t = NULL;
+    if (rc || done) goto out;
+    static const char *const axk[3] = {"deltas", "t-over-R", "E-ratio"};
+    for (int k = 0; k < 3; k++)
+        if (!a.ax[k]) {
+            fprintf(stderr, "stiction %s: %s: missing (the table's axis %d)\n", cmd->name,
+                    axk[k], k + 1);
+            rc = CLI_EXIT_USAGE;
+            goto out;
+        }
+    if (!a.out) {
+        fprintf(stderr, "stiction %s: out: missing (the table file to write)\n", cmd->name);
+        rc = CLI_EXIT_USAGE;
+        goto out;
+    }
+    stc_status s = tbl_create(&a.fam, &a.num, a.ax[0], a.n[0], a.ax[1], a.n[1], a.ax[2],
+                              a.n[2], &t);
+    if (s) {
+        rc = cli_fail(cmd->name, s);
+        goto out;
+    }
+    char prov[512];
+    command_line(prov, sizeof prov, cmd->name, argc, argv);
+    tbl_set_provenance(t, prov, 0.0);
+    progress_ctx pc = {isatty(2), a.quiet, now_s(), t};
+    a.bo.progress = progress;
+    a.bo.ctx = &pc;
+    tbl_build_summary sum;
+    s = tbl_build(t, a.out, &a.bo, &sum);
+    if (pc.tty && !a.quiet && sum.computed > 0) fputc('\n', stderr);
+    if (s) {
+        rc = cli_fail(cmd->name, s);
+        goto out;
+    }
+    int nd, nf, npend;
+    tbl_count(t, &nd, &nf, &npend);
+    printf("wrote %s: %d points (%d x %d x %d), %d done, %d failed, %d pending\n", a.out,
+           tbl_points(t), a.n[0], a.n[1], a.n[2], nd, nf, npend);
+    printf("this run: %d of %d points of its share computed, %d taken from an earlier run; "
+           "%.1f s wall, %.1f CPU s per point\n", sum.computed, sum.share, sum.resumed,
+           sum.wall_s, sum.computed ? sum.cpu_s / sum.computed : 0.0);
+    tbl_fit_info fi;
+    if (tbl_get_fit_info(t, &fi) == STC_OK)
+        printf("mu_s surrogate: %d points, leave-one-out error %.2f %% rms, %.2f %% largest, "
+               "%.0f %% within 2 sd\n", fi.n, 100 * fi.loo_rms, 100 * fi.loo_max,
+               100 * fi.loo_cover2);
+    if (nf > 0)
+        fprintf(stderr, "stiction %s: %d points failed (no numbers stored for them; "
+                "`stiction table info %s` lists the reasons)\n", cmd->name, nf, a.out);
+out:
+    tbl_destroy(&t);
+    for (int k = 0; k < 3; k++) free(a.ax[k]);
+    free(a.out);
+    return rc;
+}
+
+/* ---- info ------------------------------------------------------------------------- */
+
+typedef struct {
+    int json;
+    double *w;
+    int nw;
+    double tR, E;
+    char *out;
+} query_args;
+
+static const cli_opt info_opts[] = {
+    {"json", NULL, "print JSON"},
+    {NULL, NULL, NULL},
+};
+
+static stc_status query_set(void *ctx, const char *key, const char *value)
+{
+    query_args *q = ctx;
+    if (!strcmp(key, "json")) return cli_parse_flag(key, value, &q->json);
+    if (!strcmp(key, "delta")) {
+        free(q->w);
+        q->w = NULL;
+        return cli_parse_list(key, value, &q->w, &q->nw);
+    }
+    if (!strcmp(key, "t-over-R")) return set_num(key, value, 1e-9, 0.999, &q->tR);
+    if (!strcmp(key, "E-ratio")) return set_num(key, value, 1e-3, 1e3, &q->E);
+    if (!strcmp(key, "out")) return cli_set_string(key, value, &q->out);
+    return STC_EUNSUPPORTED;
+}
+
+static int open_table(const char *cmd, const char *path, tbl_table **t)
+{
+    if (!path) {
+        fprintf(stderr, "stiction %s: FILE: missing (a table from `stiction table build`)\n",
+                cmd);
+        return CLI_EXIT_USAGE;
+    }
+    stc_status s = tbl_read(path, t);
+    return s ? cli_fail(cmd, s) : CLI_EXIT_OK;
+}
+
+static void print_axis(const char *name, const double *v, int n)
+{
+    printf("  %-18s %3d:", name, n);
+    for (int i = 0; i < n; i++) printf(" %g", v[i]);
+    printf("\n");
+}
+
+static void info_json(const tbl_table *t, const char *path)
+{
+    cli_json j;
+    cj_init(&j, stdout);
+    cj_obj(&j, NULL);
+    cj_str(&j, "file", path);
+    tbl_family f;
+    tbl_get_family(t, &f);
+    cj_obj(&j, "family");
+    cj_num(&j, "E_over_Y_su", f.E_over_Y_su);
+    cj_num(&j, "E_over_Y_co", f.E_over_Y_co);
+    cj_num(&j, "nu_su", f.nu_su);
+    cj_num(&j, "nu_co", f.nu_co);
+    cj_str(&j, "contact", f.contact == ASP_CONTACT_STICK ? "stick" : "slip");
+    cj_num(&j, "tau_c_over_Y_co", f.tau_c_over_Y_co);
+    cj_str(&j, "criterion", f.criterion == ASP_SHEAR_CRIT_SHEAR ? "shear" : "stiffness");
+    cj_end_obj(&j);
+    static const char *const an[3] = {"delta_over_omega_c", "t_over_R", "E_ratio"};
+    cj_obj(&j, "axes");
+    for (int k = 0; k < 3; k++) {
+        const double *v;
+        int n = tbl_axis(t, k, &v);
+        cj_arr(&j, an[k]);
+        for (int i = 0; i < n; i++) cj_num(&j, NULL, v[i]);
+        cj_end_arr(&j);
+    }
+    cj_end_obj(&j);
+    int nd, nf, np;
+    tbl_count(t, &nd, &nf, &np);
+    cj_int(&j, "points", tbl_points(t));
+    cj_int(&j, "done", nd);
+    cj_int(&j, "failed", nf);
+    cj_int(&j, "pending", np);
+    double wall, cpu = 0;
+    cj_str(&j, "command", tbl_provenance(t, &wall));
+    for (int i = 0; i < tbl_points(t); i++)
+        if (tbl_point_get(t, i)->state != TBL_PENDING) cpu += tbl_point_get(t, i)->cpu_s;
+    cj_num(&j, "build_wall_s", wall);
+    cj_num(&j, "cpu_s_per_point", nd + nf ? cpu / (nd + nf) : NAN);
+    tbl_fit_info fi;
+    if (tbl_get_fit_info(t, &fi) == STC_OK) {
+        cj_num(&j, "loo_rms_rel", fi.loo_rms);
+        cj_num(&j, "loo_max_rel", fi.loo_max);
+        cj_num(&j, "loo_cover2", fi.loo_cover2);
+        cj_num(&j, "noise_scale", fi.noise_scale);
+    }
+    cj_arr(&j, "failed_points");
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        if (p->state != TBL_FAILED) continue;
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        cj_obj(&j, NULL);
+        cj_num(&j, "delta_over_omega_c", w);
+        cj_num(&j, "t_over_R", tR);
+        cj_num(&j, "E_ratio", E);
+        cj_str(&j, "reason", p->reason);
+        cj_end_obj(&j);
+    }
+    cj_end_arr(&j);
+    cj_end_obj(&j);
+    cj_done(&j);
+}
+
+static void info_text(const tbl_table *t, const char *path)
+{
+    tbl_family f;
+    tbl_numerics n;
+    tbl_get_family(t, &f);
+    tbl_get_numerics(t, &n);
+    char fam[256];
+    tbl_family_describe(&f, fam, sizeof fam);
+    printf("%s: friction table\n  family: %s\n", path, fam);
+    printf("  numerics: 3D mesh level %d", n.mesh_level);
+    if (n.elements_per_contact > 0) printf(" (%g elements across the contact)",
+                                           n.elements_per_contact);
+    printf(", %d node placements per point\n", n.placements);
+    static const char *const an[3] = {"delta/omega_c_su", "t/R", "Eco/Esu"};
+    for (int k = 0; k < 3; k++) {
+        const double *v;
+        int m = tbl_axis(t, k, &v);
+        print_axis(an[k], v, m);
+    }
+    int nd, nf, np;
+    tbl_count(t, &nd, &nf, &np);
+    double wall, cpu = 0;
+    const char *cmd = tbl_provenance(t, &wall);
+    for (int i = 0; i < tbl_points(t); i++)
+        if (tbl_point_get(t, i)->state != TBL_PENDING) cpu += tbl_point_get(t, i)->cpu_s;
+    printf("  points: %d, done %d, failed %d, pending %d\n", tbl_points(t), nd, nf, np);
+    printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point\n", cmd, wall,
+           nd + nf ? cpu / (nd + nf) : 0.0);
+    tbl_fit_info fi;
+    if (tbl_get_fit_info(t, &fi) == STC_OK)
+        printf("  mu_s surrogate (%d points): leave-one-out error %.2f %% rms, %.2f %% largest, "
+               "%.0f %% within 2 sd; error estimates scaled by %.2f\n", fi.n, 100 * fi.loo_rms,
+               100 * fi.loo_max, 100 * fi.loo_cover2, fi.noise_scale);
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        if (p->state != TBL_FAILED) continue;
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        printf("  FAILED delta %g, t/R %g, E-ratio %g: %s\n", w, tR, E, p->reason);
+    }
+}
+
+static int table_info(const cli_cmd *cmd, int argc, char **argv)
+{
+    const char *path = NULL;
+    cli_peel_positional(&argc, &argv, &path);
+    query_args q = {0};
+    int done;
+    int rc = cli_parse(cmd->name, "stiction table info FILE [--json]\nSummarise a table: "
+                       "family, grid, coverage, failed points, build time, fit errors.",
+                       argc, argv, info_opts, NULL, query_set, &q, &done);
+    tbl_table *t = NULL;
+    if (!rc && !done && !(rc = open_table(cmd->name, path, &t))) {
+        if (q.json) info_json(t, path);
+        else info_text(t, path);
+    }
+    tbl_destroy(&t);
+    free(q.w);
+    free(q.out);
+    return rc;
+}
+
+/* ---- query ---------------------------------------------------------------------------- */
+
+static const cli_opt query_opts[] = {
+    {"delta", "LIST", "delta/omega_c_su values"},
+    {"t-over-R", "X", "coating thickness / substrate radius"},
+    {"E-ratio", "X", "Eco/Esu"},
+    {"json", NULL, "print a JSON array, one object per delta"},
+    {NULL, NULL, NULL},
+};
+
+static int table_query(const cli_cmd *cmd, int argc, char **argv)
+{
+    const char *path = NULL;
+    cli_peel_positional(&argc, &argv, &path);
+    query_args q = {0};
+    int done;
+    int rc = cli_parse(cmd->name, "stiction table query FILE --delta LIST --t-over-R X "
+                       "--E-ratio X [--json]\nInterpolated response with one-standard-error "
+                       "bars; values outside the table are flagged.",
+                       argc, argv, query_opts, NULL, query_set, &q, &done);
+    tbl_table *t = NULL;
+    tbl_value *v = NULL;
+    if (rc || done) goto out;
+    const char *miss = !q.w ? "delta" : !(q.tR > 0) ? "t-over-R" : !(q.E > 0) ? "E-ratio" : NULL;
+    if (miss) {
+        fprintf(stderr, "stiction %s: %s: missing\n", cmd->name, miss);
+        rc = CLI_EXIT_USAGE;
+        goto out;
+    }
+    for (int i = 0; i < q.nw; i++)
+        if (!(q.w[i] > 0)) {
+            fprintf(stderr, "stiction %s: delta = %g: must be > 0\n", cmd->name, q.w[i]);
+            rc = CLI_EXIT_USAGE;
+            goto out;
+        }
+    if ((rc = open_table(cmd->name, path, &t))) goto out;
+    v = calloc((size_t)q.nw, sizeof *v);
+    unsigned any = 0;
+    for (int i = 0; v && i < q.nw; i++) {
+        stc_status s = tbl_query(t, q.w[i], q.tR, q.E, &v[i]);
+        if (s) {
+            rc = cli_fail(cmd->name, s);
+            goto out;
+        }
+        any |= v[i].flags;
+    }
+    if (!v) {
+        rc = cli_fail(cmd->name, STC_ENOMEM);
+        goto out;
+    }
+    char fl[256];
+    if (q.json) {
+        cli_json j;
+        cj_init(&j, stdout);
+        cj_arr(&j, NULL);
+        for (int i = 0; i < q.nw; i++) {
+            cj_obj(&j, NULL);
+            cj_num(&j, "delta_over_omega_c", q.w[i]);
+            cj_num(&j, "t_over_R", q.tR);
+            cj_num(&j, "E_ratio", q.E);
+            cj_num(&j, "P_over_P_c", v[i].P_Pc);
+            cj_num(&j, "P_over_P_c_err", v[i].P_Pc_err);
+            cj_num(&j, "A_over_A_c", v[i].A_Ac);
+            cj_num(&j, "A_over_A_c_err", v[i].A_Ac_err);
+            cj_num(&j, "P_slide_over_P_c", v[i].P_slide_Pc);
+            cj_num(&j, "mu_s", v[i].mu_s);
+            cj_num(&j, "mu_s_err", v[i].mu_s_err);
+            cj_num(&j, "Q_max_over_P_c", v[i].Q_max_Pc);
+            cj_num(&j, "Q_max_over_P_c_err", v[i].Q_max_Pc_err);
+            cj_bool(&j, "in_range", v[i].flags == 0);
+            cj_str(&j, "flags", flags_text(v[i].flags, fl, sizeof fl));
+            cj_end_obj(&j);
+        }
+        cj_end_arr(&j);
+        cj_done(&j);
+    } else {
+        printf("t/R = %g, Eco/Esu = %g (one standard error after +-)\n", q.tR, q.E);
+        printf("%10s %22s %22s %11s %20s %22s  %s\n", "delta/wc", "P/Pc", "A/Ac", "Pslide/Pc",
+               "mu_s", "Qmax/Pc", "flags");
+        for (int i = 0; i < q.nw; i++)
+            printf("%10g %12.5g +- %-7.2g %12.5g +- %-7.2g %11.5g %9.4f +- %-7.4f %12.5g +- "
+                   "%-7.2g  %s\n", q.w[i], v[i].P_Pc, v[i].P_Pc_err, v[i].A_Ac, v[i].A_Ac_err,
+                   v[i].P_slide_Pc, v[i].mu_s, v[i].mu_s_err, v[i].Q_max_Pc, v[i].Q_max_Pc_err,
+                   flags_text(v[i].flags, fl, sizeof fl));
+    }
+    if (any)
+        fprintf(stderr, "stiction %s: warning: %s: outside the table's range (not an answer of "
+                "the table; see the flags)\n", cmd->name, flags_text(any, fl, sizeof fl));
+out:
+    free(v);
+    tbl_destroy(&t);
+    free(q.w);
+    free(q.out);
+    return rc;
+}
+
+/* ---- merge --------------------------------------------------------------------------------- */
+
+static const cli_opt merge_opts[] = {
+    {"out", "FILE", "the merged table"},
+    {NULL, NULL, NULL},
+};
+
+enum { MERGE_MAX = 4096 };
+
+static int table_merge(const cli_cmd *cmd, int argc, char **argv)
+{
+    const char **files = malloc(MERGE_MAX * sizeof *files);
+    tbl_table **parts = calloc(MERGE_MAX, sizeof *parts);
+    tbl_table *m = NULL;
+    query_args q = {0};
+    int n = files ? peel_files(&argc, &argv, files, MERGE_MAX) : 0, done, rc;
+    rc = cli_parse(cmd->name, "stiction table merge A.h5 B.h5 ... --out FILE\nJoin the shards "
+                   "(or partial runs) of one build into one table.",
+                   argc, argv, merge_opts, NULL, query_set, &q, &done);
+    if (rc || done) goto out;
+    if (!files || !parts) {
+        rc = cli_fail(cmd->name, STC_ENOMEM);
+        goto out;
+    }
+    if (n < 1 || !q.out) {
+        fprintf(stderr, "stiction %s: %s: missing\n", cmd->name, n < 1 ? "input tables" : "out");
+        rc = CLI_EXIT_USAGE;
+        goto out;
+    }
+    for (int i = 0; i < n; i++)
+        if ((rc = open_table(cmd->name, files[i], &parts[i]))) goto out;
+    stc_status s = tbl_merge(parts, n, &m);
+    if (!s) {
+        int nd;
+        tbl_count(m, &nd, NULL, NULL);
+        if (nd >= 3) s = tbl_fit(m);
+    }
+    if (!s) s = tbl_write(m, q.out);
+    if (s) {
+        rc = cli_fail(cmd->name, s);
+        goto out;
+    }
+    int nd, nf, np;
+    tbl_count(m, &nd, &nf, &np);
+    printf("wrote %s: %d points from %d tables, %d done, %d failed, %d pending\n", q.out,
+           tbl_points(m), n, nd, nf, np);
+    if (np > 0)
+        fprintf(stderr, "stiction %s: warning: %d points pending (a shard missing?)\n",
+                cmd->name, np);
+out:
+    for (int i = 0; parts && i < n; i++) tbl_destroy(&parts[i]);
+    tbl_destroy(&m);
+    free(parts);
+    free(files);
+    free(q.w);
+    free(q.out);
+    return rc;
+}
+
+/* ---- dispatch ------------------------------------------------------------------------------- */
+
+static const cli_cmd table_cmds[] = {
+    {"table build", "sweep the FE solver over a family's axes into an HDF5 table (resumable)",
+     table_build},
+    {"table info", "family, grid, coverage, failed points, build time, fit errors",
+     table_info},
+    {"table query", "interpolated P, A, mu_s with error bars at (delta, t/R, E-ratio)",
+     table_query},
+    {"table merge", "join shards of one build", table_merge},
+    {NULL, NULL, NULL},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: stiction table SUBCOMMAND [options]   (... SUBCOMMAND --help)\n\n"
+               "Subcommands:\n");
+    for (const cli_cmd *c = table_cmds; c->name; c++)
+        fprintf(f, "  %-8s %s\n", c->name + strlen("table "), c->summary);
+}
+
+int cli_table(const cli_cmd *cmd, int argc, char **argv)
+{
+    (void)cmd;
+    if (argc < 1) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    if (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h")) {
+        usage(stdout);
+        return CLI_EXIT_OK;
+    }
+    for (const cli_cmd *c = table_cmds; c->name; c++)
+        if (!strcmp(argv[0], c->name + strlen("table "))) return c->run(c, argc - 1, argv + 1);
+    fprintf(stderr, "stiction table: unknown subcommand '%s'\n\n", argv[0]);
+    usage(stderr);
+    return CLI_EXIT_USAGE;
+}
