@@ -111,7 +111,7 @@ static int column_eval(const tbl_table *t, int iE, int it, int f, double lw, dou
     for (int i = 0; i < nw; i++) {
         const tbl_point *p = &t->pt[base + i];
         if (p->state != TBL_DONE) {
-            if (i > 0 && i < nw - 1 && log(t->ax[0][i - 1]) < lw && lw < log(t->ax[0][i + 1]))
+            if ((i == 0 || log(t->ax[0][i - 1]) < lw) && (i == nw - 1 || lw < log(t->ax[0][i + 1])))
                 *gap = 1;
             continue;
         }
