@@ -1,0 +1,800 @@
+/* Friction tables (include/stiction/table.h) at library level, without FE
+ * runs: a table filled with the closed-form Hertz response, written and read
+ * back, gives the same Greenwood–Williamson sums as the Hertz model itself;
+ * every field survives the file; the interpolation is exact on a power law
+ * and flags what lies outside or next to a missing point; the μs surrogate
+ * smooths noise with honest error bars; foreign files, other families and
+ * bad axes are refused with named messages; merging shards restores the
+ * full table. */
+#include <dirent.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include <hdf5.h>
+
+#include "stiction/formulas.h"
+#include "stiction/gw.h"
+#include "stiction/model.h"
+#include "stiction/surface.h"
+#include "stiction/table.h"
+
+/* The grid of every table here: w = δ/ωc log-spaced over five decades. */
+#define NW 40
+#define W_LO 0.01
+#define W_HI 1000.0
+static const double TR[] = {0.005, 0.05};
+static const double ER[] = {1.0, 2.0};
+#define NTR 2
+#define NE 2
+
+/* The GW population: a fine-ground surface whose summits carry a coating
+ * of T_MM, so t/R = T_MM / R_SUMMIT = 0.0143 lies inside the t/R axis. */
+#define ETA 2000.0     /* summits per mm² */
+#define R_SUMMIT 0.07  /* mm */
+#define T_MM 1e-3      /* mm */
+
+static double rel(double a, double b) { return fabs(a - b) / fabs(b); }
+
+static void w_axis(double *w)
+{
+    for (int i = 0; i < NW; i++)
+        w[i] = W_LO * pow(W_HI / W_LO, (double)i / (NW - 1));
+}
+
+/* splitmix64 (Steele, Lea & Flood 2014): uniform in (0, 1). */
+static double unif(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    z ^= z >> 31;
+    return ((z >> 11) + 0.5) / 9007199254740992.0;
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static void check_ok(stc_status st, const char *what)
+{
+    if (st != STC_OK) fail_msg("%s: %s: %s", what, stc_strerror(st), stc_errmsg());
+}
+
+/* Materials of the default family (E/Y 1000 both layers, ν 0.32). */
+static void family_params(double E_ratio, stc_params *p)
+{
+    stc_params_default(p);
+    p->E_over_Y = 1000.0;
+    p->nu = 0.32;
+    p->E_ratio = E_ratio;
+}
+
+static asp_model *hertz_model(void)
+{
+    stc_params p;
+    asp_model *m = NULL;
+    family_params(1.5, &p);
+    check_ok(asp_model_create_hertz(&p, T_MM, ASP_LAYER_SUBSTRATE, &m), "hertz model");
+    return m;
+}
+
+/* A table of the default family on the grid above whose every point holds
+ * the Hertz response and μs = μs_WSP(w) (1 + u), u uniform in ±noise, with
+ * mu_s_err = err × μs.  Returns new. */
+static tbl_table *hertz_table(double noise, double err, uint64_t seed)
+{
+    tbl_family f;
+    tbl_numerics num;
+    tbl_table *t = NULL;
+    double w[NW];
+    tbl_family_default(&f);
+    tbl_numerics_default(&num);
+    w_axis(w);
+    check_ok(tbl_create(&f, &num, w, NW, TR, NTR, ER, NE, &t), "tbl_create");
+    asp_model *hz = hertz_model();
+    for (int i = 0; i < tbl_points(t); i++) {
+        double wi, tR, E, P, A, Q;
+        tbl_coords(t, i, &wi, &tR, &E);
+        asp_model_eval_norm(hz, wi, tR, &P, &A, &Q);
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        p.state = TBL_DONE;
+        p.P_Pc = p.P_slide_Pc = P;
+        p.A_Ac = A;
+        p.mu_s = stc_wsp_mu(wi, NULL) * (1.0 + noise * (2.0 * unif(&seed) - 1.0));
+        p.mu_s_err = err * p.mu_s;
+        p.mu_s_preload = p.mu_s_min = p.mu_s_max = p.mu_s;
+        p.Q_max_Pc = p.mu_s * P;
+        p.members = 1;
+        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+    }
+    asp_model_destroy(&hz);
+    return t;
+}
+
+/* ---- scratch directory ------------------------------------------------- */
+
+/* The group's scratch directory (made by the group setup, removed by its
+ * teardown, which runs even when a test fails); each test writing files
+ * works in a subdirectory of its own. */
+static int scratch_setup(void **state)
+{
+    char *dir = malloc(64);
+    if (!dir) return -1;
+    snprintf(dir, 64, "/tmp/stiction-table-XXXXXX");
+    if (!mkdtemp(dir)) {
+        free(dir);
+        return -1;
+    }
+    *state = dir;
+    return 0;
+}
+
+static int remove_tree(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return -1;
+    char path[512];
+    int e = 0;
+    for (struct dirent *en; (en = readdir(d));) {
+        if (!strcmp(en->d_name, ".") || !strcmp(en->d_name, "..")) continue;
+        snprintf(path, sizeof path, "%s/%s", dir, en->d_name);
+        struct stat sb;
+        if (lstat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) e |= remove_tree(path);
+        else e |= unlink(path);
+    }
+    closedir(d);
+    return e | rmdir(dir);
+}
+
+static int scratch_teardown(void **state)
+{
+    int e = *state ? remove_tree(*state) : 0;
+    free(*state);
+    *state = NULL;
+    return e;
+}
+
+static void scratch_sub(void **state, const char *name, char *dir, size_t n)
+{
+    snprintf(dir, n, "%s/%s", (const char *)*state, name);
+    assert_int_equal(mkdir(dir, 0700), 0);
+}
+
+/* Names in dir ending in `suffix` (NULL: every entry). */
+static int scratch_count(const char *dir, const char *suffix)
+{
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    int k = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t ln = strlen(e->d_name), ls = suffix ? strlen(suffix) : 0;
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        if (!suffix || (ln >= ls && !strcmp(e->d_name + ln - ls, suffix))) k++;
+    }
+    closedir(d);
+    return k;
+}
+
+/* ---- comparing points --------------------------------------------------- */
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* The first field in which a and b differ (numbers bitwise), or NULL. */
+static const char *point_diff(const tbl_point *a, const tbl_point *b)
+{
+#define SAME_D(m) if (!same_bits(a->m, b->m)) return #m
+#define SAME_I(m) if (a->m != b->m) return #m
+    SAME_I(state);
+    SAME_D(P_Pc);
+    SAME_D(A_Ac);
+    SAME_D(P_slide_Pc);
+    SAME_D(Q_max_Pc);
+    SAME_D(mu_s);
+    SAME_D(mu_s_err);
+    SAME_D(mu_s_preload);
+    SAME_D(mu_s_min);
+    SAME_D(mu_s_max);
+    SAME_D(ux_slide_wc);
+    SAME_I(members);
+    SAME_I(newton_iterations);
+    SAME_I(factorizations);
+    SAME_D(wall_s);
+    SAME_D(cpu_s);
+    if (strcmp(a->reason, b->reason)) return "reason";
+    return NULL;
+#undef SAME_D
+#undef SAME_I
+}
+
+/* ---- 1. Hertz through the file ------------------------------------------ */
+
+/* A table holding Hertz, written and read back, is an asperity model whose
+ * GW sums equal the closed-form Hertz model's (elastic GW 1966): the
+ * Steffen cubic in ln P vs ln w is exact on the power law P/Pc = w^3/2, and
+ * the columns agree, so only quadrature and rounding remain. */
+static void test_hertz_through_file(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "hertz", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/hertz.h5", dir);
+    tbl_table *t = hertz_table(0.0, 0.02, 1), *r = NULL;
+    check_ok(tbl_write(t, path), "tbl_write");
+    check_ok(tbl_read(path, &r), "tbl_read");
+
+    stc_params p;
+    family_params(1.5, &p); /* between the E_ratio nodes */
+    asp_model *hz = hertz_model(), *tm = NULL;
+    check_ok(tbl_model_create(r, &p, T_MM, TBL_MODEL_PRELOAD, &tm), "tbl_model_create");
+    asp_model_range rg;
+    asp_model_get_range(tm, &rg);
+    assert_true(rel(rg.w_lo, W_LO) < 1e-12 && rel(rg.w_hi, W_HI) < 1e-12 && rg.coating_aware);
+
+    /* σs = 3 ωc: the load's 99.9 % quantile stays at δ/ωc of order 10 */
+    double wc = asp_model_omega_c(hz, R_SUMMIT), sigma_s = 3.0 * wc;
+    srf_gw *gh = NULL, *gt = NULL;
+    check_ok(srf_gw_create_gaussian(hz, ETA, R_SUMMIT, sigma_s, NULL, &gh), "gw hertz");
+    check_ok(srf_gw_create_gaussian(tm, ETA, R_SUMMIT, sigma_s, NULL, &gt), "gw table");
+    const double H[] = {-1.0, 0.0, 0.5, 1.0, 2.0, 3.0};
+    double worst = 0.0;
+    for (int i = 0; i < 6; i++) {
+        srf_gw_point a, b;
+        check_ok(srf_gw_at_separation(gh, H[i], &a), "gw at separation (hertz)");
+        check_ok(srf_gw_at_separation(gt, H[i], &b), "gw at separation (table)");
+        double eP = rel(b.pressure_MPa, a.pressure_MPa), eA = rel(b.area_fraction,
+                                                                  a.area_fraction);
+        worst = fmax(worst, fmax(eP, eA));
+        printf("  h = %4.1f: P/An %.6e MPa (hertz %.6e), A/An %.6e (hertz %.6e), "
+               "delta_max %.2f wc, load outside %.1e\n", H[i], b.pressure_MPa,
+               a.pressure_MPa, b.area_fraction, a.area_fraction,
+               b.delta_max_over_omega_c, b.load_fraction_outside);
+        assert_true(b.delta_max_over_omega_c > W_LO && b.delta_max_over_omega_c < W_HI);
+        assert_true(b.load_fraction_outside < 1e-3);
+        assert_true(b.tR_min >= TR[0] && b.tR_max <= TR[NTR - 1]);
+    }
+    printf("Hertz table through the file (%d points, sigma_s = %.3g mm = 3 wc): GW sums "
+           "vs closed-form Hertz, worst rel difference %.2e\n", tbl_points(r), sigma_s,
+           worst);
+    assert_true(worst < 1e-3);
+
+    srf_gw_destroy(&gh);
+    srf_gw_destroy(&gt);
+    asp_model_destroy(&tm);
+    asp_model_destroy(&hz);
+    tbl_destroy(&r);
+    tbl_destroy(&t);
+    assert_null(t);
+}
+
+/* ---- 2. round trip -------------------------------------------------------- */
+
+static void distinct_point(tbl_table *t, int i)
+{
+    tbl_point p = *tbl_point_get(t, i);
+    /* numbers that use the whole mantissa, so a float or text step shows */
+    p.ux_slide_wc = 1.0 / (i + 3.0);
+    p.mu_s_min = p.mu_s * (1.0 - 1.0 / (i + 7.0));
+    p.mu_s_max = p.mu_s * (1.0 + 1.0 / (i + 11.0));
+    p.mu_s_preload = p.mu_s * M_PI / 3.0;
+    p.members = 1 + i % 4;
+    p.newton_iterations = 10 * i + 7;
+    p.factorizations = 3 * i + 1;
+    p.wall_s = 0.1 * i + 1.0 / 3.0;
+    p.cpu_s = 0.2 * i + 1.0 / 7.0;
+    snprintf(p.reason, sizeof p.reason, "shear: tau reached tau_c over the contact (point %d)",
+             i);
+    check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+}
+
+static void check_family_equal(const tbl_table *a, const tbl_table *b)
+{
+    tbl_family fa, fb;
+    tbl_numerics na, nb;
+    tbl_get_family(a, &fa);
+    tbl_get_family(b, &fb);
+    tbl_get_numerics(a, &na);
+    tbl_get_numerics(b, &nb);
+    assert_true(same_bits(fa.E_over_Y_su, fb.E_over_Y_su));
+    assert_true(same_bits(fa.E_over_Y_co, fb.E_over_Y_co));
+    assert_true(same_bits(fa.nu_su, fb.nu_su) && same_bits(fa.nu_co, fb.nu_co));
+    assert_int_equal(fa.contact, fb.contact);
+    assert_true(same_bits(fa.tau_c_over_Y_co, fb.tau_c_over_Y_co));
+    assert_int_equal(fa.criterion, fb.criterion);
+    assert_true(same_bits(fa.alpha, fb.alpha));
+    assert_int_equal(na.mesh_level, nb.mesh_level);
+    assert_true(same_bits(na.elements_per_contact, nb.elements_per_contact));
+    assert_int_equal(na.placements, nb.placements);
+    assert_true(same_bits(na.err_floor, nb.err_floor));
+    assert_true(same_bits(na.err_single, nb.err_single));
+    for (int k = 0; k < 3; k++) {
+        const double *xa, *xb;
+        int n = tbl_axis(a, k, &xa);
+        assert_int_equal(tbl_axis(b, k, &xb), n);
+        assert_memory_equal(xa, xb, (size_t)n * sizeof *xa);
+    }
+    assert_true(tbl_same_build(a, b));
+}
+
+/* Everything a file holds comes back bitwise.  A point that is not done
+ * has no numbers: the file stores its doubles as NaN (its state, reason,
+ * counts and timings are kept), so that a reader cannot take them for an
+ * answer. */
+static void test_round_trip(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "round-trip", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/round-trip.h5", dir);
+
+    /* a family and numerics other than the defaults, so a field read from
+     * the wrong attribute or left at its default shows */
+    tbl_table *h = hertz_table(0.01, 0.02, 7), *t = NULL, *r = NULL;
+    tbl_family f;
+    tbl_numerics num;
+    tbl_family_default(&f);
+    f.E_over_Y_su = 500.0;
+    f.E_over_Y_co = 300.0;
+    f.nu_su = 0.3;
+    f.nu_co = 0.25;
+    f.contact = ASP_CONTACT_SLIP;
+    f.tau_c_over_Y_co = 0.5;
+    f.criterion = ASP_SHEAR_CRIT_STIFFNESS;
+    f.alpha = 0.2;
+    tbl_numerics_default(&num);
+    num.mesh_level = 1;
+    num.elements_per_contact = 4.0;
+    num.placements = 3;
+    num.err_floor = 0.02;
+    num.err_single = 0.05;
+    double w[NW];
+    w_axis(w);
+    check_ok(tbl_create(&f, &num, w, NW, TR, NTR, ER, NE, &t), "tbl_create");
+    for (int i = 0; i < tbl_points(t); i++) {
+        check_ok(tbl_point_set(t, i, tbl_point_get(h, i)), "tbl_point_set");
+        distinct_point(t, i);
+    }
+    const int i_failed = 45, i_pending = 101;
+    tbl_point p = *tbl_point_get(t, i_failed);
+    p.state = TBL_FAILED;
+    p.P_Pc = p.mu_s = 42.0; /* stale numbers of a failed run: not an answer */
+    p.members = 0;
+    snprintf(p.reason, sizeof p.reason, "Newton diverged at load step 3 of the normal step "
+             "(residual 1.2e+03 after 50 iterations)");
+    check_ok(tbl_point_set(t, i_failed, &p), "tbl_point_set failed");
+    p = *tbl_point_get(t, i_pending);
+    p.state = TBL_PENDING;
+    p.reason[0] = '\0';
+    check_ok(tbl_point_set(t, i_pending, &p), "tbl_point_set pending");
+    tbl_set_provenance(t, "stiction table build --E-over-Y-su 500 --placements 3 "
+                          "--output round-trip.h5", 1234.5678);
+
+    check_ok(tbl_write(t, path), "tbl_write");
+    assert_int_equal(scratch_count(dir, ".tmp"), 0);
+    assert_int_equal(scratch_count(dir, NULL), 1);
+    check_ok(tbl_read(path, &r), "tbl_read");
+
+    check_family_equal(t, r);
+    double wa, wb;
+    assert_string_equal(tbl_provenance(r, &wb), tbl_provenance(t, &wa));
+    assert_true(same_bits(wa, wb));
+    int done, failed, pending;
+    tbl_count(r, &done, &failed, &pending);
+    assert_int_equal(done, tbl_points(t) - 2);
+    assert_true(failed == 1 && pending == 1);
+
+    int same = 0;
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *a = tbl_point_get(t, i), *b = tbl_point_get(r, i);
+        if (i == i_failed || i == i_pending) continue;
+        const char *d = point_diff(a, b);
+        if (d) fail_msg("point %d: field %s differs after write + read", i, d);
+        same++;
+    }
+    /* the two points that are not done: everything but the numbers */
+    int nan_fields = 0;
+    for (int k = 0; k < 2; k++) {
+        int i = k ? i_pending : i_failed;
+        const tbl_point *a = tbl_point_get(t, i), *b = tbl_point_get(r, i);
+        assert_int_equal(b->state, a->state);
+        assert_string_equal(b->reason, a->reason);
+        assert_int_equal(b->members, a->members);
+        assert_int_equal(b->newton_iterations, a->newton_iterations);
+        assert_int_equal(b->factorizations, a->factorizations);
+        assert_true(same_bits(b->wall_s, a->wall_s) && same_bits(b->cpu_s, a->cpu_s));
+        const double v[] = {b->P_Pc, b->A_Ac, b->P_slide_Pc, b->Q_max_Pc, b->mu_s,
+                            b->mu_s_err, b->mu_s_preload, b->mu_s_min, b->mu_s_max,
+                            b->ux_slide_wc};
+        for (int j = 0; j < 10; j++) {
+            assert_true(isnan(v[j]));
+            nan_fields++;
+        }
+    }
+    printf("round trip: %d done points equal in all 17 fields (bitwise), family, numerics, "
+           "3 axes and provenance equal, no .tmp left; the failed point keeps state, reason "
+           "'%.40s...', counts and timings, its %d numbers (and the pending point's) read "
+           "back as NaN\n", same, tbl_point_get(r, i_failed)->reason, nan_fields / 2);
+
+    /* the fit is recomputed on reading: the same as fitting the original */
+    tbl_fit_info fa, fb;
+    check_ok(tbl_fit(t), "tbl_fit");
+    check_ok(tbl_get_fit_info(t, &fa), "fit info");
+    check_ok(tbl_get_fit_info(r, &fb), "fit info (read)");
+    assert_int_equal(fb.n, done);
+    assert_true(same_bits(fa.loo_rms, fb.loo_rms) && same_bits(fa.noise_scale,
+                                                                fb.noise_scale));
+
+    /* writing over an existing table replaces it, again without leftovers */
+    check_ok(tbl_write(r, path), "tbl_write over");
+    assert_int_equal(scratch_count(dir, NULL), 1);
+
+    tbl_destroy(&r);
+    tbl_destroy(&t);
+    tbl_destroy(&h);
+}
+
+/* ---- 3. interpolation ----------------------------------------------------- */
+
+static void query_ok(const tbl_table *t, double w, double tR, double E, tbl_value *v)
+{
+    check_ok(tbl_query(t, w, tR, E, v), "tbl_query");
+}
+
+/* Hertz is a straight line in ln P vs ln w: the Steffen cubic and the
+ * ln–ln chord both lie on it, so P/Pc = w^3/2 and A/Ac = w come back to
+ * rounding and the error bar |cubic − line| is zero. */
+static void test_interpolation(void **state)
+{
+    (void)state;
+    tbl_table *t = hertz_table(0.0, 0.02, 1);
+    check_ok(tbl_fit(t), "tbl_fit");
+    const double *w;
+    int nw = tbl_axis(t, 0, &w);
+    const double tq[] = {0.005, 0.0081, 0.0158, 0.05}, eq[] = {1.0, 1.23, 1.5, 2.0};
+    const double frac[] = {0.1, 0.5, 0.77};
+    double worst = 0.0, worst_err = 0.0;
+    int n = 0;
+    for (int i = 0; i + 1 < nw; i++)
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 4; b++)
+                for (int c = 0; c < 4; c++) {
+                    double x = exp((1 - frac[a]) * log(w[i]) + frac[a] * log(w[i + 1]));
+                    tbl_value v;
+                    query_ok(t, x, tq[b], eq[c], &v);
+                    assert_int_equal(v.flags, 0);
+                    worst = fmax(worst, fmax(rel(v.P_Pc, pow(x, 1.5)), rel(v.A_Ac, x)));
+                    worst = fmax(worst, rel(v.P_slide_Pc, pow(x, 1.5)));
+                    worst_err = fmax(worst_err, fmax(v.P_Pc_err / v.P_Pc, v.A_Ac_err / v.A_Ac));
+                    assert_true(rel(v.Q_max_Pc, v.mu_s * v.P_slide_Pc) < 1e-14);
+                    n++;
+                }
+    printf("interpolation on Hertz: %d queries between nodes, P/Pc vs w^1.5 and A/Ac vs w "
+           "worst rel error %.2e, worst relative error bar %.2e\n", n, worst, worst_err);
+    assert_true(worst < 1e-6);
+    assert_true(worst_err < 1e-9);
+
+    /* outside: flagged; w continues the end interval's power law (exact
+     * here), t/R and Eco/Esu clamp to the edge column (all equal here) */
+    static const struct { double w, tR, E; unsigned flag; const char *what; } out[] = {
+        {0.003, 0.02, 1.5, TBL_OUT_W_LOW, "w below the first node"},
+        {3000.0, 0.02, 1.5, TBL_OUT_W_HIGH, "w above the last node"},
+        {1.0, 0.08, 1.5, TBL_OUT_T_OVER_R, "t/R above the last"},
+        {1.0, 0.002, 1.5, TBL_OUT_T_OVER_R, "t/R below the first"},
+        {1.0, 0.02, 3.0, TBL_OUT_E_RATIO, "E_ratio above the last"},
+        {1.0, 0.02, 0.5, TBL_OUT_E_RATIO, "E_ratio below the first"},
+    };
+    for (int k = 0; k < 6; k++) {
+        tbl_value v;
+        query_ok(t, out[k].w, out[k].tR, out[k].E, &v);
+        printf("  %-24s flags 0x%02x, P/Pc %.6e (w^1.5 %.6e)\n", out[k].what, v.flags,
+               v.P_Pc, pow(out[k].w, 1.5));
+        assert_int_equal(v.flags, out[k].flag);
+        assert_true(rel(v.P_Pc, pow(out[k].w, 1.5)) < 1e-6);
+    }
+    /* exactly on the corner nodes: inside */
+    tbl_value v;
+    query_ok(t, W_LO, TR[0], ER[0], &v);
+    assert_int_equal(v.flags, 0);
+    query_ok(t, W_HI, TR[NTR - 1], ER[NE - 1], &v);
+    assert_int_equal(v.flags, 0);
+
+    /* a missing interior point: its neighbours' queries say so, the others
+     * do not, and the cubic through the remaining points still is exact */
+    const int iw = 20;
+    tbl_point p = *tbl_point_get(t, iw); /* column (E 1, t/R 0.005) */
+    p.state = TBL_PENDING;
+    check_ok(tbl_point_set(t, iw, &p), "tbl_point_set pending");
+    check_ok(tbl_fit(t), "tbl_fit after a point was reset");
+    double below = sqrt(w[iw - 1] * w[iw]), above = sqrt(w[iw] * w[iw + 1]);
+    double far = sqrt(w[iw + 5] * w[iw + 6]);
+    tbl_value vb, va, vf, vo;
+    query_ok(t, below, TR[0], ER[0], &vb);
+    query_ok(t, above, TR[0], ER[0], &va);
+    query_ok(t, far, TR[0], ER[0], &vf);
+    query_ok(t, below, TR[1], ER[1], &vo); /* another column */
+    printf("pending point at w = %.4g: flags below 0x%02x, above 0x%02x, 5 nodes away 0x%02x, "
+           "other column 0x%02x; P/Pc rel error next to it %.1e\n", w[iw], vb.flags,
+           va.flags, vf.flags, vo.flags, rel(vb.P_Pc, pow(below, 1.5)));
+    assert_true(vb.flags & TBL_GAP);
+    assert_true(va.flags & TBL_GAP);
+    assert_int_equal(vf.flags, 0);
+    assert_int_equal(vo.flags, 0);
+    assert_true(rel(vb.P_Pc, pow(below, 1.5)) < 1e-6);
+    /* between t/R columns the missing point's column is used too */
+    query_ok(t, below, sqrt(TR[0] * TR[1]), ER[0], &v);
+    assert_true(v.flags & TBL_GAP);
+
+    /* missing end points: the column's power law is then continued from
+     * the next interval inside the axis, which the flags must say too */
+    const int base = (1 * NTR + 1) * NW; /* column (E 2, t/R 0.05) */
+    for (int k = 0; k < 2; k++) {
+        p = *tbl_point_get(t, base + k * (NW - 1));
+        p.state = TBL_PENDING;
+        check_ok(tbl_point_set(t, base + k * (NW - 1), &p), "tbl_point_set pending end");
+    }
+    check_ok(tbl_fit(t), "tbl_fit after the end points were reset");
+    tbl_value vlo, vhi, vout;
+    query_ok(t, sqrt(w[0] * w[1]), TR[1], ER[1], &vlo);
+    query_ok(t, sqrt(w[nw - 2] * w[nw - 1]), TR[1], ER[1], &vhi);
+    query_ok(t, 0.5 * w[0], TR[1], ER[1], &vout);
+    printf("pending end points: flags in the first interval 0x%02x, in the last 0x%02x, "
+           "below the axis 0x%02x\n", vlo.flags, vhi.flags, vout.flags);
+    assert_int_equal(vlo.flags, TBL_GAP);
+    assert_int_equal(vhi.flags, TBL_GAP);
+    assert_int_equal(vout.flags, TBL_GAP | TBL_OUT_W_LOW);
+
+    tbl_destroy(&t);
+}
+
+/* ---- 4. μs smoothing ----------------------------------------------------- */
+
+/* μs = μs_WSP(w) (1 + u), u uniform in ±3 %, each point claiming 3 %: the
+ * surrogate models ln μs − ln μs_WSP, here pure noise, so its posterior mean
+ * lies closer to the noise-free curve than the data and its error bar
+ * covers the truth. */
+static void test_mu_smoothing(void **state)
+{
+    (void)state;
+    const double noise = 0.03;
+    tbl_table *t = hertz_table(noise, noise, 20240611);
+    double t0 = now();
+    check_ok(tbl_fit(t), "tbl_fit");
+    double fit_s = now() - t0;
+    tbl_fit_info fi;
+    check_ok(tbl_get_fit_info(t, &fi), "tbl_get_fit_info");
+
+    double ss_data = 0.0, ss_fit = 0.0;
+    for (int i = 0; i < tbl_points(t); i++) {
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        double truth = stc_wsp_mu(w, NULL);
+        tbl_value v;
+        query_ok(t, w, tR, E, &v);
+        ss_data += pow(tbl_point_get(t, i)->mu_s / truth - 1.0, 2);
+        ss_fit += pow(v.mu_s / truth - 1.0, 2);
+    }
+    int n = tbl_points(t);
+    double rms_data = sqrt(ss_data / n), rms_fit = sqrt(ss_fit / n);
+
+    const double *w;
+    int nw = tbl_axis(t, 0, &w), mids = 0, within = 0;
+    const double tq[] = {TR[0], sqrt(TR[0] * TR[1]), TR[1]}, eq[] = {1.0, M_SQRT2, 2.0};
+    double worst_z = 0.0, ss_mid = 0.0;
+    for (int i = 0; i + 1 < nw; i++)
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 3; c++) {
+                double x = sqrt(w[i] * w[i + 1]), truth = stc_wsp_mu(x, NULL);
+                tbl_value v;
+                query_ok(t, x, tq[b], eq[c], &v);
+                assert_true(isfinite(v.mu_s_err) && v.mu_s_err > 0.0);
+                double z = fabs(v.mu_s - truth) / v.mu_s_err;
+                worst_z = fmax(worst_z, z);
+                within += z <= 2.0;
+                ss_mid += pow(v.mu_s / truth - 1.0, 2);
+                mids++;
+            }
+    double cover = (double)within / mids;
+    printf("mu_s smoothing (%d points, +-%.0f %% uniform noise, mu_s_err %.0f %%, fit %.3f s): "
+           "rms rel error at the nodes, data %.4f, surrogate %.4f; at %d midpoints %.4f, "
+           "truth within 2 sd at %.1f %% (worst %.2f sd)\n", n, 100 * noise, 100 * noise,
+           fit_s, rms_data, rms_fit, mids, sqrt(ss_mid / mids), 100 * cover, worst_z);
+    printf("  fit: n %d, ell (ln w, ln t/R, ln E) = (%.3g, %.3g, %.3g), noise scale %.3f, "
+           "LOO rms %.4f, max %.4f, cover2 %.3f\n", fi.n, fi.ell[0], fi.ell[1], fi.ell[2],
+           fi.noise_scale, fi.loo_rms, fi.loo_max, fi.loo_cover2);
+    assert_int_equal(fi.n, n);
+    assert_true(rms_fit < rms_data);
+    assert_true(cover >= 0.9);
+    assert_true(isfinite(fi.loo_rms) && fi.loo_rms > 0.0);
+    assert_true(isfinite(fi.loo_max) && fi.loo_max >= fi.loo_rms);
+    tbl_destroy(&t);
+}
+
+/* ---- 5. refusals ----------------------------------------------------------- */
+
+static void expect_fail(stc_status got, stc_status want, const char *what, const char *part1,
+                        const char *part2)
+{
+    const char *msg = stc_errmsg();
+    printf("  %-34s %s: %s\n", what, stc_strerror(got), msg);
+    if (want == STC_OK) assert_int_not_equal(got, STC_OK);
+    else assert_int_equal(got, want);
+    if (part1 && !strstr(msg, part1)) fail_msg("%s: message lacks '%s'", what, part1);
+    if (part2 && !strstr(msg, part2)) fail_msg("%s: message lacks '%s'", what, part2);
+}
+
+static void test_refusals(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "refusals", dir, sizeof dir);
+    tbl_table *r = NULL;
+
+    /* an HDF5 file of another kind: a surface map, and an empty file */
+    srf_map *m = NULL;
+    check_ok(srf_map_create(8, 8, 1.0, 1.0, &m), "srf_map_create");
+    snprintf(path, sizeof path, "%s/map.h5", dir);
+    check_ok(srf_map_write_h5(m, path), "srf_map_write_h5");
+    srf_map_destroy(&m);
+    expect_fail(tbl_read(path, &r), STC_EFORMAT, "surface map", "not a friction table", NULL);
+    assert_null(r);
+    snprintf(path, sizeof path, "%s/empty.h5", dir);
+    hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    assert_true(f >= 0);
+    H5Fclose(f);
+    expect_fail(tbl_read(path, &r), STC_EFORMAT, "empty HDF5 file", "not a friction table",
+                NULL);
+
+    /* a table of a format version this reader does not know */
+    tbl_table *t = hertz_table(0.0, 0.02, 1);
+    snprintf(path, sizeof path, "%s/future.h5", dir);
+    check_ok(tbl_write(t, path), "tbl_write");
+    f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    assert_true(f >= 0);
+    hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
+    int ver = 99;
+    assert_true(a >= 0 && H5Awrite(a, H5T_NATIVE_INT, &ver) >= 0);
+    H5Aclose(a);
+    H5Fclose(f);
+    expect_fail(tbl_read(path, &r), STC_EFORMAT, "format version 99", "version 99", NULL);
+
+    /* a text file, a truncated table, a directory, nothing */
+    snprintf(path, sizeof path, "%s/table.csv", dir);
+    FILE *fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs("delta_over_omega_c,P_over_P_c\n1,1\n", fp);
+    fclose(fp);
+    expect_fail(tbl_read(path, &r), STC_EFORMAT, "text file", "not an HDF5 file", NULL);
+    snprintf(path, sizeof path, "%s/truncated.h5", dir);
+    check_ok(tbl_write(t, path), "tbl_write");
+    struct stat sb;
+    assert_int_equal(stat(path, &sb), 0);
+    assert_int_equal(truncate(path, sb.st_size / 2), 0);
+    expect_fail(tbl_read(path, &r), STC_OK, "table cut in half", NULL, NULL);
+    assert_null(r);
+    expect_fail(tbl_read(dir, &r), STC_OK, "directory", "directory", NULL);
+    snprintf(path, sizeof path, "%s/missing.h5", dir);
+    expect_fail(tbl_read(path, &r), STC_OK, "missing file", "cannot open", NULL);
+    assert_null(r);
+
+    /* materials of another family, Eco/Esu outside the axis */
+    stc_params p;
+    asp_model *tm = NULL;
+    check_ok(tbl_fit(t), "tbl_fit");
+    family_params(1.5, &p);
+    p.nu = 0.3;
+    expect_fail(tbl_model_create(t, &p, T_MM, TBL_MODEL_PRELOAD, &tm), STC_EINVAL,
+                "nu 0.3 against nu 0.32", "materials:", "table:");
+    assert_true(strstr(stc_errmsg(), "nu 0.3,") && strstr(stc_errmsg(), "nu 0.32,"));
+    assert_null(tm);
+    family_params(3.0, &p);
+    expect_fail(tbl_model_create(t, &p, T_MM, TBL_MODEL_PRELOAD, &tm), STC_ERANGE,
+                "E_ratio 3 on the axis [1, 2]", "E-ratio = 3", "[1, 2]");
+    assert_null(tm);
+
+    /* axes that do not increase */
+    tbl_family fam;
+    tbl_numerics num;
+    tbl_family_default(&fam);
+    tbl_numerics_default(&num);
+    double w[NW], down[] = {0.05, 0.005}, flat[] = {1.0, 1.0};
+    w_axis(w);
+    tbl_table *bad = NULL;
+    expect_fail(tbl_create(&fam, &num, w, NW, down, 2, ER, NE, &bad), STC_EINVAL,
+                "decreasing t/R", "t/R", "increase");
+    assert_null(bad);
+    double wd[NW];
+    for (int i = 0; i < NW; i++) wd[i] = w[NW - 1 - i];
+    expect_fail(tbl_create(&fam, &num, wd, NW, TR, NTR, ER, NE, &bad), STC_EINVAL,
+                "decreasing w", "delta/omega_c", "increase");
+    expect_fail(tbl_create(&fam, &num, w, NW, TR, NTR, flat, 2, &bad), STC_EINVAL,
+                "repeated E_ratio", "E-ratio", "increase");
+    assert_null(bad);
+
+    /* merging tables of other axes */
+    tbl_table *other = NULL, *merged = NULL;
+    double w2[NW];
+    for (int i = 0; i < NW; i++) w2[i] = 2.0 * w[i];
+    check_ok(tbl_create(&fam, &num, w2, NW, TR, NTR, ER, NE, &other), "tbl_create");
+    tbl_table *parts[2] = {t, other};
+    expect_fail(tbl_merge(parts, 2, &merged), STC_EINVAL, "merge of other w axes", "another "
+                "build", NULL);
+    assert_null(merged);
+
+    tbl_destroy(&other);
+    tbl_destroy(&t);
+}
+
+/* ---- 6. merge ----------------------------------------------------------------- */
+
+/* Two shards (points split by index parity, the rest pending) merge into
+ * the full table, point by point and bitwise. */
+static void test_merge(void **state)
+{
+    (void)state;
+    tbl_table *full = hertz_table(0.03, 0.03, 5);
+    for (int i = 0; i < tbl_points(full); i++) distinct_point(full, i);
+    tbl_point p = *tbl_point_get(full, 33);
+    p.state = TBL_FAILED; /* a failed point travels with its shard too */
+    snprintf(p.reason, sizeof p.reason, "max iterations in the shear ramp");
+    check_ok(tbl_point_set(full, 33, &p), "tbl_point_set failed");
+    tbl_set_provenance(full, "stiction table build --shards 2", 10.0);
+
+    tbl_family f;
+    tbl_numerics num;
+    const double *w, *tR, *E;
+    tbl_get_family(full, &f);
+    tbl_get_numerics(full, &num);
+    int nw = tbl_axis(full, 0, &w), nt = tbl_axis(full, 1, &tR), ne = tbl_axis(full, 2, &E);
+    tbl_table *part[2] = {NULL, NULL}, *m = NULL;
+    for (int s = 0; s < 2; s++) {
+        check_ok(tbl_create(&f, &num, w, nw, tR, nt, E, ne, &part[s]), "tbl_create shard");
+        for (int i = s; i < tbl_points(full); i += 2)
+            check_ok(tbl_point_set(part[s], i, tbl_point_get(full, i)), "tbl_point_set");
+        tbl_set_provenance(part[s], "stiction table build --shards 2", 7.0 + 5.0 * s);
+        int done, failed, pending;
+        tbl_count(part[s], &done, &failed, &pending);
+        assert_int_equal(pending, tbl_points(full) / 2);
+        assert_true(tbl_same_build(part[s], full));
+    }
+    check_ok(tbl_merge(part, 2, &m), "tbl_merge");
+    int done, failed, pending;
+    tbl_count(m, &done, &failed, &pending);
+    for (int i = 0; i < tbl_points(full); i++) {
+        const char *d = point_diff(tbl_point_get(full, i), tbl_point_get(m, i));
+        if (d) fail_msg("merged point %d: field %s differs from the full table", i, d);
+    }
+    double wall;
+    tbl_provenance(m, &wall);
+    printf("merge of 2 parity shards (%d + %d points): %d done, %d failed, %d pending, all %d "
+           "points equal to the full table; build wall time %.0f s (the longer shard)\n",
+           tbl_points(full) - tbl_points(full) / 2, tbl_points(full) / 2, done, failed,
+           pending, tbl_points(full), wall);
+    assert_true(done == tbl_points(full) - 1 && failed == 1 && pending == 0);
+    assert_true(wall == 12.0);
+    check_family_equal(full, m);
+
+    tbl_destroy(&m);
+    tbl_destroy(&part[0]);
+    tbl_destroy(&part[1]);
+    tbl_destroy(&full);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hertz_through_file), cmocka_unit_test(test_round_trip),
+        cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_mu_smoothing),
+        cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
+    };
+    return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
+}
