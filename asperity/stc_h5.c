@@ -80,7 +80,7 @@ int stc_h5_get_s(hid_t o, const char *n, char *buf, size_t cap)
     hid_t a = attr_open_one(o, n);
     if (a < 0) return -1;
     hid_t ft = H5Aget_type(a);
-    int ok = H5Tget_class(ft) == H5T_STRING && !H5Tis_variable_str(ft) && H5Tget_size(ft) < cap;
+    int ok = H5Tget_class(ft) == H5T_STRING && !H5Tis_variable_str(ft) && H5Tget_size(ft) <= cap;
     if (ok) {
         hid_t t = H5Tcopy(H5T_C_S1);
         H5Tset_size(t, cap);

@@ -47,7 +47,7 @@ static inline const char *cli_path(const char *dir, const char *name)
 /* Run the shell command `cmd`; `which` = 1 captures its stdout, 2 its
  * stderr, into out (NUL-terminated).  Returns the exit status (128 +
  * signal if killed). */
-static int cli_capture(const char *cmd, int which, char *out, size_t n)
+static inline int cli_capture(const char *cmd, int which, char *out, size_t n)
 {
     char full[PATH_MAX + 4096];
     snprintf(full, sizeof full, "%s %s", cmd, which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");

@@ -1,0 +1,306 @@
+/* stiction table build|info|query|merge from the command line: a build
+ * killed at random moments resumes without losing a finished point and ends
+ * equal to an uninterrupted one; shards joined by merge equal the serial
+ * build; bad input is refused by name and leaves no file.  The builds are
+ * small and coarse (3 elements across the contact, one placement, slip
+ * normal step: about 2 s a point, one at a time), so the test measures the machinery, not
+ * the accuracy of the points. */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <setjmp.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "cli_util.h"
+#include "stiction/table.h"
+
+static char cli[PATH_MAX], dir[256];
+static const char *P(const char *name) { return cli_path(dir, name); }
+
+#define BUILD_AXES "--deltas 0.5,1 --t-over-R 0.01 --E-ratio 1,2"
+#define BUILD_NUM "--contact slip --elements-per-contact 3 --placements 1"
+
+/* argv of a build of the small table into `out`, extra args appended */
+static int build_argv(char **av, int cap, const char *out, const char *extra)
+{
+    static char buf[2048];
+    snprintf(buf, sizeof buf, "table build " BUILD_AXES " " BUILD_NUM " --out %s %s", out,
+             extra ? extra : "");
+    int n = 0;
+    av[n++] = cli;
+    for (char *t = strtok(buf, " "); t && n < cap - 1; t = strtok(NULL, " ")) av[n++] = t;
+    av[n] = NULL;
+    return n;
+}
+
+/* Start a build with stderr to errfile; returns its pid. */
+static pid_t start_build(const char *out, const char *extra, const char *errfile)
+{
+    char *av[64];
+    build_argv(av, 64, out, extra);
+    fflush(stdout); /* the child must not write the parent's buffered lines again */
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        if (chdir(dir) != 0) _exit(127);
+        FILE *e = freopen(errfile, "w", stderr);
+        FILE *o = freopen("/dev/null", "w", stdout);
+        (void)e, (void)o;
+        execv(cli, av);
+        _exit(127);
+    }
+    return pid;
+}
+
+static int wait_rc(pid_t pid)
+{
+    int st;
+    while (waitpid(pid, &st, 0) < 0 && errno == EINTR) {}
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+/* Run the CLI in the scratch directory; which = 1 captures stdout, 2 stderr. */
+static int run(const char *args, int which, char *out, size_t n)
+{
+    static char cmd[2 * PATH_MAX + 4096];
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s %s", dir, cli, args,
+             which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t got = fread(out, 1, n - 1, p);
+    out[got] = '\0';
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+static int count_lines(const char *path, const char *needle)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return 0;
+    char line[4096];
+    int n = 0;
+    while (fgets(line, sizeof line, f)) n += strstr(line, needle) != NULL;
+    fclose(f);
+    return n;
+}
+
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* The results of two tables are equal point by point, bitwise (times
+ * excluded: they are measurements of the run).  Every build here runs one
+ * point at a time: a point's numbers then do not depend on what the process
+ * computed before it (measured: a shard computing one point alone gives the
+ * full build's bits).  Two points computed at once in one process agree only
+ * to the solver's tolerances (up to 2.6e-7 relative in mu_s, measured). */
+static void assert_same_results(const char *a, const char *b)
+{
+    tbl_table *ta = NULL, *tb = NULL;
+    assert_int_equal(tbl_read(a, &ta), STC_OK);
+    assert_int_equal(tbl_read(b, &tb), STC_OK);
+    assert_true(tbl_same_build(ta, tb));
+    double worst = 0.0;
+    for (int i = 0; i < tbl_points(ta); i++) {
+        const tbl_point *p = tbl_point_get(ta, i), *q = tbl_point_get(tb, i);
+        assert_int_equal(p->state, q->state);
+        assert_int_equal(p->state, TBL_DONE);
+        const double va[] = {p->P_Pc, p->A_Ac, p->P_slide_Pc, p->Q_max_Pc, p->mu_s,
+                             p->mu_s_err, p->mu_s_preload, p->ux_slide_wc};
+        const double vb[] = {q->P_Pc, q->A_Ac, q->P_slide_Pc, q->Q_max_Pc, q->mu_s,
+                             q->mu_s_err, q->mu_s_preload, q->ux_slide_wc};
+        for (size_t k = 0; k < sizeof va / sizeof *va; k++)
+            worst = fmax(worst, fabs(va[k] - vb[k]) / fabs(vb[k]));
+        assert_int_equal(p->members, q->members);
+        assert_int_equal(p->newton_iterations, q->newton_iterations);
+        assert_int_equal(p->factorizations, q->factorizations);
+        assert_string_equal(p->reason, q->reason);
+    }
+    printf("  largest relative difference of any stored result: %.2g\n", worst);
+    assert_true(worst == 0.0);
+    tbl_destroy(&ta);
+    tbl_destroy(&tb);
+}
+
+/* ------------------------------------------------------------ fixtures */
+
+static int setup(void **state)
+{
+    (void)state;
+    if (cli_locate(cli, sizeof cli) != 0) return -1;
+    snprintf(dir, sizeof dir, "/tmp/stiction-test-table-XXXXXX");
+    if (!mkdtemp(dir)) return -1;
+    /* the uninterrupted reference build, used by every test */
+    pid_t pid = start_build("ref.h5", "--jobs 1", P("ref.err"));
+    int rc = wait_rc(pid);
+    if (rc != 0) fprintf(stderr, "reference build failed: exit %d\n", rc);
+    return rc == 0 ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[PATH_MAX + 32];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+/* ------------------------------------------------------------ tests */
+
+/* SIGKILL three times, each at a pseudo-random moment (fixed seed) after
+ * the run has reported its first point, then to the end: every point
+ * reported before a kill is taken by the next run, no half-written table
+ * ever sits under the final name, and the result equals the uninterrupted
+ * build. */
+static void test_killed_build_resumes(void **state)
+{
+    (void)state;
+    unsigned seed = 20261126u;
+    int reported_before = 0;
+    for (int k = 0; k < 3; k++) {
+        seed = seed * 1103515245u + 12345u;
+        double wait_s = 1.5 * ((seed >> 8) % 1000) / 1000.0;
+        char err[32];
+        snprintf(err, sizeof err, "kill%d.err", k);
+        pid_t pid = start_build("k.h5", "--jobs 1", P(err));
+        int st, gone = 0;
+        while (!(gone = waitpid(pid, &st, WNOHANG) == pid) && count_lines(P(err), "] delta ") < 1) {
+            struct timespec poll = {0, 20000000};
+            nanosleep(&poll, NULL);
+        }
+        if (gone) fail_msg("build %d ended before it could be killed", k);
+        struct timespec ts = {(time_t)wait_s, (long)((wait_s - floor(wait_s)) * 1e9)};
+        nanosleep(&ts, NULL);
+        kill(pid, SIGKILL);
+        int rc = wait_rc(pid);
+        int reported = count_lines(P(err), "] delta ");
+        printf("  kill %d at %.2f s after its first point (exit %d): %d points reported\n", k,
+               wait_s, rc, reported);
+        reported_before += reported;
+        if (exists(P("k.h5"))) { /* only ever a whole table */
+            tbl_table *t = NULL;
+            assert_int_equal(tbl_read(P("k.h5"), &t), STC_OK);
+            tbl_destroy(&t);
+        }
+    }
+    char out[4096];
+    int rc = run("table build " BUILD_AXES " " BUILD_NUM " --out k.h5 --jobs 1", 1, out,
+                 sizeof out);
+    assert_int_equal(rc, 0);
+    int taken = -1, share = -1, computed = -1;
+    const char *p = strstr(out, "this run: ");
+    assert_non_null(p);
+    assert_int_equal(sscanf(p, "this run: %d of %d points of its share computed, %d taken",
+                            &computed, &share, &taken), 3);
+    printf("  final run: %d computed, %d taken from the killed runs (%d reported by them)\n",
+           computed, taken, reported_before);
+    assert_int_equal(share, 4);
+    assert_int_equal(computed + taken, 4);
+    assert_true(taken >= reported_before); /* journal first, report after */
+    assert_false(exists(P("k.h5.journal")));
+    assert_false(exists(P("k.h5.tmp")));
+    assert_same_results(P("ref.h5"), P("k.h5"));
+    printf("  resumed table equals the uninterrupted build (every point)\n");
+}
+
+/* Two shards built separately and merged equal the serial build; a shard
+ * alone is a partial table. */
+static void test_shards_merge(void **state)
+{
+    (void)state;
+    char out[4096];
+    pid_t a = start_build("s0.h5", "--shard 0/2 --jobs 1", P("s0.err"));
+    pid_t b = start_build("s1.h5", "--shard 1/2 --jobs 1", P("s1.err"));
+    assert_int_equal(wait_rc(a), 0);
+    assert_int_equal(wait_rc(b), 0);
+    assert_int_equal(run("table info s0.h5 --json", 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_non_null(strstr(out, "\"pending\": 2"));
+    assert_int_equal(run("table merge s0.h5 s1.h5 --out m.h5", 2, out, sizeof out), 0);
+    assert_same_results(P("ref.h5"), P("m.h5"));
+    printf("  shards 0/2 + 1/2 merged equal the serial build\n");
+}
+
+static void expect_refusal(const char *args, int code, const char *n1, const char *n2)
+{
+    char out[8192];
+    int rc = run(args, 2, out, sizeof out);
+    printf("  %-60.60s -> %d: %s", args, rc, out);
+    assert_int_equal(rc, code);
+    assert_non_null(strstr(out, n1));
+    if (n2) assert_non_null(strstr(out, n2));
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    char out[8192];
+    /* a file that is not a table */
+    assert_int_equal(run("surface synth --size 16 --out map.h5", 1, out, sizeof out), 0);
+    expect_refusal("table info map.h5", 2, "not a friction table", NULL);
+    expect_refusal("table info nosuch.h5", 1, "cannot open", NULL);
+    expect_refusal("table info .", 1, "is a directory", NULL);
+    /* a build onto a table of another build leaves it as it was */
+    struct stat before, after;
+    assert_int_equal(stat(P("ref.h5"), &before), 0);
+    expect_refusal("table build --deltas 0.5,1 --t-over-R 0.01 --E-ratio 1 --contact slip "
+                   "--out ref.h5", 2, "another build", NULL);
+    assert_int_equal(stat(P("ref.h5"), &after), 0);
+    assert_true(before.st_mtime == after.st_mtime && before.st_size == after.st_size);
+    expect_refusal("table build --deltas 1,0.5 --t-over-R 0.01 --E-ratio 1 --out x.h5", 2,
+                   "must increase", NULL);
+    expect_refusal("table build --deltas 1 --t-over-R 0.01 --out x.h5", 2, "E-ratio: missing",
+                   NULL);
+    expect_refusal("table build " BUILD_AXES " --shard 2/2 --out x.h5", 2, "shard = '2/2'",
+                   NULL);
+    assert_false(exists(P("x.h5")));
+    assert_false(exists(P("x.h5.journal")));
+    /* merge of tables of different builds, or of a missing one: no output */
+    assert_int_equal(run("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 " BUILD_NUM
+                         " --out other.h5", 1, out, sizeof out), 0);
+    expect_refusal("table merge ref.h5 other.h5 --out mm.h5", 2, "another build", NULL);
+    expect_refusal("table merge ref.h5 nosuch.h5 --out mm.h5", 1, "cannot open", NULL);
+    assert_false(exists(P("mm.h5")));
+    /* a query outside the table: answered, flagged on stderr and in JSON */
+    int rc = run("table query ref.h5 --delta 1,5 --t-over-R 0.01 --E-ratio 1.5 --json", 1, out,
+                 sizeof out);
+    assert_int_equal(rc, 0);
+    assert_json(out);
+    assert_non_null(strstr(out, "\"in_range\": true"));
+    assert_non_null(strstr(out, "delta above the table"));
+    expect_refusal("table query ref.h5 --delta 5 --t-over-R 0.01 --E-ratio 1", 0,
+                   "warning: delta above the table", NULL);
+    /* the materials of another family */
+    expect_refusal("surface predict --table ref.h5 --nu 0.3 --summit-density 2000 "
+                   "--summit-radius 0.07 --sigma-s 0.0004 --pressures 1", 2,
+                   "another family", "nu 0.3, 0.3");
+    expect_refusal("surface predict --table ref.h5 --E-ratio 3 --summit-density 2000 "
+                   "--summit-radius 0.07 --sigma-s 0.0004 --pressures 1", 1,
+                   "E-ratio = 3: outside the table's [1, 2]", NULL);
+    expect_refusal("surface predict --table ref.h5 --model wsp --summit-density 2000 "
+                   "--summit-radius 0.07 --sigma-s 0.0004 --pressures 1", 2,
+                   "--model conflicts with --table", NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_killed_build_resumes),
+        cmocka_unit_test(test_shards_merge),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests_name("cli_table", tests, setup, teardown);
+}
