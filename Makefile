@@ -13,7 +13,9 @@ O         ?= .
 endif
 
 CC        ?= cc
-PKGS      := fftw3 hdf5 inih
+# Open MPI: one binary; MPI is initialised only under mpirun -n N > 1
+# (asperity/table_mpi.c)
+PKGS      := fftw3 hdf5 inih ompi-c
 OPTFLAGS  ?= -O2
 CSTD      := -std=c11 -D_DEFAULT_SOURCE
 WARN      := -Wall -Wextra -Werror
@@ -47,8 +49,9 @@ DEPSTAMP  := $(O)/obj/.deps-ok
 
 all: $(STATIC) $(SHARED) $(CLI)
 
-# A build that finds a Debian package missing installs it (make deps) first.
-$(DEPSTAMP):
+# A build that finds a Debian package missing installs it (make deps) first;
+# a changed package list is checked again.
+$(DEPSTAMP): tools/deps.sh
 	@mkdir -p $(@D)
 	@tools/deps.sh check || $(MAKE) --no-print-directory deps
 	@tools/deps.sh check

@@ -1,6 +1,7 @@
 /* Private layout of a friction table (include/stiction/table.h), shared by
  * table.c (the handle), table_io.c (HDF5), table_build.c (sweeps and the
- * journal) and table_interp.c (interpolation and the asperity model). */
+ * journal), table_mpi.c (distributed sweeps) and table_interp.c
+ * (interpolation and the asperity model). */
 #ifndef STICTION_TABLE_IMPL_H
 #define STICTION_TABLE_IMPL_H
 
@@ -38,5 +39,64 @@ int tbl_bracket(const double *ax, int n, double x, double *frac);
 /* 64-bit FNV-1a of the build's definition (family, numerics, axes): the
  * journal's header, so a journal is only ever read by its own build. */
 unsigned long long tbl_build_hash(const tbl_table *t);
+
+/* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
+
+/* The writer's state: the table, its journal and the counts the progress
+ * reports carry.  Shared by the writer's threads: tbl_build_finish
+ * serialises them; stop is read and written atomically. */
+typedef struct tbl_build_state {
+    tbl_table *t;               /* borrowed */
+    const tbl_build_opts *o;    /* borrowed */
+    int fd;                     /* the journal, open for appending */
+    int done, total, resumed, failed, computed; /* points, as in tbl_progress */
+    int stop;                   /* nonzero: hand out no more points */
+    int io_error;               /* errno of a failed journal append, else 0 */
+    double t0, cpu;             /* start (monotonic s); CPU s of the computed points */
+} tbl_build_state;
+
+/* Point i of t computed on the calling thread: tbl_point_compute at the
+ * point's coordinates.  The caller holds OpenBLAS at one thread. */
+stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p);
+
+/* A finished point: journal it (synced), store it in the table, report it.
+ * Thread-safe (one critical section).  Sets b->stop on a journal error or
+ * when the progress callback asks to stop. */
+void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p);
+
+/* ---- distributed builds: the MPI farm (table_mpi.c) ---- */
+
+/* This process in a build: rank and size in MPI_COMM_WORLD, or 0 and 1
+ * when the build is not distributed. */
+typedef struct tbl_mpi {
+    int rank, size;
+    int owned;   /* MPI initialised by tbl_mpi_begin: tbl_mpi_end finalises it */
+    int threads; /* MPI_THREAD_FUNNELED on the main thread: the writer may
+                    compute points on threads while its main thread serves */
+} tbl_mpi;
+
+/* Decide how this build runs: distributed when MPI is initialised with
+ * more than one process, or when mpirun started this process with more
+ * than one (then MPI is initialised here).  Otherwise MPI is not touched
+ * beyond MPI_Initialized / MPI_Finalized.  STC_EUNSUPPORTED when mpirun
+ * started more than one process but MPI was finalised already. */
+stc_status tbl_mpi_begin(tbl_mpi *m);
+/* Finalise MPI if tbl_mpi_begin initialised it; then m is not distributed.
+ * Collective; idempotent. */
+void tbl_mpi_end(tbl_mpi *m);
+
+/* Rank 0: hand out the points todo[n] to the other ranks one at a time,
+ * compute some on this rank's threads, journal and report every finished
+ * one through b; returns when every rank has been told to stop.  A failure
+ * on any rank stops the farm after the points under way and is returned
+ * with its message. */
+stc_status tbl_mpi_serve(const tbl_mpi *m, tbl_build_state *b, const int *todo, int n);
+/* Rank 0 failed before the farm started (status s, message why): tell every
+ * other rank to stop with that failure, so that none waits for work. */
+void tbl_mpi_release(const tbl_mpi *m, stc_status s, const char *why);
+/* Ranks >= 1: ask rank 0 for points, compute them on this thread, send
+ * them back, until told to stop.  The points are kept in t too; nothing is
+ * written to any file.  sum counts this rank's points. */
+stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary *sum);
 
 #endif

@@ -4,7 +4,8 @@
 #   tools/deps.sh install  apt-get install the missing ones (idempotent)
 set -u
 PKGS="build-essential pkg-config libfftw3-dev libgsl-dev libhdf5-dev libsuitesparse-dev \
-libopenblas-dev libcmocka-dev libinih-dev gnuplot-nox libpng-dev hdf5-tools"
+libopenblas-dev libcmocka-dev libinih-dev gnuplot-nox libpng-dev hdf5-tools \
+libopenmpi-dev openmpi-bin"
 
 missing() {
     for p in $PKGS; do

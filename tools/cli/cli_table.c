@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "stiction/table.h"
+#include "stiction/table_mpi.h"
 
 /* ---- shared ------------------------------------------------------------------ */
 
@@ -95,8 +96,11 @@ static const cli_opt build_opts[] = {
     {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
                                   "(default); a small value (>= 2) gives a quick coarse table"},
     {"out", "FILE", "the table file (resumes from FILE.journal and FILE if they exist)"},
-    {"jobs", "N", "points computed at once, one thread each (default: one per core)"},
-    {"shard", "I/N", "compute only points with index % N == I (job arrays; join with merge)"},
+    {"jobs", "N", "points computed at once, one thread each (default: one per core); "
+                  "under mpirun -n N > 1: points rank 0 computes besides handing them out "
+                  "(default 1; the other ranks compute one at a time)"},
+    {"shard", "I/N", "compute only points with index % N == I (job arrays; join with "
+                     "merge); combines with mpirun"},
     {"quiet", NULL, "no progress lines"},
     {NULL, NULL, NULL},
 };
@@ -228,9 +232,13 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     tbl_numerics_default(&a.num);
     tbl_build_opts_default(&a.bo);
     int done, rc;
-    const char *usage = "stiction table build --config FAMILY.ini --out FILE [options]\n"
+    const char *usage = "--config FAMILY.ini --out FILE [options]\n"
                         "Sweep the FE asperity solver over the axes and store the table "
-                        "(resumable: run it again after a crash).";
+                        "(resumable: run it again after a crash).\n"
+                        "Under `mpirun -n N stiction table build ...` the N processes share "
+                        "the points: rank 0\nhands them out one at a time, computes some "
+                        "itself and alone writes FILE.journal and\nFILE; the others print "
+                        "nothing and return rank 0's outcome.";
     rc = cli_parse(cmd->name, usage, argc, argv, build_opts, NULL, build_set, &a, &done);
     tbl_table *t = NULL;
     if (rc || done) goto out;
@@ -256,11 +264,19 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     char prov[512];
     command_line(prov, sizeof prov, cmd->name, argc, argv);
     tbl_set_provenance(t, prov, 0.0);
+    /* Under mpirun only rank 0 speaks: it has every point and every failure
+     * (a failing rank tells rank 0, rank 0 tells every rank).  The others
+     * exit 0 and leave the exit status to rank 0 too: mpirun ends the whole
+     * job at the first non-zero exit, which could cut rank 0 off before it
+     * reports. */
+    int rank, ranks;
+    tbl_build_rank(&rank, &ranks);
     progress_ctx pc = {isatty(2), a.quiet, now_s(), t};
     a.bo.progress = progress;
     a.bo.ctx = &pc;
     tbl_build_summary sum;
     s = tbl_build(t, a.out, &a.bo, &sum);
+    if (rank > 0) goto out;
     if (pc.tty && !a.quiet && sum.computed > 0) fputc('\n', stderr);
     if (s) {
         rc = cli_fail(cmd->name, s);
@@ -270,8 +286,10 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     tbl_count(t, &nd, &nf, &npend);
     printf("wrote %s: %d points (%d x %d x %d), %d done, %d failed, %d pending\n", a.out,
            tbl_points(t), a.n[0], a.n[1], a.n[2], nd, nf, npend);
-    printf("this run: %d of %d points of its share computed, %d taken from an earlier run; "
-           "%.1f s wall, %.1f CPU s per point\n", sum.computed, sum.share, sum.resumed,
+    char on[48] = "";
+    if (ranks > 1) snprintf(on, sizeof on, " (on %d MPI ranks)", ranks);
+    printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
+           "%.1f s wall, %.1f CPU s per point\n", on, sum.computed, sum.share, sum.resumed,
            sum.wall_s, sum.computed ? sum.cpu_s / sum.computed : 0.0);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK)

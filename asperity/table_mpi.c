@@ -1,0 +1,424 @@
+/* Distributed table builds: an MPI farm behind tbl_build, where rank 0
+ * hands out the points and every rank computes them
+ * (include/stiction/table_mpi.h).
+ *
+ * One binary.  libstiction and the CLI are always linked against Open MPI,
+ * but MPI is initialised only when mpirun started the process with more
+ * than one rank (OMPI_COMM_WORLD_SIZE > 1), or used when the caller
+ * initialised it with more than one process.  A plain run, and `mpirun -n 1`,
+ * take the serial OpenMP path of table_build.c and never initialise MPI: the
+ * library only asks MPI_Initialized / MPI_Finalized, which the standard
+ * allows before MPI_Init.  (A second, MPI-only binary would double the build
+ * and the tests for no gain: loading libmpi adds 0.7 ms to a plain run's
+ * start-up, measured on an empty program, and nothing else.)  When the
+ * library initialised MPI it finalises it as soon as the farm is over, so
+ * one process runs one distributed build; a caller that wants more
+ * initialises MPI itself.
+ *
+ * Roles.  Rank 0 is the single writer: it takes the points of an earlier
+ * run exactly as the serial path does (the table at the path, then the
+ * journal), owns the journal, reports progress through the caller's
+ * callback and writes the table at the end.  Ranks >= 1 write no file: they
+ * say hello, get a point, compute it on one thread, send it back as bytes,
+ * and get the next one in the reply (dynamic scheduling, one point at a
+ * time: point costs vary about 10x).  --shard combines with the farm: the
+ * farm shares out the shard's pending points.
+ *
+ * Rank 0 computes too: its main thread serves the messages (MPI_THREAD_
+ * FUNNELED: only that thread calls MPI) while opts.jobs threads (default 1,
+ * as mpirun gives each rank one core) compute points taken from the same
+ * queue.  So `mpirun -n N` keeps N cores busy, like the serial path with N
+ * threads, instead of leaving one rank to wait.  The serving thread never
+ * spins: it polls with MPI_Iprobe and sleeps NAP_NS between polls
+ * (measured: 0.14 CPU s in a 7 s build, start-up included; a point takes
+ * seconds, so a millisecond of latency does not matter); ranks >= 1 wait
+ * for their replies the same way, so no rank relies on Open MPI's
+ * mpi_yield_when_idle.
+ *
+ * Messages are fixed-size structs sent as bytes (every rank runs the same
+ * binary; a message of another size is refused, not read).  The hello
+ * carries the hash of the rank's build (tbl_build_hash, which covers
+ * sizeof(tbl_point)) and its shard, so a rank started with other options
+ * fails the build instead of filling it with wrong points.
+ *
+ * Failures.  A rank whose point cannot be computed sends the message to rank
+ * 0; rank 0 then hands out no more points, journals the points still under
+ * way as they arrive, answers every rank with the failure (which each
+ * returns) and returns it, naming the failing rank.  A failure of rank 0
+ * before the farm (a table of another build at the path, the journal) is
+ * answered to every rank the same way, so no rank waits for work that will
+ * not come.  MPI errors keep MPI_ERRORS_ARE_FATAL: mpirun then ends every
+ * rank, and the journal, synced after each point, keeps the finished ones;
+ * a rank that dies likewise ends the job (mpirun's default).
+ *
+ * Measured on the 2-core test machine, otherwise idle, wall time of the
+ * whole command for 6 points (--deltas 0.5,1,2 --t-over-R 0.01 --E-ratio 1,2
+ * --contact slip --elements-per-contact 3 --placements 1; about 2.2 CPU s a
+ * point), range of five runs each:
+ *     serial, 2 threads              7.2 - 8.3 s
+ *     mpirun -n 2                    7.5 - 8.1 s
+ *     mpirun -n 3 --oversubscribe    7.5 - 8.4 s
+ * So two cores give the same wall time either way: mpirun's own start-up
+ * and finalisation (about 0.3 s) are lost in the spread, and -n 3 just puts
+ * three points on two cores.  Every number of every point equals the
+ * one-thread serial build's bit for bit (tests/test_table_mpi.c).
+ */
+#include <mpi.h>
+#include <omp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "stc_check.h"
+#include "stiction/table_mpi.h"
+#include "table_impl.h"
+
+void openblas_set_num_threads(int num_threads);
+int openblas_get_num_threads(void);
+
+/* Message tags: worker -> rank 0, rank 0 -> worker. */
+enum { TAG_UP = 1, TAG_DOWN = 2 };
+/* Kinds of a worker's message. */
+enum { UP_HELLO = 1, UP_POINT = 2, UP_FAIL = 3 };
+/* Room for a message (stc_errmsg holds up to 1023 characters). */
+enum { WHY_MAX = 1024 };
+/* Pause between two polls of a waiting rank, ns. */
+#define NAP_NS 1000000L
+
+typedef struct {
+    int32_t kind;      /* UP_* */
+    int32_t index;     /* UP_POINT: the point */
+    int32_t code;      /* UP_FAIL: the stc_status */
+    int32_t shard, shards;
+    uint64_t hash;     /* UP_HELLO: tbl_build_hash of the rank's table */
+    tbl_point p;       /* UP_POINT */
+    char why[WHY_MAX]; /* UP_FAIL */
+} msg_up;
+
+typedef struct {
+    int32_t index;     /* the point to compute, or -1: stop */
+    int32_t code;      /* with -1: STC_OK (all handed out) or why the build failed */
+    char why[WHY_MAX];
+} msg_down;
+
+static int launched_size(void)
+{
+    const char *s = getenv("OMPI_COMM_WORLD_SIZE");
+    return s ? atoi(s) : 0;
+}
+
+void tbl_build_rank(int *rank, int *size)
+{
+    int init = 0, fin = 0;
+    MPI_Initialized(&init);
+    MPI_Finalized(&fin);
+    *rank = 0, *size = 1;
+    if (init && !fin) {
+        MPI_Comm_rank(MPI_COMM_WORLD, rank);
+        MPI_Comm_size(MPI_COMM_WORLD, size);
+    } else if (launched_size() > 1) {
+        const char *r = getenv("OMPI_COMM_WORLD_RANK");
+        *size = launched_size();
+        *rank = r ? atoi(r) : 0;
+    }
+}
+
+stc_status tbl_mpi_begin(tbl_mpi *m)
+{
+    memset(m, 0, sizeof *m);
+    m->size = 1;
+    int init = 0, fin = 0, level = MPI_THREAD_SINGLE;
+    MPI_Initialized(&init);
+    MPI_Finalized(&fin); /* MPI_Initialized stays true after MPI_Finalize */
+    if (fin || !init) {
+        if (launched_size() <= 1) return STC_OK; /* a plain run, or mpirun -n 1 */
+        STC_CHECK(!fin, STC_EUNSUPPORTED, "this process ran a distributed build already and "
+                  "MPI is finalised: one build per process under mpirun, unless the caller "
+                  "initialises MPI (MPI_Init_thread, MPI_THREAD_FUNNELED) for all of them");
+        MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &level);
+        m->owned = 1;
+    } else {
+        MPI_Query_thread(&level);
+    }
+    int main_thread = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &m->rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &m->size);
+    MPI_Is_thread_main(&main_thread);
+    m->threads = (level >= MPI_THREAD_FUNNELED && main_thread) ||
+                 level >= MPI_THREAD_SERIALIZED;
+    if (m->size == 1) tbl_mpi_end(m);
+    return STC_OK;
+}
+
+void tbl_mpi_end(tbl_mpi *m)
+{
+    if (m->owned) MPI_Finalize();
+    m->owned = 0;
+    m->rank = 0, m->size = 1;
+}
+
+static void nap(void)
+{
+    struct timespec ts = {0, NAP_NS};
+    nanosleep(&ts, NULL);
+}
+
+/* Wait without spinning for a message with tag from src; its status in *st. */
+static void wait_message(int src, int tag, MPI_Status *st)
+{
+    for (;;) {
+        int flag = 0;
+        MPI_Iprobe(src, tag, MPI_COMM_WORLD, &flag, st);
+        if (flag) return;
+        nap();
+    }
+}
+
+/* ---- rank 0 ----------------------------------------------------------------- */
+
+typedef struct {
+    tbl_build_state *b; /* NULL when only releasing the other ranks */
+    const int *todo;
+    int n, next;        /* todo[next] is handed out next (atomic) */
+    int *given;         /* [size]: the point each rank computes, -1 none */
+    int open;           /* ranks not yet told to stop */
+    uint64_t hash;
+    int shard, shards;
+    stc_status fail;    /* the first failure (critical tbl_mpi_fail) */
+    char why[WHY_MAX];
+} farm;
+
+static void farm_fail(farm *f, stc_status s, const char *msg)
+{
+#pragma omp critical(tbl_mpi_fail)
+    {
+        if (f->fail == STC_OK) {
+            f->fail = s;
+            snprintf(f->why, sizeof f->why, "%s", msg);
+        }
+    }
+    if (f->b) {
+#pragma omp atomic write
+        f->b->stop = 1;
+    }
+}
+
+/* The next point to compute, or -1 when the farm is stopped or empty. */
+static int farm_take(farm *f)
+{
+    int stop = 1, k;
+    if (f->b) {
+#pragma omp atomic read
+        stop = f->b->stop;
+    }
+    if (stop) return -1;
+#pragma omp atomic capture
+    k = f->next++;
+    return k < f->n ? f->todo[k] : -1;
+}
+
+/* The reply to rank src: its next point, or stop with the farm's outcome. */
+static void farm_reply(farm *f, int src)
+{
+    msg_down d;
+    memset(&d, 0, sizeof d);
+    d.index = farm_take(f);
+    if (f->given) f->given[src] = d.index;
+    if (d.index < 0) {
+        stc_status fail;
+        int stop = 0;
+#pragma omp critical(tbl_mpi_fail)
+        {
+            fail = f->fail;
+            snprintf(d.why, sizeof d.why, "%s", f->why);
+        }
+        if (f->b) {
+#pragma omp atomic read
+            stop = f->b->stop;
+        }
+        d.code = fail != STC_OK ? (int32_t)fail : stop ? STC_ENOCONV : STC_OK;
+        if (fail == STC_OK && stop)
+            snprintf(d.why, sizeof d.why, "rank 0 stopped the build (a journal error or "
+                     "its caller's request; rank 0's message says which)");
+        f->open--;
+    }
+    MPI_Send(&d, (int)sizeof d, MPI_BYTE, src, TAG_DOWN, MPI_COMM_WORLD);
+}
+
+/* One message from another rank, and the reply to it. */
+static void farm_handle(farm *f)
+{
+    MPI_Status st;
+    wait_message(MPI_ANY_SOURCE, TAG_UP, &st);
+    int src = st.MPI_SOURCE, bytes = 0;
+    MPI_Get_count(&st, MPI_BYTE, &bytes);
+    msg_up u;
+    char msg[WHY_MAX + 64] = "";
+    stc_status bad = STC_EINVAL;
+    if (bytes != (int)sizeof u) {
+        /* read and dropped (with no room for it, MPI's truncation error ends the job) */
+        char *junk = malloc(bytes > 0 ? (size_t)bytes : 1);
+        MPI_Recv(junk ? (void *)junk : (void *)&u, junk ? bytes : (int)sizeof u, MPI_BYTE, src,
+                 TAG_UP, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        free(junk);
+        snprintf(msg, sizeof msg, "rank %d: a message of %d bytes, not %d: every rank must "
+                 "run the same stiction binary", src, bytes, (int)sizeof u);
+    } else {
+        MPI_Recv(&u, (int)sizeof u, MPI_BYTE, src, TAG_UP, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (u.kind == UP_HELLO) {
+            if (u.hash != f->hash || u.shard != f->shard || u.shards != f->shards)
+                snprintf(msg, sizeof msg, "rank %d: another build (family, numerics, axes or "
+                         "shard differ from rank 0's): start every rank with the same "
+                         "options", src);
+        } else if (u.kind == UP_POINT) {
+            if (!f->b || !f->given || u.index != f->given[src])
+                snprintf(msg, sizeof msg, "rank %d: sent point %d, which it was not given",
+                         src, (int)u.index);
+            else tbl_build_finish(f->b, u.index, &u.p);
+        } else if (u.kind == UP_FAIL) {
+            u.why[WHY_MAX - 1] = '\0';
+            if (u.code > STC_OK && u.code < STC_NSTATUS) bad = (stc_status)u.code;
+            snprintf(msg, sizeof msg, "rank %d: %s", src, u.why);
+        } else {
+            snprintf(msg, sizeof msg, "rank %d: a message of unknown kind %d", src,
+                     (int)u.kind);
+        }
+    }
+    if (msg[0]) farm_fail(f, bad, msg);
+    farm_reply(f, src);
+}
+
+/* Rank 0's compute threads: points from the shared queue until it is empty
+ * or stopped. */
+static void farm_compute(farm *f)
+{
+    int i;
+    while ((i = farm_take(f)) >= 0) {
+        tbl_point p;
+        stc_status s = tbl_build_compute(f->b->t, i, &p);
+        if (s != STC_OK) {
+            char msg[WHY_MAX + 64];
+            snprintf(msg, sizeof msg, "rank 0: %s", stc_errmsg());
+            farm_fail(f, s, msg);
+            return;
+        }
+        tbl_build_finish(f->b, i, &p);
+    }
+}
+
+static stc_status farm_run(const tbl_mpi *m, farm *f)
+{
+    f->open = m->size - 1;
+    f->given = malloc((size_t)m->size * sizeof *f->given);
+    if (f->given) for (int r = 0; r < m->size; r++) f->given[r] = -1;
+    else farm_fail(f, STC_ENOMEM, "rank 0: out of memory"); /* still release every rank */
+    int jobs = 0; /* compute threads besides the serving one */
+    if (f->b && m->threads) jobs = f->b->o->jobs > 0 ? f->b->o->jobs : 1;
+    if (jobs > f->n) jobs = f->n;
+    /* one active level, this team's: the solver's own regions run on the
+     * point's thread, as in the serial path (table_build.c, run_points) */
+    int levels = omp_get_max_active_levels(), bt = openblas_get_num_threads();
+    omp_set_max_active_levels(1);
+    openblas_set_num_threads(1); /* as in the serial path */
+#pragma omp parallel num_threads(1 + jobs)
+    {
+        if (omp_get_thread_num() == 0) { /* the thread that called MPI_Init */
+            while (f->open > 0) farm_handle(f);
+        } else {
+            farm_compute(f);
+        }
+    }
+    openblas_set_num_threads(bt);
+    omp_set_max_active_levels(levels);
+    free(f->given);
+    f->given = NULL;
+    if (f->fail != STC_OK) return STC_FAIL(f->fail, "%s", f->why);
+    return STC_OK;
+}
+
+stc_status tbl_mpi_serve(const tbl_mpi *m, tbl_build_state *b, const int *todo, int n)
+{
+    farm f = {.b = b, .todo = todo, .n = n, .hash = tbl_build_hash(b->t),
+              .shard = b->o->shard, .shards = b->o->shards};
+    return farm_run(m, &f);
+}
+
+void tbl_mpi_release(const tbl_mpi *m, stc_status s, const char *why)
+{
+    farm f = {.fail = s};
+    snprintf(f.why, sizeof f.why, "%s", why);
+    farm_run(m, &f); /* returns s again, with the same message */
+}
+
+/* ---- ranks >= 1 ---------------------------------------------------------------- */
+
+static double seconds_since(const struct timespec *t0)
+{
+    struct timespec t1;
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+}
+
+stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary *sum)
+{
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    msg_up u;
+    msg_down d;
+    stc_status st = STC_OK;
+    int computed = 0, failed = 0, share = 0;
+    double cpu = 0;
+    memset(&u, 0, sizeof u); /* no stray bytes on the wire */
+    u.kind = UP_HELLO;
+    u.hash = tbl_build_hash(t);
+    u.shard = o->shard, u.shards = o->shards;
+    for (int i = o->shard; i < tbl_points(t); i += o->shards) share++;
+    /* one thread per point, its OpenMP regions (CHOLMOD's) on it too, as on
+     * the writer's threads (measured: CHOLMOD's own threads made no
+     * difference to the numbers) */
+    int levels = omp_get_max_active_levels(), bt = openblas_get_num_threads();
+    omp_set_max_active_levels(0);
+    openblas_set_num_threads(1);
+    for (;;) {
+        MPI_Status ms;
+        MPI_Send(&u, (int)sizeof u, MPI_BYTE, 0, TAG_UP, MPI_COMM_WORLD);
+        wait_message(0, TAG_DOWN, &ms);
+        MPI_Recv(&d, (int)sizeof d, MPI_BYTE, 0, TAG_DOWN, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (d.index < 0) break;
+        memset(&u, 0, sizeof u);
+        u.index = d.index;
+        stc_status s = d.index < tbl_points(t)
+                           ? tbl_build_compute(t, d.index, &u.p)
+                           : STC_FAIL(STC_EINVAL, "point %d: not in the table of %d points",
+                                      (int)d.index, tbl_points(t));
+        if (s != STC_OK) { /* told to rank 0 in the next message; kept as our status */
+            if (st == STC_OK) st = s;
+            u.kind = UP_FAIL;
+            u.code = s;
+            snprintf(u.why, sizeof u.why, "%s", stc_errmsg());
+            continue;
+        }
+        u.kind = UP_POINT;
+        tbl_point_set(t, d.index, &u.p);
+        computed++;
+        failed += u.p.state == TBL_FAILED;
+        cpu += u.p.cpu_s;
+    }
+    openblas_set_num_threads(bt);
+    omp_set_max_active_levels(levels);
+    if (st == STC_OK && d.code != STC_OK) {
+        d.why[WHY_MAX - 1] = '\0';
+        st = STC_FAIL(d.code > STC_OK && d.code < STC_NSTATUS ? (stc_status)d.code : STC_EINVAL,
+                      "rank 0 stopped the build: %s", d.why);
+    }
+    if (sum) {
+        sum->computed = computed;
+        sum->failed = failed;
+        sum->share = share;
+        sum->wall_s = seconds_since(&t0);
+        sum->cpu_s = cpu;
+    }
+    return st;
+}
