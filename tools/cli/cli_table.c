@@ -466,7 +466,7 @@ static int table_info(const cli_cmd *cmd, int argc, char **argv)
     cli_peel_positional(&argc, &argv, &path);
     query_args q = {0};
     int done;
-    int rc = cli_parse(cmd->name, "stiction table info FILE [--json]\nSummarise a table: "
+    int rc = cli_parse(cmd->name, "FILE [--json]\nSummarise a table: "
                        "family, grid, coverage, failed points, build time, fit errors.",
                        argc, argv, info_opts, NULL, query_set, &q, &done);
     tbl_table *t = NULL;
@@ -496,7 +496,7 @@ static int table_query(const cli_cmd *cmd, int argc, char **argv)
     cli_peel_positional(&argc, &argv, &path);
     query_args q = {0};
     int done;
-    int rc = cli_parse(cmd->name, "stiction table query FILE --delta LIST --t-over-R X "
+    int rc = cli_parse(cmd->name, "FILE --delta LIST --t-over-R X "
                        "--E-ratio X [--json]\nInterpolated response with one-standard-error "
                        "bars; values outside the table are flagged.",
                        argc, argv, query_opts, NULL, query_set, &q, &done);
@@ -592,7 +592,7 @@ static int table_merge(const cli_cmd *cmd, int argc, char **argv)
     tbl_table *m = NULL;
     query_args q = {0};
     int n = files ? peel_files(&argc, &argv, files, MERGE_MAX) : 0, done, rc;
-    rc = cli_parse(cmd->name, "stiction table merge A.h5 B.h5 ... --out FILE\nJoin the shards "
+    rc = cli_parse(cmd->name, "A.h5 B.h5 ... --out FILE\nJoin the shards "
                    "(or partial runs) of one build into one table.",
                    argc, argv, merge_opts, NULL, query_set, &q, &done);
     if (rc || done) goto out;
