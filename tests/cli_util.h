@@ -15,7 +15,7 @@
 
 /* Path of the CLI: $STICTION_CLI, else ../bin/stiction beside this test
  * program (works for any O=).  Returns 0, or -1 if /proc/self/exe fails. */
-static int cli_locate(char *cli, size_t n)
+static inline int cli_locate(char *cli, size_t n)
 {
     const char *env = getenv("STICTION_CLI");
     if (env && *env) {
@@ -59,15 +59,15 @@ static inline int cli_capture(const char *cmd, int which, char *out, size_t n)
     return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
 }
 
-static const char *ws(const char *s)
+static inline const char *ws(const char *s)
 {
     while (*s == ' ' || *s == '\n' || *s == '\t' || *s == '\r') s++;
     return s;
 }
 
-static const char *jvalue(const char *s);
+static inline const char *jvalue(const char *s);
 
-static const char *jstring(const char *s)
+static inline const char *jstring(const char *s)
 {
     if (*s++ != '"') return NULL;
     for (; *s && *s != '"'; s++) {
@@ -77,7 +77,7 @@ static const char *jstring(const char *s)
     return *s == '"' ? s + 1 : NULL;
 }
 
-static const char *jnumber(const char *s)
+static inline const char *jnumber(const char *s)
 {
     char *end;
     if (!(*s == '-' || (*s >= '0' && *s <= '9'))) return NULL;
@@ -85,7 +85,7 @@ static const char *jnumber(const char *s)
     return (end == s || !isfinite(v)) ? NULL : end;
 }
 
-static const char *jseq(const char *s, char close, int keyed)
+static inline const char *jseq(const char *s, char close, int keyed)
 {
     s = ws(s + 1);
     if (*s == close) return s + 1;
@@ -102,7 +102,7 @@ static const char *jseq(const char *s, char close, int keyed)
     }
 }
 
-static const char *jvalue(const char *s)
+static inline const char *jvalue(const char *s)
 {
     s = ws(s);
     if (*s == '{') return jseq(s, '}', 1);
@@ -113,7 +113,7 @@ static const char *jvalue(const char *s)
     return jnumber(s);
 }
 
-static void assert_json(const char *text)
+static inline void assert_json(const char *text)
 {
     const char *end = jvalue(text);
     if (!end || *ws(end) != '\0') fail_msg("not one JSON value: %.300s", end ? end : text);

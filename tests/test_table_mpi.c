@@ -26,6 +26,8 @@
 #include <unistd.h>
 
 #include <cmocka.h>
+
+#include "cli_util.h"
 #include <mpi.h>
 
 #include "stiction/table.h"
@@ -300,19 +302,7 @@ static int remove_dir(const char *path)
 static int setup(void **state)
 {
     (void)state;
-    const char *env = getenv("STICTION_CLI");
-    if (env && *env) {
-        snprintf(cli, sizeof cli, "%s", env);
-    } else { /* ../bin/stiction beside this program */
-        char self[PATH_MAX];
-        ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-        if (len <= 0) return -1;
-        self[len] = '\0';
-        char *slash = strrchr(self, '/');
-        if (!slash) return -1;
-        *slash = '\0';
-        snprintf(cli, sizeof cli, "%.*s/../bin/stiction", PATH_MAX - 32, self);
-    }
+    if (cli_locate(cli, sizeof cli) != 0) return -1;
     if (access(cli, X_OK) != 0) {
         fprintf(stderr, "test_table_mpi: no executable CLI at '%s'\n", cli);
         return -1;

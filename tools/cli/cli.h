@@ -55,6 +55,11 @@ int cli_out_close(cli_out *o);
  * "stiction <cmd>: out = 'dir': ..." and returns CLI_EXIT_USAGE. */
 int cli_out_dir(const char *cmd, const char *dir, int *made);
 
+/* Nested subcommands ("surface synth", "table build", ...): cmds are named
+ * "group sub", NULL-terminated; runs the one argv[0] names, or prints the
+ * group's usage (--help: stdout, exit 0; missing or unknown: stderr, exit 2). */
+int cli_dispatch(const char *group, const cli_cmd *cmds, int argc, char **argv);
+
 /* Print the common options' help. */
 void cli_common_help(FILE *f);
 

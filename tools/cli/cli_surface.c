@@ -18,31 +18,10 @@ static const cli_cmd surface_cmds[] = {
     {NULL, NULL, NULL},
 };
 
-static void usage(FILE *f)
-{
-    fprintf(f, "usage: stiction surface SUBCOMMAND [options]   (... SUBCOMMAND --help)\n\n"
-               "Subcommands:\n");
-    for (const cli_cmd *c = surface_cmds; c->name; c++)
-        fprintf(f, "  %-10s %s\n", c->name + strlen("surface "), c->summary);
-}
-
 int cli_surface(const cli_cmd *cmd, int argc, char **argv)
 {
     (void)cmd;
-    if (argc < 1) {
-        usage(stderr);
-        return CLI_EXIT_USAGE;
-    }
-    if (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
-        usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    for (const cli_cmd *c = surface_cmds; c->name; c++)
-        if (strcmp(argv[0], c->name + strlen("surface ")) == 0)
-            return c->run(c, argc - 1, argv + 1);
-    fprintf(stderr, "stiction surface: unknown subcommand '%s'\n\n", argv[0]);
-    usage(stderr);
-    return CLI_EXIT_USAGE;
+    return cli_dispatch("surface", surface_cmds, argc, argv);
 }
 
 stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b)

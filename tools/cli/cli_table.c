@@ -171,16 +171,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
 
 typedef struct {
     int tty, quiet;
-    double last;
     const tbl_table *t;
 } progress_ctx;
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 static void fmt_dur(double s, char *buf, size_t n)
 {
@@ -211,7 +203,6 @@ static int progress(void *ctx, const tbl_progress *p)
         fprintf(stderr, "%s  point %d failed: %s\n", c->tty ? "\n" : "", p->index,
                 p->point->reason);
     fflush(stderr);
-    c->last = now_s();
     return 0;
 }
 
@@ -271,7 +262,7 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
      * reports. */
     int rank, ranks;
     tbl_build_rank(&rank, &ranks);
-    progress_ctx pc = {isatty(2), a.quiet, now_s(), t};
+    progress_ctx pc = {isatty(2), a.quiet, t};
     a.bo.progress = progress;
     a.bo.ctx = &pc;
     tbl_build_summary sum;
@@ -648,28 +639,8 @@ static const cli_cmd table_cmds[] = {
     {NULL, NULL, NULL},
 };
 
-static void usage(FILE *f)
-{
-    fprintf(f, "usage: stiction table SUBCOMMAND [options]   (... SUBCOMMAND --help)\n\n"
-               "Subcommands:\n");
-    for (const cli_cmd *c = table_cmds; c->name; c++)
-        fprintf(f, "  %-8s %s\n", c->name + strlen("table "), c->summary);
-}
-
 int cli_table(const cli_cmd *cmd, int argc, char **argv)
 {
     (void)cmd;
-    if (argc < 1) {
-        usage(stderr);
-        return CLI_EXIT_USAGE;
-    }
-    if (!strcmp(argv[0], "--help") || !strcmp(argv[0], "-h")) {
-        usage(stdout);
-        return CLI_EXIT_OK;
-    }
-    for (const cli_cmd *c = table_cmds; c->name; c++)
-        if (!strcmp(argv[0], c->name + strlen("table "))) return c->run(c, argc - 1, argv + 1);
-    fprintf(stderr, "stiction table: unknown subcommand '%s'\n\n", argv[0]);
-    usage(stderr);
-    return CLI_EXIT_USAGE;
+    return cli_dispatch("table", table_cmds, argc, argv);
 }

@@ -274,3 +274,30 @@ stc_status cli_parse_list(const char *key, const char *value, double **out, int 
     *n = cap;
     return STC_OK;
 }
+
+static void group_usage(FILE *f, const char *group, const cli_cmd *cmds)
+{
+    fprintf(f, "usage: stiction %s SUBCOMMAND [options]   (... SUBCOMMAND --help)\n\n"
+               "Subcommands:\n", group);
+    size_t skip = strlen(group) + 1; /* cmds are named "group sub" */
+    for (const cli_cmd *c = cmds; c->name; c++)
+        fprintf(f, "  %-10s %s\n", c->name + skip, c->summary);
+}
+
+int cli_dispatch(const char *group, const cli_cmd *cmds, int argc, char **argv)
+{
+    if (argc < 1) {
+        group_usage(stderr, group, cmds);
+        return CLI_EXIT_USAGE;
+    }
+    if (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
+        group_usage(stdout, group, cmds);
+        return CLI_EXIT_OK;
+    }
+    size_t skip = strlen(group) + 1;
+    for (const cli_cmd *c = cmds; c->name; c++)
+        if (strcmp(argv[0], c->name + skip) == 0) return c->run(c, argc - 1, argv + 1);
+    fprintf(stderr, "stiction %s: unknown subcommand '%s'\n\n", group, argv[0]);
+    group_usage(stderr, group, cmds);
+    return CLI_EXIT_USAGE;
+}
