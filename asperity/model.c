@@ -267,6 +267,11 @@ static void col_values(const asp_model *m, int j, double lx, double *p, double *
     *q = c->iq ? exp(col_eval(c, c->iq, c->lq, m->n_w, lx)) : NAN;
 }
 
+/* Outside a range end, beyond rounding: a summit's t/R = t/R computed from
+ * t and R may differ from the axis value it equals in the last bits. */
+static int below(double x, double lo) { return x < lo * (1.0 - 1e-12); }
+static int above(double x, double hi) { return x > hi * (1.0 + 1e-12); }
+
 static unsigned data_norm(const asp_model *m, double w, double tR, double *p, double *a,
                           double *q)
 {
@@ -276,14 +281,15 @@ static unsigned data_norm(const asp_model *m, double w, double tR, double *p, do
     if (w > m->range.w_hi) flags |= ASP_OUT_W_HIGH;
     int nt = m->n_tR;
     if (!m->range.coating_aware || nt == 1) {
-        if (m->range.coating_aware && tR != m->tR[0]) flags |= ASP_OUT_T_OVER_R;
+        if (m->range.coating_aware && (below(tR, m->tR[0]) || above(tR, m->tR[0])))
+            flags |= ASP_OUT_T_OVER_R;
         col_values(m, 0, lx, p, a, q);
         return flags;
     }
     /* linear in t/R between columns, clamped outside */
     int j = 0;
     if (tR <= m->tR[0] || tR >= m->tR[nt - 1]) {
-        if (tR < m->tR[0] || tR > m->tR[nt - 1]) flags |= ASP_OUT_T_OVER_R;
+        if (below(tR, m->tR[0]) || above(tR, m->tR[nt - 1])) flags |= ASP_OUT_T_OVER_R;
         col_values(m, tR <= m->tR[0] ? 0 : nt - 1, lx, p, a, q);
         return flags;
     }
@@ -442,7 +448,8 @@ unsigned asp_model_eval_norm(const asp_model *m, double w, double t_over_R, doub
     /* the range is the model's promise: flag everything outside it alike */
     if (w < m->range.w_lo) flags |= ASP_OUT_W_LOW;
     if (w > m->range.w_hi) flags |= ASP_OUT_W_HIGH;
-    if (t_over_R < m->range.tR_lo || t_over_R > m->range.tR_hi) flags |= ASP_OUT_T_OVER_R;
+    if (below(t_over_R, m->range.tR_lo) || above(t_over_R, m->range.tR_hi))
+        flags |= ASP_OUT_T_OVER_R;
     return flags;
 }
 

@@ -258,6 +258,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         return st;
     }
     for (int i = o->shard; i < np; i += o->shards) {
+        if (o->only && !o->only[i]) continue;
         b.total++;
         if (t->pt[i].state == TBL_PENDING) todo[n++] = i;
         else b.done++, b.resumed++, b.failed += t->pt[i].state == TBL_FAILED;

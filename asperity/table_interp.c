@@ -162,13 +162,23 @@ static int field_eval(const tbl_table *t, int f, double lw, double tR, double E,
     return 0;
 }
 
+static int near(double a, double b) { return fabs(a - b) <= 1e-6 * fabs(b); }
+
+int tbl_is_homogeneous(const tbl_table *t)
+{
+    const tbl_family *f = &t->fam;
+    return t->n[2] == 1 && t->ax[2][0] == 1.0 && t->n[1] == 1 &&
+           near(f->E_over_Y_co, f->E_over_Y_su) && near(f->nu_co, f->nu_su);
+}
+
 static unsigned range_flags(const tbl_table *t, double w, double tR, double E)
 {
     const double eps = 1e-9;
     unsigned fl = 0;
     if (w < t->ax[0][0] * (1 - eps)) fl |= TBL_OUT_W_LOW;
     if (w > t->ax[0][t->n[0] - 1] * (1 + eps)) fl |= TBL_OUT_W_HIGH;
-    if (tR < t->ax[1][0] * (1 - eps) || tR > t->ax[1][t->n[1] - 1] * (1 + eps))
+    if ((tR < t->ax[1][0] * (1 - eps) || tR > t->ax[1][t->n[1] - 1] * (1 + eps)) &&
+        !tbl_is_homogeneous(t))
         fl |= TBL_OUT_T_OVER_R;
     if (E < t->ax[2][0] * (1 - eps) || E > t->ax[2][t->n[2] - 1] * (1 + eps))
         fl |= TBL_OUT_E_RATIO;
@@ -211,9 +221,40 @@ stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_rat
     return STC_OK;
 }
 
-/* ---- the asperity model ---------------------------------------------------------- */
+/* Node range [*lo, *hi] of axis k that interpolation over [a, b] reads. */
+static void axis_nodes(const tbl_table *t, int k, double a, double b, int *lo, int *hi)
+{
+    double fa, fb;
+    int ia = tbl_bracket(t->ax[k], t->n[k], clamp_axis(t, k, a), &fa);
+    int ib = tbl_bracket(t->ax[k], t->n[k], clamp_axis(t, k, b), &fb);
+    *lo = fa >= 1.0 ? ia + 1 : ia;
+    *hi = fb > 0.0 ? ib + 1 : ib;
+    if (*hi > t->n[k] - 1) *hi = t->n[k] - 1;
+}
 
-static int near(double a, double b) { return fabs(a - b) <= 1e-6 * fabs(b); }
+int tbl_mark_needed(const tbl_table *t, double w_lo, double w_hi, double tR_lo, double tR_hi,
+                    double E_ratio, unsigned char *need)
+{
+    if (!t || !need || !(w_lo > 0) || !(w_hi >= w_lo) || !(tR_lo > 0) || !(tR_hi >= tR_lo) ||
+        !(E_ratio > 0) || !isfinite(w_hi) || !isfinite(tR_hi) || !isfinite(E_ratio))
+        return -1;
+    int lo[3], hi[3], pending = 0;
+    axis_nodes(t, 0, w_lo, w_hi, &lo[0], &hi[0]);
+    axis_nodes(t, 1, tR_lo, tR_hi, &lo[1], &hi[1]);
+    axis_nodes(t, 2, E_ratio, E_ratio, &lo[2], &hi[2]);
+    if (lo[0] > 0) lo[0]--;
+    if (hi[0] < t->n[0] - 1) hi[0]++;
+    for (int e = lo[2]; e <= hi[2]; e++)
+        for (int r = lo[1]; r <= hi[1]; r++)
+            for (int w = lo[0]; w <= hi[0]; w++) {
+                int i = (e * t->n[1] + r) * t->n[0] + w;
+                pending += !need[i] && t->pt[i].state == TBL_PENDING;
+                need[i] = 1;
+            }
+    return pending;
+}
+
+/* ---- the asperity model ---------------------------------------------------------- */
 
 static stc_status check_family(const tbl_table *t, const stc_params *p)
 {
@@ -230,6 +271,55 @@ static stc_status check_family(const tbl_table *t, const stc_params *p)
                     "materials: %s; table: %s", a, b);
 }
 
+stc_status tbl_check_params(const tbl_table *t, const stc_params *p)
+{
+    STC_CHECK(t && p, STC_EINVAL, "tbl_check_params: table and parameters required");
+    STC_CALL(check_family(t, p));
+    STC_CHECK(!(range_flags(t, t->ax[0][0], t->ax[1][0], p->E_ratio) & TBL_OUT_E_RATIO),
+              STC_ERANGE, "E-ratio = %g: outside the table's [%g, %g]", p->E_ratio, t->ax[2][0],
+              t->ax[2][t->n[2] - 1]);
+    return STC_OK;
+}
+
+/* The part of the table a model at Eco/Esu = E can use: the longest run of
+ * t/R columns [*t0, *t1] whose (one or two) Eco/Esu neighbours each have at
+ * least 2 done points, and the δ nodes [*w0, *w1] done in all of them (the
+ * first to the last done node).  Returns 0, or -1 when there is none. */
+static int usable_block(const tbl_table *t, double E, int *t0, int *t1, int *w0, int *w1)
+{
+    double fe;
+    int iE = tbl_bracket(t->ax[2], t->n[2], E, &fe), nw = t->n[0], best = 0;
+    int e0 = fe >= 1.0 ? iE + 1 : iE, e1 = fe > 0.0 && fe < 1.0 ? iE + 1 : e0;
+    int run = 0, lo = 0, hi = nw - 1, blo = 0, bhi = 0;
+    for (int it = 0; it < t->n[1]; it++) {
+        int first = nw, last = -1, ok = 1;
+        for (int e = e0; e <= e1; e++) {
+            int f = -1, l = -1, n = 0;
+            for (int i = 0; i < nw; i++)
+                if (t->pt[(e * t->n[1] + it) * nw + i].state == TBL_DONE) {
+                    if (f < 0) f = i;
+                    l = i, n++;
+                }
+            if (n < 2) ok = 0;
+            if (f < first || e == e0) first = e == e0 ? f : (f > first ? f : first);
+            if (l < last || e == e0) last = e == e0 ? l : (l < last ? l : last);
+        }
+        if (!ok || last - first < 1) {
+            run = 0;
+            continue;
+        }
+        if (run == 0) lo = first, hi = last;
+        else lo = first > lo ? first : lo, hi = last < hi ? last : hi;
+        if (hi - lo < 1) { /* the run's common δ range closed: start again here */
+            run = 0, lo = first, hi = last;
+        }
+        run++;
+        if (run > best) best = run, *t0 = it - run + 1, *t1 = it, blo = lo, bhi = hi;
+    }
+    *w0 = blo, *w1 = bhi;
+    return best > 0 ? 0 : -1;
+}
+
 /* Samples per table interval of the dense resampling (the data model
  * interpolates between them: Steffen in ln w, linear in t/R). */
 enum { DENSE_W = 8, DENSE_TR = 4 };
@@ -243,13 +333,13 @@ stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm
     STC_CHECK(kind >= TBL_MODEL_PRELOAD && kind <= TBL_MODEL_ERR, STC_EINVAL,
               "tbl_model_create: kind = %d: must be preload, slide or err", (int)kind);
     STC_CHECK(t->gp, STC_ERANGE, "the table has fewer than 3 done points: no model");
-    STC_CALL(check_family(t, p));
-    STC_CHECK(!(range_flags(t, t->ax[0][0], t->ax[1][0], p->E_ratio) & TBL_OUT_E_RATIO),
-              STC_ERANGE, "E-ratio = %g: outside the table's [%g, %g]", p->E_ratio, t->ax[2][0],
-              t->ax[2][t->n[2] - 1]);
-    int nw = t->n[0] >= 2 ? (t->n[0] - 1) * DENSE_W + 1 : 3;
-    int nt = t->n[1] >= 2 ? (t->n[1] - 1) * DENSE_TR + 1 : 1;
+    STC_CALL(tbl_check_params(t, p));
     STC_CHECK(t->n[0] >= 2, STC_ERANGE, "the table has one delta value: no model along delta");
+    int t0, t1, w0, w1;
+    STC_CHECK(usable_block(t, p->E_ratio, &t0, &t1, &w0, &w1) == 0, STC_ERANGE,
+              "E-ratio = %g: no t/R column of the table has 2 done points there: no model",
+              p->E_ratio);
+    int nw = (w1 - w0) * DENSE_W + 1, nt = (t1 - t0) * DENSE_TR + 1;
     double *w = malloc((size_t)nw * sizeof *w), *tR = malloc((size_t)nt * sizeof *tR);
     double *P = malloc((size_t)nw * nt * sizeof *P), *A = malloc((size_t)nw * nt * sizeof *A);
     double *Q = malloc((size_t)nw * nt * sizeof *Q);
@@ -257,16 +347,16 @@ stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm
     STC_CHECK_GOTO(w && tR && P && A && Q, st, done, STC_ENOMEM, "tbl_model_create: out of "
                    "memory");
     for (int i = 0; i < nw; i++) {
-        int k = i / DENSE_W;
+        int k = w0 + i / DENSE_W;
         double f = (double)(i % DENSE_W) / DENSE_W;
-        w[i] = k >= t->n[0] - 1 ? t->ax[0][t->n[0] - 1]
-                                : exp((1 - f) * log(t->ax[0][k]) + f * log(t->ax[0][k + 1]));
+        w[i] = k >= w1 ? t->ax[0][w1]
+                       : exp((1 - f) * log(t->ax[0][k]) + f * log(t->ax[0][k + 1]));
     }
     for (int j = 0; j < nt; j++) {
-        int k = j / DENSE_TR;
+        int k = t0 + j / DENSE_TR;
         double f = (double)(j % DENSE_TR) / DENSE_TR;
-        tR[j] = k >= t->n[1] - 1 ? t->ax[1][t->n[1] - 1]
-                                 : exp((1 - f) * log(t->ax[1][k]) + f * log(t->ax[1][k + 1]));
+        tR[j] = k >= t1 ? t->ax[1][t1]
+                        : exp((1 - f) * log(t->ax[1][k]) + f * log(t->ax[1][k + 1]));
     }
     for (int j = 0; j < nt; j++)
         for (int i = 0; i < nw; i++) {
@@ -280,7 +370,7 @@ stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm
     stc_material su;
     stc_params_materials(p, &su, NULL);
     static const char *const kname[3] = {"table", "table (P at inception)", "table (error)"};
-    asp_model_data d = {kname[kind], su, t_mm, nw, nt, w, tR, P, A, Q, 1};
+    asp_model_data d = {kname[kind], su, t_mm, nw, nt, w, tR, P, A, Q, !tbl_is_homogeneous(t)};
     st = asp_model_create_data(&d, out);
 done:
     free(w), free(tR), free(P), free(A), free(Q);

@@ -374,7 +374,7 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
     u.kind = UP_HELLO;
     u.hash = tbl_build_hash(t);
     u.shard = o->shard, u.shards = o->shards;
-    for (int i = o->shard; i < tbl_points(t); i += o->shards) share++;
+    for (int i = o->shard; i < tbl_points(t); i += o->shards) share += !o->only || o->only[i];
     /* one thread per point, its OpenMP regions (CHOLMOD's) on it too, as on
      * the writer's threads (measured: CHOLMOD's own threads made no
      * difference to the numbers) */

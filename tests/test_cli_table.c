@@ -295,12 +295,46 @@ static void test_bad_input(void **state)
                    "--model conflicts with --table", NULL);
 }
 
+/* surface predict --fill computes only the table points its loads touch,
+ * adds them to the table file, and a second run finds nothing to do. */
+static void test_fill(void **state)
+{
+    (void)state;
+    char out[8192], a[8192], b[8192];
+    assert_int_equal(run("table build --deltas 0.5,1,2,4,8 --t-over-R 0.02 --E-ratio 1,2 "
+                         BUILD_NUM " --out fill.h5 --init", 1, out, sizeof out), 0);
+    assert_non_null(strstr(out, "10 points (5 x 1 x 2), 0 done, 0 failed, 10 pending"));
+    /* E-ratio 2 on its node, t/R = 0.0014/0.07 = 0.02; delta/omega_c up to
+     * 1.2 here: delta nodes 0.5, 1, 2 and one more */
+#define FILL_RUN "surface predict --table fill.h5 --E-ratio 2 --t-mm 0.0014 " \
+                 "--summit-density 2000 --summit-radius 0.07 --sigma-s 1e-7 --pressures 0.01"
+    assert_int_equal(run(FILL_RUN " --fill --jobs 1", 2, out, sizeof out), 0);
+    printf("%s", out);
+    assert_non_null(strstr(out, "the loads touch 4 of the table's 10 points; 4 computed now "
+                                "(0 failed"));
+    assert_int_equal(run("table info fill.h5 --json", 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_non_null(strstr(out, "\"done\": 4"));
+    assert_non_null(strstr(out, "\"pending\": 6"));
+    assert_int_equal(run(FILL_RUN " --fill --jobs 1", 2, out, sizeof out), 0);
+    assert_non_null(strstr(out, "touch 4 of the table's 10 points; 0 computed now"));
+    assert_non_null(strstr(out, "4 were there"));
+    assert_int_equal(run(FILL_RUN " --fill", 1, a, sizeof a), 0);
+    assert_int_equal(run(FILL_RUN, 1, b, sizeof b), 0);
+    assert_string_equal(a, b);
+    expect_refusal("surface predict --fill --summit-density 2000 --summit-radius 0.07 "
+                   "--sigma-s 1e-7 --pressures 1", 2, "--fill needs --table FILE", NULL);
+    expect_refusal(FILL_RUN " --jobs 2", 2, "--jobs 2 needs --fill", NULL);
+#undef FILL_RUN
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_killed_build_resumes),
         cmocka_unit_test(test_shards_merge),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_fill),
     };
     return cmocka_run_group_tests_name("cli_table", tests, setup, teardown);
 }

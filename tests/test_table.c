@@ -789,12 +789,93 @@ static void test_merge(void **state)
     tbl_destroy(&full);
 }
 
+/* ---- 7. a partly built table ----------------------------------------- */
+
+/* tbl_mark_needed marks the nodes a query range reads; a table holding only
+ * those points gives a model over that part (its range), refuses an E-ratio
+ * whose column is empty, and a homogeneous table answers for every t/R. */
+static void test_partial(void **state)
+{
+    (void)state;
+    tbl_table *full = hertz_table(0.0, 0.02, 3), *part = NULL;
+    tbl_family f;
+    tbl_numerics num;
+    double w[NW];
+    tbl_family_default(&f);
+    tbl_numerics_default(&num);
+    w_axis(w);
+    check_ok(tbl_create(&f, &num, w, NW, TR, NTR, ER, NE, &part), "tbl_create");
+    unsigned char need[NW * NTR * NE];
+    memset(need, 0, sizeof need);
+    /* δ up to node 10 exactly (nodes 0-10, one more: 11), t/R between the two
+     * nodes (both), E-ratio on node 2 (that column only): 12 x 2 x 1 */
+    assert_int_equal(tbl_mark_needed(part, W_LO, w[10], 0.01, 0.02, 2.0, need), 24);
+    assert_int_equal(tbl_mark_needed(part, W_LO, w[10], 0.01, 0.02, 2.0, need), 0);
+    /* past node 10: node 11 brackets it, 12 is the one more */
+    assert_int_equal(tbl_mark_needed(part, W_LO, 1.01 * w[10], 0.01, 0.02, 2.0, need), 2);
+    int marked = 0;
+    for (int i = 0; i < NW * NTR * NE; i++) {
+        double wi, tR, E;
+        tbl_coords(part, i, &wi, &tR, &E);
+        int want = E == 2.0 && wi <= w[12] * (1 + 1e-12);
+        assert_int_equal(need[i] != 0, want);
+        marked += need[i];
+        if (need[i]) check_ok(tbl_point_set(part, i, tbl_point_get(full, i)), "tbl_point_set");
+    }
+    assert_int_equal(marked, 26);
+    assert_int_equal(tbl_mark_needed(part, 0.0, 1.0, 0.01, 0.02, 2.0, need), -1);
+    check_ok(tbl_fit(part), "tbl_fit");
+
+    stc_params p;
+    family_params(2.0, &p);
+    asp_model *tm = NULL, *hz = hertz_model();
+    check_ok(tbl_model_create(part, &p, T_MM, TBL_MODEL_PRELOAD, &tm), "model of the part");
+    asp_model_range rg;
+    asp_model_get_range(tm, &rg);
+    printf("part: %d of %d points, model range delta/omega_c %g .. %g (nodes 0 and 12: %g, %g)\n",
+           marked, tbl_points(part), rg.w_lo, rg.w_hi, w[0], w[12]);
+    assert_true(rel(rg.w_lo, w[0]) < 1e-12 && rel(rg.w_hi, w[12]) < 1e-12);
+    double P, A, Q, Ph, Ah, Qh;
+    asp_model_eval_norm(tm, 0.3, 0.0143, &P, &A, &Q);
+    asp_model_eval_norm(hz, 0.3, 0.0143, &Ph, &Ah, &Qh);
+    assert_true(rel(P, Ph) < 1e-9 && rel(A, Ah) < 1e-9);
+    asp_model_destroy(&tm);
+    family_params(1.5, &p); /* needs the empty E-ratio 1 column too */
+    expect_fail(tbl_model_create(part, &p, T_MM, TBL_MODEL_PRELOAD, &tm), STC_ERANGE,
+                "model where a column is empty", "E-ratio = 1.5", "no t/R column");
+
+    /* one material: t/R has no effect, so no t/R flag and no t/R range */
+    assert_false(tbl_is_homogeneous(full));
+    tbl_table *homo = NULL;
+    const double one[] = {1.0}, tr1[] = {0.01};
+    check_ok(tbl_create(&f, &num, w, NW, tr1, 1, one, 1, &homo), "tbl_create homogeneous");
+    for (int i = 0; i < NW; i++) {
+        tbl_point q = *tbl_point_get(full, i); /* E-ratio 1, t/R 0.005: Hertz */
+        check_ok(tbl_point_set(homo, i, &q), "tbl_point_set");
+    }
+    check_ok(tbl_fit(homo), "tbl_fit homogeneous");
+    assert_true(tbl_is_homogeneous(homo));
+    tbl_value v;
+    check_ok(tbl_query(homo, 3.0, 0.3, 1.0, &v), "query homogeneous");
+    assert_int_equal(v.flags, 0);
+    family_params(1.0, &p);
+    check_ok(tbl_model_create(homo, &p, T_MM, TBL_MODEL_PRELOAD, &tm), "model homogeneous");
+    asp_model_get_range(tm, &rg);
+    assert_false(rg.coating_aware);
+    asp_model_destroy(&tm);
+    asp_model_destroy(&hz);
+    tbl_destroy(&homo);
+    tbl_destroy(&part);
+    tbl_destroy(&full);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_through_file), cmocka_unit_test(test_round_trip),
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_mu_smoothing),
         cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
+        cmocka_unit_test(test_partial),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

@@ -33,6 +33,7 @@
 #include "stiction/model.h"
 #include "stiction/status.h"
 #include "stiction/surface.h"
+#include "stiction/table.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -120,6 +121,17 @@ stc_status srf_gw_at_separation(srf_gw *g, double h, srf_gw_point *out);
  * the iteration does not converge, STC_ERANGE if the pressure cannot be
  * bracketed (e.g. above what the summits can carry). */
 stc_status srf_gw_at_pressure(srf_gw *g, double pressure_MPa, srf_gw_point *out);
+
+/* The points of the FE friction table t that a prediction at these loads
+ * reads, if g's model gives the contact state (a guide: the closed-form
+ * model before the table has points, the table's own model after): at each
+ * load (pressures, MPa, when by_pressure, else separations h) the contacts'
+ * δ/ωc (from the table's first node to the largest in contact, or the load
+ * quantile when statistical) and t/R range, at Eco/Esu = E_ratio, marked in
+ * need[tbl_points(t)] by tbl_mark_needed.  *pending: how many of the newly
+ * marked points are pending. */
+stc_status srf_gw_table_needs(srf_gw *g, const tbl_table *t, double E_ratio, int by_pressure,
+                              const double *loads, int n, unsigned char *need, int *pending);
 
 #ifdef __cplusplus
 }

@@ -165,6 +165,8 @@ typedef int (*tbl_progress_fn)(void *ctx, const tbl_progress *p);
 typedef struct tbl_build_opts {
     int jobs;           /* points computed at once, one thread each; 0 = one per core */
     int shard, shards;  /* compute only points with index % shards == shard; default 0, 1 */
+    const unsigned char *only; /* nullable: [tbl_points] compute only the points i with
+                                  only[i] != 0 (the rest stay as they are); default NULL */
     tbl_progress_fn progress; /* nullable */
     void *ctx;
 } tbl_build_opts;
@@ -233,6 +235,22 @@ typedef struct tbl_value {
 stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
                      tbl_value *out);
 
+/* Mark (need[i] = 1; other entries left as they are) the grid points that
+ * queries with δ/ωc in [w_lo, w_hi], t/R in [tR_lo, tR_hi] and Eco/Esu =
+ * E_ratio read: on each axis the nodes inside the range and those bracketing
+ * its ends (clamped to the axis; a value on a node needs that node only),
+ * along δ one more node each side (the monotone cubic's slopes).  need has
+ * tbl_points entries.  Returns how many of the points it newly marked are
+ * pending (so over calls sharing one need[], the pending points needed), or
+ * -1 with bad arguments. */
+int tbl_mark_needed(const tbl_table *t, double w_lo, double w_hi, double tR_lo, double tR_hi,
+                    double E_ratio, unsigned char *need);
+
+/* Nonzero when the table is of one material: the same E/Y and ν in both
+ * layers and an Eco/Esu axis of the one value 1.  Its t/R axis then has one
+ * value that stands for every t/R (no t/R range flag). */
+int tbl_is_homogeneous(const tbl_table *t);
+
 /* ---- the surface prediction's asperity model --------------------------------- */
 
 /* What the model's P and Qmax are (the GW sum's μs = ΣQmax/ΣP, SPEC §8). */
@@ -242,12 +260,19 @@ typedef enum tbl_model_kind {
     TBL_MODEL_ERR = 2      /* P = preload, Qmax = σ(μs) P_slide: the error band's sum */
 } tbl_model_kind;
 
+/* STC_OK when the materials p (E/Y and ν of both layers, Eco/Esu) can use the
+ * table: STC_EINVAL when p is not of the table's family (the message names
+ * both), STC_ERANGE when Eco/Esu is outside the table's axis. */
+stc_status tbl_check_params(const tbl_table *t, const stc_params *p);
+
 /* The table's response for the materials `p` (E_su, E_ratio, Y and ν of both
  * layers; R and t/R unused) with a coating of t_mm, resampled on a dense
  * (w, t/R) grid at p's Eco/Esu and returned as an asperity model (model.h's
- * data model: in-range flags as there).  Refused (STC_EINVAL) when p is not
- * of the table's family, naming both; STC_ERANGE when Eco/Esu is outside the
- * table's axis.  Returns new in *out. */
+ * data model: in-range flags as there).  Refused as tbl_check_params.  A
+ * partly built table gives a model over its usable part: the longest run of
+ * t/R columns with 2 or more done points at that Eco/Esu, and the δ nodes
+ * done in all of them; the model's range (and flags) is that part.
+ * STC_ERANGE when there is none.  Returns new in *out. */
 stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
                             tbl_model_kind kind, asp_model **out);
 

@@ -187,4 +187,14 @@ stc_status cli_surface_load(const char *key, const char *path, const cli_surface
         {"dataset", "NAME", "with --pixel-size: HDF5 dataset holding the heights ([ny][nx])"}, \
         {"z-scale", "S", "with --pixel-size: multiply raw heights by S to get mm (default 1)"}
 
+/* --- the progress line of a table build (cli_progress.c) --- */
+#include "stiction/table.h"
+typedef struct cli_table_progress {
+    int tty, quiet;
+    const tbl_table *t;
+} cli_table_progress;
+/* tbl_progress_fn: after each point, one line on stderr (rewritten in place
+ * on a terminal), with the point's μs, elapsed time and ETA. */
+int cli_table_progress_line(void *ctx, const tbl_progress *p);
+
 #endif

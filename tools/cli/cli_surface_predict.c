@@ -19,7 +19,7 @@
 
 typedef struct {
     char *surface, *out, *csv, *png, *table; /* owned */
-    int rule, json, deterministic, kde, wsp, sampled, timing;
+    int rule, json, deterministic, kde, wsp, sampled, timing, fill, jobs;
     unsigned long long seen; /* cli_opt_bit() of every option given */
     asp_layer layer;
     double eta, R, sigma_s, t_mm;
@@ -39,6 +39,9 @@ static const cli_opt opts[] = {
     {"t-mm", "MM", "coating thickness, mm (default: t-over-R × R of the common options)"},
     {"table", "FILE", "asperity response from an FE friction table (`stiction table build`): "
                       "the coating counts, each summit with its own t/R; mu_s with an error band"},
+    {"fill", NULL, "with --table: first compute the table's missing points that these loads "
+                   "touch (FE runs, added to the table file; resumable), then predict"},
+    {"jobs", "N", "with --fill: points computed at once (default: one per core)"},
     {"model", "hertz|wsp", "closed-form asperity model (default wsp; hertz has no friction "
                            "law)"},
     {"layer", "substrate|coating", "layer whose properties the closed-form model uses "
@@ -95,6 +98,16 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
     else if (strcmp(key, "json") == 0) s = cli_parse_flag(key, v, &o->json);
     else if (strcmp(key, "sampled") == 0) s = cli_parse_flag(key, v, &o->sampled);
     else if (strcmp(key, "timing") == 0) s = cli_parse_flag(key, v, &o->timing);
+    else if (strcmp(key, "fill") == 0) s = cli_parse_flag(key, v, &o->fill);
+    else if (strcmp(key, "jobs") == 0) {
+        double j;
+        s = stc_parse_double(key, v, &j);
+        if (s == STC_OK) s = stc_check_range(key, j, 1.0, 1, 1024.0, 1);
+        if (s == STC_OK && j != floor(j))
+            s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be an integer in "
+                          "[1, 1024]", key, v);
+        o->jobs = (int)j;
+    }
     else if (strcmp(key, "rule") == 0) {
         s = set_choice(key, v, "8", "4", &c);
         o->rule = c ? SRF_RULE_4 : SRF_RULE_8;
@@ -157,6 +170,12 @@ static stc_status check_opts(const predict_opts *o)
         if (given(o, *k))
             return cli_conflict(*k, "table", "the table is the asperity model; --model, --layer "
                                 "and --sampled choose a closed-form one");
+    if (o->fill && !o->table)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "--fill needs --table FILE: it "
+                         "computes the missing points of that table");
+    if (given(o, "jobs") && !o->fill)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "--jobs %d needs --fill: it sets "
+                         "how many table points --fill computes at once", o->jobs);
     stc_status s = cli_surface_import_check(&o->imp);
     if (s != STC_OK) return s;
     if ((o->np > 0) == (o->ns > 0))
@@ -228,6 +247,70 @@ static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **ou
     }
     srf_summits_destroy(&sm);
     srf_map_destroy(&map);
+    return s;
+}
+
+static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **out);
+
+/* --fill: the table's missing points that the loads touch, computed and
+ * added to the table file.  The contact states come from a guide model: the
+ * table's own where it has one at these materials, else the closed-form wsp
+ * model (substrate); a round with the table's model after a fill checks
+ * that the filled table needs nothing more (at most 3 rounds). */
+static stc_status fill_table(const char *cmd, const predict_opts *o, const stc_params *p)
+{
+    tbl_table *t = NULL;
+    unsigned char *need = NULL;
+    int n = o->np ? o->np : o->ns, computed = 0, marked = 0, failed = 0;
+    double wall = 0.0;
+    stc_status s = tbl_read(o->table, &t);
+    if (s == STC_OK) s = tbl_check_params(t, p);
+    if (s == STC_OK && !(need = calloc((size_t)tbl_points(t), 1)))
+        s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+    for (int round = 0; round < 3 && s == STC_OK; round++) {
+        asp_model *guide = NULL;
+        srf_gw *g = NULL;
+        int pending = 0;
+        if (tbl_model_create(t, p, o->t_mm, TBL_MODEL_PRELOAD, &guide) != STC_OK) {
+            stc_error_clear();
+            s = asp_model_create_wsp(p, o->t_mm, ASP_LAYER_SUBSTRATE, &guide);
+        }
+        if (s == STC_OK) s = make_gw(o, guide, &g);
+        if (s == STC_OK)
+            s = srf_gw_table_needs(g, t, p->E_ratio, o->np > 0, o->np ? o->pressures
+                                                                      : o->separations,
+                                   n, need, &pending);
+        srf_gw_destroy(&g);
+        asp_model_destroy(&guide);
+        if (s != STC_OK || pending == 0) break;
+        tbl_build_opts bo;
+        tbl_build_summary sum;
+        tbl_build_opts_default(&bo);
+        bo.only = need;
+        bo.jobs = o->jobs;
+        cli_table_progress pc = {isatty(2), 0, t};
+        bo.progress = cli_table_progress_line;
+        bo.ctx = &pc;
+        fprintf(stderr, "stiction %s: filling %s: %d points to compute\n", cmd, o->table,
+                pending);
+        s = tbl_build(t, o->table, &bo, &sum);
+        if (pc.tty && sum.computed > 0) fputc('\n', stderr);
+        computed += sum.computed;
+        failed += sum.failed;
+        wall += sum.wall_s;
+    }
+    for (int i = 0; need && i < tbl_points(t); i++) marked += need[i] != 0;
+    if (s == STC_OK)
+        fprintf(stderr, "stiction %s: fill: the loads touch %d of the table's %d points; %d "
+                "computed now (%d failed, %.1f s), %d were there\n", cmd, marked,
+                tbl_points(t), computed, failed, wall, marked - computed);
+    free(need);
+    tbl_destroy(&t);
+    if (s != STC_OK && strncmp(stc_errmsg(), "table =", 7) != 0) {
+        char msg[1024];
+        snprintf(msg, sizeof msg, "%s", stc_errmsg());
+        s = stc_error(s, __FILE__, __LINE__, "table = '%s': %s", o->table, msg);
+    }
     return s;
 }
 
@@ -616,6 +699,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
         goto out;
     if (o.t_mm < 0) o.t_mm = stc_params_t(&p);
+    if (s == STC_OK && o.fill) s = fill_table(cmd->name, &o, &p);
     if (s == STC_OK) s = o.table ? make_table_models(&o, &p, &aux, &m) : make_model(&o, &p, &m);
     if (s == STC_OK) s = make_gw(&o, m, &g);
     for (int k = 0; k < 2 && s == STC_OK && o.table; k++) s = make_gw(&o, aux.m[k], &aux.g[k]);

@@ -74,7 +74,7 @@ typedef struct {
     double *ax[3];
     int n[3];
     char *out;
-    int quiet;
+    int quiet, init;
 } build_args;
 
 static const cli_opt build_opts[] = {
@@ -101,6 +101,8 @@ static const cli_opt build_opts[] = {
                   "(default 1; the other ranks compute one at a time)"},
     {"shard", "I/N", "compute only points with index % N == I (job arrays; join with "
                      "merge); combines with mpirun"},
+    {"init", NULL, "compute nothing: write FILE with the points it has (none for a new "
+                   "table) for `surface predict --fill` or a later build"},
     {"quiet", NULL, "no progress lines"},
     {NULL, NULL, NULL},
 };
@@ -163,47 +165,12 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         else a->bo.shard = i, a->bo.shards = n;
     } else if (!strcmp(key, "quiet")) {
         s = cli_parse_flag(key, value, &a->quiet);
+    } else if (!strcmp(key, "init")) {
+        s = cli_parse_flag(key, value, &a->init);
     } else {
         s = STC_EUNSUPPORTED;
     }
     return s;
-}
-
-typedef struct {
-    int tty, quiet;
-    const tbl_table *t;
-} progress_ctx;
-
-static void fmt_dur(double s, char *buf, size_t n)
-{
-    if (!isfinite(s)) snprintf(buf, n, "?");
-    else if (s < 120) snprintf(buf, n, "%.0f s", s);
-    else if (s < 7200) snprintf(buf, n, "%.1f min", s / 60);
-    else snprintf(buf, n, "%.1f h", s / 3600);
-}
-
-/* A line per finished point (stderr): on a terminal one line rewritten in
- * place, else a line each. */
-static int progress(void *ctx, const tbl_progress *p)
-{
-    progress_ctx *c = ctx;
-    if (c->quiet) return 0;
-    double w, tR, E;
-    tbl_coords(c->t, p->index, &w, &tR, &E);
-    char el[32], eta[32], mu[64];
-    fmt_dur(p->elapsed_s, el, sizeof el);
-    fmt_dur(p->eta_s, eta, sizeof eta);
-    if (p->point->state == TBL_DONE)
-        snprintf(mu, sizeof mu, "mu_s %.4f +- %.4f", p->point->mu_s, p->point->mu_s_err);
-    else snprintf(mu, sizeof mu, "FAILED");
-    fprintf(stderr, "%s[%d/%d] delta %g t/R %g E-ratio %g: %s (%.1f s); elapsed %s, eta %s%s",
-            c->tty ? "\r\033[K" : "", p->done, p->total, w, tR, E, mu, p->point->wall_s, el, eta,
-            c->tty ? "" : "\n");
-    if (p->point->state == TBL_FAILED)
-        fprintf(stderr, "%s  point %d failed: %s\n", c->tty ? "\n" : "", p->index,
-                p->point->reason);
-    fflush(stderr);
-    return 0;
 }
 
 static void command_line(char *buf, size_t n, const char *cmd, int argc, char **argv)
@@ -262,11 +229,15 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
      * reports. */
     int rank, ranks;
     tbl_build_rank(&rank, &ranks);
-    progress_ctx pc = {isatty(2), a.quiet, t};
-    a.bo.progress = progress;
+    cli_table_progress pc = {isatty(2), a.quiet, t};
+    a.bo.progress = cli_table_progress_line;
     a.bo.ctx = &pc;
     tbl_build_summary sum;
-    s = tbl_build(t, a.out, &a.bo, &sum);
+    unsigned char *none = a.init ? calloc((size_t)tbl_points(t), 1) : NULL;
+    if (a.init && !none) s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+    a.bo.only = none; /* --init: the build computes nothing, resumes and writes */
+    if (s == STC_OK) s = tbl_build(t, a.out, &a.bo, &sum);
+    free(none);
     if (rank > 0) goto out;
     if (pc.tty && !a.quiet && sum.computed > 0) fputc('\n', stderr);
     if (s) {

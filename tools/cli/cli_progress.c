@@ -1,0 +1,39 @@
+/* The progress line of a table build (stiction table build, surface predict
+ * --fill). */
+#include <math.h>
+#include <stdio.h>
+
+#include "cli.h"
+
+static void fmt_dur(double s, char *buf, size_t n)
+{
+    if (!isfinite(s)) snprintf(buf, n, "?");
+    else if (s < 120) snprintf(buf, n, "%.0f s", s);
+    else if (s < 7200) snprintf(buf, n, "%.1f min", s / 60);
+    else snprintf(buf, n, "%.1f h", s / 3600);
+}
+
+/* A line per finished point (stderr): on a terminal one line rewritten in
+ * place, else a line each. */
+int cli_table_progress_line(void *ctx, const tbl_progress *p)
+{
+    const cli_table_progress *c = ctx;
+    if (c->quiet) return 0;
+    double w, tR, E;
+    tbl_coords(c->t, p->index, &w, &tR, &E);
+    char el[32], eta[32], mu[64];
+    fmt_dur(p->elapsed_s, el, sizeof el);
+    fmt_dur(p->eta_s, eta, sizeof eta);
+    if (p->point->state == TBL_DONE)
+        snprintf(mu, sizeof mu, "mu_s %.4f +- %.4f", p->point->mu_s, p->point->mu_s_err);
+    else snprintf(mu, sizeof mu, "FAILED");
+    fprintf(stderr, "%s[%d/%d] delta %g t/R %g E-ratio %g: %s (%.1f s); elapsed %s, eta %s%s",
+            c->tty ? "\r\033[K" : "", p->done, p->total, w, tR, E, mu, p->point->wall_s, el, eta,
+            c->tty ? "" : "\n");
+    if (p->point->state == TBL_FAILED)
+        fprintf(stderr, "%s  point %d failed: %s\n", c->tty ? "\n" : "", p->index,
+                p->point->reason);
+    fflush(stderr);
+    return 0;
+}
+
