@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <ini.h>
 
@@ -208,11 +209,21 @@ static int ini_entry(void *u, const char *section, const char *name, const char 
 stc_status stc_ini_load(const char *path, stc_ini_handler handler, void *user)
 {
     ini_ctx c = {handler, user, STC_OK};
+    struct stat sb;
+    /* fopen() opens a directory for reading, and its first read fails:
+     * inih took that for an empty file and the run went on with defaults */
+    STC_CHECK(stat(path, &sb) == 0, STC_EIO, "config = '%s': cannot open file (%s)", path,
+              strerror(errno));
+    STC_CHECK(!S_ISDIR(sb.st_mode), STC_EIO, "config = '%s': is a directory (expected an INI "
+              "file of 'key = value' lines)", path);
     FILE *f = fopen(path, "r");
     STC_CHECK(f, STC_EIO, "config = '%s': cannot open file (%s)", path, strerror(errno));
     int line = ini_parse_file(f, ini_entry, &c);
+    int read_errno = ferror(f) ? (errno ? errno : EIO) : 0;
     fclose(f);
     if (c.status != STC_OK) return c.status; /* handler already set the message */
+    STC_CHECK(!read_errno, STC_EIO, "config = '%s': cannot read the file (%s)", path,
+              strerror(read_errno));
     STC_CHECK(line == 0, STC_EFORMAT,
               "config = '%s': syntax error on line %d (expected 'key = value')", path, line);
     return STC_OK;

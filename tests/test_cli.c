@@ -21,6 +21,7 @@
 
 static char cli[PATH_MAX];
 static char ini[64]; /* scratch INI file */
+static char ini_dir[64]; /* scratch directory, given where a file belongs */
 
 static int find_cli(void **state)
 {
@@ -31,13 +32,15 @@ static int find_cli(void **state)
         return -1;
     }
     snprintf(ini, sizeof ini, "/tmp/stiction-test-cli-%ld.ini", (long)getpid());
-    return 0;
+    snprintf(ini_dir, sizeof ini_dir, "/tmp/stiction-test-cli-%ld.d", (long)getpid());
+    return mkdir(ini_dir, 0700) == 0 ? 0 : -1;
 }
 
 static int cleanup(void **state)
 {
     (void)state;
     remove(ini);
+    rmdir(ini_dir);
     return 0;
 }
 
@@ -154,6 +157,31 @@ static void test_bad_config(void **state)
     expect_fail("formulas --config /nonexistent/x.ini", "config = '/nonexistent/x.ini'",
                 "cannot open");                                          /* missing file */
     expect_fail("formulas --config", "--config: missing file name", NULL);
+}
+
+/* --config names a file: a directory is refused by name, with the exit
+ * status of a file that cannot be opened, by every subcommand that reads
+ * one (a directory read as an empty file: formulas ran on the defaults). */
+static void test_config_directory(void **state)
+{
+    (void)state;
+    static const char *const cmds[] = {"formulas",      "asperity",      "halfspace",
+                                       "surface synth", "surface stats", "surface predict",
+                                       "table build",   "table info",    "table query",
+                                       "table merge"};
+    char args[256], needle[128], err[4096];
+    int bad = 0;
+    snprintf(needle, sizeof needle, "config = '%s': is a directory", ini_dir);
+    for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
+        snprintf(args, sizeof args, "%s --config %s", cmds[i], ini_dir);
+        int rc = run(args, 2, err, sizeof err);
+        int ok = rc == 1 && strstr(err, needle);
+        printf("  %-58s -> %d: %s%s", args, rc, err, ok ? "" : "    (expected 1 and the message)\n");
+        bad += !ok;
+    }
+    if (bad) fail_msg("%d subcommands took a directory for --config", bad);
+    snprintf(args, sizeof args, "formulas --config=%s/", ini_dir);
+    expect_fail(args, "is a directory", NULL);
 }
 
 /* A failing run writes no output file; a good one leaves no temp file. */
@@ -330,6 +358,7 @@ int main(void)
         cmocka_unit_test(test_bad_common_values),
         cmocka_unit_test(test_bad_placements), cmocka_unit_test(test_bad_syntax),
         cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
+        cmocka_unit_test(test_config_directory),
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),

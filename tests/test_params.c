@@ -154,6 +154,9 @@ static void test_ini(void **state)
 
     assert_int_equal(stc_ini_load("/nonexistent/x.ini", collect, &p), STC_EIO);
     assert_non_null(strstr(stc_errmsg(), "/nonexistent/x.ini"));
+    /* a directory opens for reading and reads as nothing: refused by name */
+    assert_int_equal(stc_ini_load("/tmp", collect, &p), STC_EIO);
+    assert_non_null(strstr(stc_errmsg(), "config = '/tmp': is a directory"));
 }
 
 int main(void)

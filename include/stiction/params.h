@@ -69,8 +69,8 @@ const char *stc_key_normalise(const char *key, char *buf, int bufsize);
 /* INI files (parsed by libinih): calls handler(user, section, key, value) for
  * every entry; stops at the first handler failure.  Section names are passed
  * through (may be ""); keys are normalised.  Returns STC_EIO when the file
- * cannot be opened, STC_EFORMAT with the line number for a syntax error, or
- * the handler's status. */
+ * cannot be opened or read or is a directory, STC_EFORMAT with the line
+ * number for a syntax error, or the handler's status. */
 typedef stc_status (*stc_ini_handler)(void *user, const char *section,
                                       const char *key, const char *value);
 stc_status stc_ini_load(const char *path, stc_ini_handler handler, void *user);
