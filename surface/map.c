@@ -95,9 +95,14 @@ static stc_status check_pixel(double dx, double dy, double zscale)
     return STC_OK;
 }
 
-/* A missing or unreadable file deserves the system's reason, not HDF5's. */
+/* A missing or unreadable file, or a directory, deserves the system's
+ * reason, not HDF5's "not an HDF5 file" (a directory opens for reading: the
+ * text reader then met a "read error after line 0"). */
 static stc_status check_readable(const char *path)
 {
+    struct stat sb;
+    STC_CHECK(stat(path, &sb) == 0, STC_EIO, "%s: cannot open: %s", path, strerror(errno));
+    STC_CHECK(!S_ISDIR(sb.st_mode), STC_EIO, "%s: is a directory", path);
     FILE *f = fopen(path, "rb");
     STC_CHECK(f, STC_EIO, "%s: cannot open: %s", path, strerror(errno));
     fclose(f);
@@ -189,6 +194,7 @@ stc_status srf_map_import_text(const char *path, double dx, double dy, double zs
 {
     *out = NULL;
     STC_CALL(check_pixel(dx, dy, zscale));
+    STC_CALL(check_readable(path));
     FILE *f = fopen(path, "r");
     STC_CHECK(f, STC_EIO, "%s: cannot open: %s", path, strerror(errno));
     dvec d = {0};

@@ -89,28 +89,37 @@ static void run_batch(void)
 {
     FILE *p[BATCH];
     static char err[BATCH][8192];
-    for (int k = 0; k < nqueue; k++) {
+    int n = nqueue, bad = -1, why = 0; /* first failing case; why: -1 exit status, -2
+                                        * sanitizer report, i >= 0 needle i missing */
+    nqueue = 0; /* the queue is free again even when a case below fails */
+    for (int k = 0; k < n; k++) {
         char cmd[2 * PATH_MAX + sizeof queue[0].args];
         snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s 2>&1 >/dev/null", dir, cli, queue[k].args);
         p[k] = popen(cmd, "r");
         assert_non_null(p[k]);
     }
-    for (int k = 0; k < nqueue; k++) {
+    /* every run of the batch is reaped and printed; then the first failure */
+    for (int k = 0; k < n; k++) {
         size_t got = fread(err[k], 1, sizeof err[k] - 1, p[k]);
         err[k][got] = '\0';
         int st = pclose(p[k]);
-        int rc = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+        int rc = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st), w = 0;
         const fail_case *c = &queue[k];
         printf("  %-64.64s -> %d: %s", c->args, rc, err[k]);
-        if (rc != 1 && rc != 2) fail_msg("'%s' exited %d (expected 1 or 2)", c->args, rc);
-        if (strstr(err[k], "Sanitizer") || strstr(err[k], "runtime error"))
-            fail_msg("'%s': sanitizer report", c->args); /* SANITIZE=1 builds */
-        for (int i = 0; i < 3; i++)
-            if (c->needle[i] && !strstr(err[k], c->needle[i]))
-                fail_msg("'%s': message '%s' lacks '%s'", c->args, err[k], c->needle[i]);
+        if (rc != 1 && rc != 2) w = -1;
+        else if (strstr(err[k], "Sanitizer") || strstr(err[k], "runtime error"))
+            w = -2; /* SANITIZE=1 builds */
+        for (int i = 0; i < 3 && !w; i++)
+            if (c->needle[i] && !strstr(err[k], c->needle[i])) w = i + 1;
+        if (w && bad < 0) bad = k, why = w;
     }
-    assert_no_outputs(nqueue ? queue[nqueue - 1].args : "");
-    nqueue = 0;
+    if (bad >= 0) {
+        const fail_case *c = &queue[bad];
+        if (why == -1) fail_msg("'%s' exited other than 1 or 2", c->args);
+        if (why == -2) fail_msg("'%s': sanitizer report", c->args);
+        fail_msg("'%s': message '%s' lacks '%s'", c->args, err[bad], c->needle[why - 1]);
+    }
+    assert_no_outputs(n ? queue[n - 1].args : "");
 }
 
 /* Expect a failure (exit 1 or 2, not a crash) whose stderr holds every
@@ -254,6 +263,7 @@ static void make_text_fixtures(void)
     write_file("plane.txt", "1 2 3 4\n2 3 4 5\n3 4 5 6\n4 5 6 7\n");
     write_file("huge.txt", "1e300 -1e300 1e300\n-1e300 1e300 -1e300\n1e300 5e299 -1e300\n");
     write_file("notgrid.h5", "this is not an HDF5 file\n");
+    assert_int_equal(mkdir(P("adir"), 0700), 0); /* a directory where a file belongs */
     /* a measured-looking grid: 32 x 32 bumps on a tilt of 0.01 (x) and -0.02 (y)
      * per pixel of 0.01 mm, heights in µm */
     FILE *f = fopen(P("grid.txt"), "w");
@@ -377,6 +387,11 @@ static void test_synth_bad_usage(void **state)
     expect_fail(SY "--import grid.txt", "import = 'grid.txt'", "--pixel-size", NULL);
     expect_fail(SY "--import grid.txt --dataset /z", "--dataset conflicts with --pixel-size",
                 NULL, NULL);
+    /* a directory where a file belongs: named as one, before any work */
+    expect_fail(SY "--import adir --pixel-size 0.01", "import = 'adir': is a directory", NULL,
+                NULL);
+    expect_fail("surface synth --size 16 --out adir", "out = 'adir': is a directory", NULL, NULL);
+    expect_fail(SY "--size 16 --png adir", "png = 'adir': is a directory", NULL, NULL);
     /* an output path that cannot be written: nothing partial anywhere */
     expect_fail("surface synth --size 32 --out out-missing-dir/x.h5",
                 "out-missing-dir/x.png", "cannot create", NULL);
@@ -427,6 +442,14 @@ static void test_stats_bad_files(void **state)
     expect_fail("surface stats nanh.h5", "in = 'nanh.h5'", "row 2, column 2", "not finite");
     expect_fail("surface stats arrlx.h5", "in = 'arrlx.h5'", "lx_mm, ly_mm missing", NULL);
     expect_fail("surface stats map.h5 --in map.h5", "in = 'map.h5'", "FILE argument", NULL);
+    /* a directory is neither missing nor "not an HDF5 file" */
+    expect_fail("surface stats adir", "in = 'adir': is a directory", "stiction surface HDF5 file",
+                NULL);
+    expect_fail("surface stats --in adir/", "in = 'adir/': is a directory", NULL, NULL);
+    expect_fail("surface stats adir --pixel-size 0.01", "in = 'adir': is a directory",
+                "text grid", NULL);
+    expect_fail("surface stats adir --pixel-size 0.01 --dataset /z",
+                "in = 'adir': is a directory", "2-D numeric dataset", NULL);
     /* HDF5 import of a measured dataset */
     expect_fail("surface stats meas.h5 --pixel-size 0.01 --dataset /nope", "in = 'meas.h5'",
                 "no dataset '/nope'", "2-D numeric dataset");
@@ -544,6 +567,9 @@ static void test_predict_bad_usage(void **state)
     expect_fail(PR "--surface notgrid.h5 --pressures 1", "surface = 'notgrid.h5'",
                 "not an HDF5 file", NULL);
     expect_fail(PR "--surface meas.h5 --pressures 1", "surface = 'meas.h5'", "no dataset", NULL);
+    expect_fail(PR "--surface adir --pressures 1", "surface = 'adir': is a directory", NULL, NULL);
+    expect_fail(PR "--surface adir --pixel-size 0.01 --pressures 1",
+                "surface = 'adir': is a directory", NULL, NULL);
     expect_fail(PR "--surface ragged.txt --pixel-size 0.01 --pressures 1",
                 "surface = 'ragged.txt'", "line 3 has 2 values", NULL);
     write_file("bad6.ini", "pressures = 1,2\nsurface = map.h5\nmode = deterministic\n"

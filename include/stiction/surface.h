@@ -110,7 +110,8 @@ stc_status srf_map_create(int nx, int ny, double lx, double ly, srf_map **out);
 void srf_map_destroy(srf_map **m);
 
 /* Read a map written by srf_map_write_h5 (dataset "/height" + attributes).
- * Returns new in *out. */
+ * Returns new in *out.  Here and in the imports below, a path that is
+ * missing, unreadable or a directory is STC_EIO ("path: is a directory"). */
 stc_status srf_map_read(const char *path, srf_map **out);
 
 /* Write heights [ny][nx] as dataset "/height" with every parameter as an

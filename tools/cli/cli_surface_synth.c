@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "stiction/surface.h"
@@ -242,6 +243,17 @@ static void summary(const synth_opts *o, const srf_map *m, const char *png, cons
     }
 }
 
+/* An output that names a directory is refused before any work (the rename
+ * onto it failed once the map was made). */
+static stc_status check_out_file(const char *key, const char *path, const char *what)
+{
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': is a directory (expected "
+                         "the name of the %s file to write)", key, path, what);
+    return STC_OK;
+}
+
 /* FILE.h5 → FILE.png (or FILE.png appended). */
 static void png_beside(const char *h5, char *buf, size_t n)
 {
@@ -294,12 +306,16 @@ int cli_surface_synth(const cli_cmd *cmd, int argc, char **argv)
     srf_map *m = NULL;
     srf_moments mo;
     stc_status s = check_opts(&o);
-    if (s == STC_OK) s = make_map(&o, &m, &mo);
     char pngbuf[4096];
     const char *png = NULL;
     if (s == STC_OK && !o.no_png) {
         if (o.png) png = o.png;
         else png_beside(o.out, pngbuf, sizeof pngbuf), png = pngbuf;
+    }
+    if (s == STC_OK) s = check_out_file("out", o.out, "HDF5");
+    if (s == STC_OK && png) s = check_out_file("png", png, "PNG");
+    if (s == STC_OK) s = make_map(&o, &m, &mo);
+    if (s == STC_OK && png) {
         s = srf_map_write_png(m, png);
         if (s != STC_OK) png = NULL; /* nothing written */
     }
