@@ -104,6 +104,11 @@ static const param_key param_keys[] = {
 };
 #undef PK
 
+const char *stc_params_key(int i)
+{
+    return i >= 0 && (size_t)i < sizeof param_keys / sizeof *param_keys ? param_keys[i].key : NULL;
+}
+
 static void describe_range(const param_key *pk, char *buf, size_t n)
 {
     if (isinf(pk->hi))

@@ -184,6 +184,50 @@ static void test_config_directory(void **state)
     expect_fail(args, "is a directory", NULL);
 }
 
+/* A mistyped option, key or (sub)command is answered with the closest
+ * known name of that command (edit distance <= 1 up to 5 characters, 2
+ * beyond; case ignored); a name near nothing gets no guess. */
+static void test_suggestions(void **state)
+{
+    (void)state;
+    char args[256];
+    expect_fail("surface predict --presures 1", "unknown option '--presures'",
+                "(did you mean --pressures?)");
+    expect_fail("surface predict --presures=1", "unknown option '--presures'",
+                "(did you mean --pressures?)");
+    expect_fail("formulas --dleta 3", "unknown option '--dleta'", "(did you mean --delta?)");
+    expect_fail("formulas --t-over-r 0.01", "unknown option '--t-over-r'",
+                "(did you mean --t-over-R?)");                              /* case */
+    expect_fail("formulas --E_ration 2", "unknown option '--E-ration'", "(did you mean --E-ratio?)");
+    expect_fail("formulas --confg x.ini", "unknown option '--confg'", "(did you mean --config?)");
+    expect_fail("asperity --elements-per-contat 3", "unknown option '--elements-per-contat'",
+                "(did you mean --elements-per-contact?)");
+    expect_fail("halfspace --cels 64", "unknown option '--cels'", "(did you mean --cells?)");
+    expect_fail("surface synth --hurts 0.5", "unknown option '--hurts'", "(did you mean --hurst?)");
+    expect_fail("surface stats --rlue 4", "unknown option '--rlue'", "(did you mean --rule?)");
+    expect_fail("table info --jsno", "unknown option '--jsno'", "(did you mean --json?)");
+    expect_fail("table query --detla 1", "unknown option '--detla'", "(did you mean --delta?)");
+    expect_fail("formulas -delta 3", "unexpected argument '-delta'", "did you mean --delta?");
+    expect_fail("formulsa", "unknown command 'formulsa'", "(did you mean formulas?)");
+    expect_fail("surface predcit", "unknown subcommand 'predcit'", "(did you mean predict?)");
+    expect_fail("table bulid", "unknown subcommand 'bulid'", "(did you mean build?)");
+    /* keys of a --config file */
+    snprintf(args, sizeof args, "formulas --config %s", ini);
+    write_ini("dleta = 3\n");
+    expect_fail(args, "unknown option 'dleta'", "(did you mean delta?)");
+    write_ini("[material]\nnu_c = 0.3\n");
+    expect_fail(args, "unknown option 'nu-c'", "(did you mean nu-co?)");
+    /* nothing close: no guess */
+    static const char *const far[] = {"formulas --colour blue", "formulas --x 1", "nosuchcommand",
+                                      "surface nosuch", "formulas --radius 3"};
+    static char err[4096];
+    for (size_t i = 0; i < sizeof far / sizeof *far; i++) {
+        expect_fail(far[i], "unknown", NULL);
+        run(far[i], 2, err, sizeof err);
+        if (strstr(err, "did you mean")) fail_msg("'%s': a guess for a far name: %s", far[i], err);
+    }
+}
+
 /* A failing run writes no output file; a good one leaves no temp file. */
 static void test_output_file(void **state)
 {
@@ -358,7 +402,7 @@ int main(void)
         cmocka_unit_test(test_bad_common_values),
         cmocka_unit_test(test_bad_placements), cmocka_unit_test(test_bad_syntax),
         cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
-        cmocka_unit_test(test_config_directory),
+        cmocka_unit_test(test_config_directory),  cmocka_unit_test(test_suggestions),
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),

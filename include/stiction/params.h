@@ -44,6 +44,10 @@ void stc_params_default(stc_params *p);
  * range, or STC_EUNSUPPORTED (no message) when the key is not a common one. */
 stc_status stc_params_set(stc_params *p, const char *key, const char *value);
 
+/* Name of the i-th common key (i = 0, 1, ...), NULL past the last: for
+ * listings and for suggesting the closest key to a mistyped one. */
+const char *stc_params_key(int i);
+
 /* Check the whole set for consistency (ranges that involve several keys). */
 stc_status stc_params_validate(const stc_params *p);
 

@@ -36,6 +36,21 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
               const cli_opt *opts, stc_params *params, cli_set_fn set, void *ctx,
               int *done);
 
+/* The closest of a set of names to a mistyped one: cli_near_init, then
+ * cli_near_add for each known name; cli_near_best gives the closest, or NULL
+ * when none is close.  Distance: Damerau-Levenshtein (optimal string
+ * alignment: insert, delete, substitute, swap two neighbours), letter case
+ * ignored; close = at most a third of the typed length, at least 1 and at
+ * most 2, and less than the typed length. */
+typedef struct cli_near {
+    const char *typed; /* borrowed */
+    const char *best;  /* borrowed from the caller's names; NULL: none yet */
+    int dist;
+} cli_near;
+void cli_near_init(cli_near *n, const char *typed);
+void cli_near_add(cli_near *n, const char *name);
+const char *cli_near_best(const cli_near *n);
+
 /* Print "stiction <cmd>: <stc_errmsg()>" (or the status name) to stderr. */
 int cli_fail(const char *cmdname, stc_status s);
 

@@ -1,5 +1,7 @@
 /* Option parsing shared by every subcommand: INI config, then argv. */
+#include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +24,75 @@ static const cli_opt *find_opt(const cli_opt *opts, const char *key)
     return NULL;
 }
 
+/* ---- the closest name to a mistyped one ------------------------------- */
+
+/* Longest name compared (keys are read into 64-byte buffers). */
+#define NEAR_MAX 64
+
+static int near_distance(const char *a, const char *b)
+{
+    size_t m = strlen(a), n = strlen(b);
+    if (m >= NEAR_MAX || n >= NEAR_MAX) return INT_MAX;
+    int d[NEAR_MAX + 1][NEAR_MAX + 1];
+    for (size_t i = 0; i <= m; i++) d[i][0] = (int)i;
+    for (size_t j = 0; j <= n; j++) d[0][j] = (int)j;
+    for (size_t i = 1; i <= m; i++)
+        for (size_t j = 1; j <= n; j++) {
+            int ai = tolower((unsigned char)a[i - 1]), bj = tolower((unsigned char)b[j - 1]);
+            int v = d[i - 1][j - 1] + (ai != bj);
+            if (d[i - 1][j] + 1 < v) v = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < v) v = d[i][j - 1] + 1;
+            /* two neighbours swapped ("formulsa") cost one edit */
+            if (i > 1 && j > 1 && ai == tolower((unsigned char)b[j - 2]) &&
+                tolower((unsigned char)a[i - 2]) == bj && d[i - 2][j - 2] + 1 < v)
+                v = d[i - 2][j - 2] + 1;
+            d[i][j] = v;
+        }
+    return d[m][n];
+}
+
+void cli_near_init(cli_near *n, const char *typed)
+{
+    n->typed = typed;
+    n->best = NULL;
+    n->dist = INT_MAX;
+}
+
+void cli_near_add(cli_near *n, const char *name)
+{
+    int d = near_distance(n->typed, name);
+    if (d < n->dist) n->dist = d, n->best = name;
+}
+
+const char *cli_near_best(const cli_near *n)
+{
+    int len = (int)strlen(n->typed), limit = len / 3;
+    limit = limit < 1 ? 1 : limit > 2 ? 2 : limit;
+    return n->best && n->dist <= limit && n->dist < len ? n->best : NULL;
+}
+
+/* The known option closest to `key`: the subcommand's, the common ones
+ * (with params) and, on the command line, config and help.  NULL if none
+ * is close. */
+static const char *near_option(const char *key, const cli_opt *opts, int common, int cmdline)
+{
+    cli_near n;
+    cli_near_init(&n, key);
+    for (; opts && opts->name; opts++) cli_near_add(&n, opts->name);
+    for (int i = 0; common && stc_params_key(i); i++) cli_near_add(&n, stc_params_key(i));
+    if (cmdline) cli_near_add(&n, "config"), cli_near_add(&n, "help");
+    return cli_near_best(&n);
+}
+
+/* " (did you mean <pre><near>?)", or `otherwise` when near is NULL. */
+static const char *near_hint(char *buf, size_t n, const char *pre, const char *near,
+                             const char *otherwise)
+{
+    if (near) snprintf(buf, n, " (did you mean %s%s?)", pre, near);
+    else snprintf(buf, n, "%s", otherwise);
+    return buf;
+}
+
 /* Route one key to the common parameters or to the subcommand. */
 static stc_status dispatch(void *u, const char *section, const char *key,
                            const char *value)
@@ -36,8 +107,10 @@ static stc_status dispatch(void *u, const char *section, const char *key,
         stc_status s = d->set(d->ctx, key, value);
         if (s != STC_EUNSUPPORTED) return s;
     }
-    return stc_error(STC_EINVAL, __FILE__, __LINE__,
-                     "unknown option '%s' (see --help for the valid keys)", key);
+    char hint[96];
+    return stc_error(STC_EINVAL, __FILE__, __LINE__, "unknown option '%s'%s", key,
+                     near_hint(hint, sizeof hint, "", near_option(key, d->opts, d->params != NULL, 0),
+                               " (see --help for the valid keys)"));
 }
 
 /* The normalised option name of argument a ("--t_over_R=3" -> "t-over-R")
@@ -168,9 +241,13 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
     /* Pass 2: command line, overriding the file */
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
+        char hint[96];
         if (strncmp(a, "--", 2) != 0 || a[2] == '\0') {
-            fprintf(stderr, "stiction %s: unexpected argument '%s' (options start with --)\n",
-                    cmdname, a);
+            /* "-delta 3": an option with its dashes mistyped? */
+            arg_key(a, key, sizeof key);
+            const char *near = near_option(key, opts, params != NULL, 1);
+            fprintf(stderr, "stiction %s: unexpected argument '%s' (options start with --%s%s%s)\n",
+                    cmdname, a, near ? ": did you mean --" : "", near ? near : "", near ? "?" : "");
             return CLI_EXIT_USAGE;
         }
         const char *value = arg_key(a, key, sizeof key);
@@ -179,10 +256,16 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
             continue;
         }
         const cli_opt *o = find_opt(opts, key);
+        if (!o && !(params && is_common_key(key))) {
+            fprintf(stderr, "stiction %s: unknown option '--%s'%s\n", cmdname, key,
+                    near_hint(hint, sizeof hint, "--", near_option(key, opts, params != NULL, 1),
+                              " (see --help)"));
+            return CLI_EXIT_USAGE;
+        }
         int is_flag = o && !o->arg;
         if (!value) {
             if (is_flag) value = "1";
-            else if (o || (params && is_common_key(key))) {
+            else {
                 if (i + 1 >= argc) {
                     fprintf(stderr, "stiction %s: --%s: missing value\n", cmdname, key);
                     return CLI_EXIT_USAGE;
@@ -199,10 +282,6 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
                     return CLI_EXIT_USAGE;
                 }
                 value = argv[++i];
-            } else {
-                fprintf(stderr, "stiction %s: unknown option '--%s' (see --help)\n",
-                        cmdname, key);
-                return CLI_EXIT_USAGE;
             }
         }
         if ((s = dispatch(&d, "", key, value)) != STC_OK) return cli_fail(cmdname, s);
@@ -295,9 +374,15 @@ int cli_dispatch(const char *group, const cli_cmd *cmds, int argc, char **argv)
         return CLI_EXIT_OK;
     }
     size_t skip = strlen(group) + 1;
-    for (const cli_cmd *c = cmds; c->name; c++)
+    cli_near near;
+    cli_near_init(&near, argv[0]);
+    for (const cli_cmd *c = cmds; c->name; c++) {
         if (strcmp(argv[0], c->name + skip) == 0) return c->run(c, argc - 1, argv + 1);
-    fprintf(stderr, "stiction %s: unknown subcommand '%s'\n\n", group, argv[0]);
+        cli_near_add(&near, c->name + skip);
+    }
+    char hint[96];
+    fprintf(stderr, "stiction %s: unknown subcommand '%s'%s\n\n", group, argv[0],
+            near_hint(hint, sizeof hint, "", cli_near_best(&near), ""));
     group_usage(stderr, group, cmds);
     return CLI_EXIT_USAGE;
 }

@@ -40,9 +40,15 @@ int main(int argc, char **argv)
         printf("stiction %s\n", STC_VERSION);
         return CLI_EXIT_OK;
     }
-    for (const cli_cmd *c = commands; c->name; c++)
+    cli_near near;
+    cli_near_init(&near, argv[1]);
+    for (const cli_cmd *c = commands; c->name; c++) {
         if (strcmp(argv[1], c->name) == 0) return c->run(c, argc - 2, argv + 2);
-    fprintf(stderr, "stiction: unknown command '%s'\n\n", argv[1]);
+        cli_near_add(&near, c->name);
+    }
+    const char *guess = cli_near_best(&near);
+    fprintf(stderr, "stiction: unknown command '%s'%s%s%s\n\n", argv[1],
+            guess ? " (did you mean " : "", guess ? guess : "", guess ? "?)" : "");
     usage(stderr);
     return CLI_EXIT_USAGE;
 }
