@@ -19,6 +19,9 @@ void stc_params_default(stc_params *p)
 {
     p->R = 10.0;
     p->t_over_R = 0.0;
+    p->t_mm = 0.0;
+    p->t_mm_set = 0;
+    p->t_over_R_set = 0;
     p->E_su = 200000.0;
     p->E_ratio = 1.0;
     p->E_over_Y = 1000.0;
@@ -92,6 +95,8 @@ static const param_key param_keys[] = {
     PK("R", R, 0.0, 0, INFINITY, 0),
     /* t/R < 1: the coating must be thinner than the sphere is large */
     PK("t-over-R", t_over_R, 0.0, 1, 1.0, 0),
+    /* the same thickness in mm (t/R < 1 is checked with R, in resolve) */
+    PK("t-mm", t_mm, 0.0, 1, INFINITY, 0),
     PK("E-su", E_su, 0.0, 0, INFINITY, 0),
     PK("E-ratio", E_ratio, 0.0, 0, INFINITY, 0),
     /* E/Y > 1: yield strain below 100 % (small-strain model) */
@@ -135,6 +140,8 @@ stc_status stc_params_set(stc_params *p, const char *key, const char *value)
         STC_CALL(stc_check_range(k, v, pk->lo, pk->lo_incl, pk->hi, pk->hi_incl));
         *(double *)((char *)p + pk->offset) = v;
         if (strcmp(k, "nu-co") == 0) p->nu_co_set = 1;
+        if (strcmp(k, "t-mm") == 0) p->t_mm_set = 1;
+        if (strcmp(k, "t-over-R") == 0) p->t_over_R_set = 1;
         return STC_OK;
     }
     return STC_EUNSUPPORTED;
@@ -191,6 +198,20 @@ stc_status stc_params_validate(const stc_params *p)
         }
     }
     return STC_OK;
+}
+
+stc_status stc_params_resolve(stc_params *p)
+{
+    if (p->t_mm_set) {
+        STC_CHECK(!p->t_over_R_set, STC_EINVAL, "t-mm = %g conflicts with t-over-R = %g: give "
+                  "the coating thickness once, in mm (t-mm) or as a share of R (t-over-R)",
+                  p->t_mm, p->t_over_R);
+        double tR = p->t_mm / p->R;
+        STC_CHECK(tR < 1.0, STC_EINVAL, "t-mm = %g with R = %g mm: t/R = %g must be < 1 (a "
+                  "coating thinner than the sphere's radius)", p->t_mm, p->R, tR);
+        p->t_over_R = tR;
+    }
+    return stc_params_validate(p);
 }
 
 /* ---- INI -------------------------------------------------------------- */

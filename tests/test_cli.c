@@ -355,6 +355,65 @@ static void test_config_override(void **state)
     assert_true(fabs(jnum(out, "delta_c2_over_omega_c_su") - 39.61) < 0.005);
 }
 
+/* The coating thickness in mm: --t-mm MM is t/R = MM / R of the run's R,
+ * the same number as --t-over-R gives (bit for bit where MM / R rounds to
+ * it); refused with --t-over-R, and where t/R would reach 1. */
+static void test_thickness_mm(void **state)
+{
+    (void)state;
+    static char ref[1 << 16];
+    char args[256];
+    const char *cases[][2] = {{"--t-over-R 0.025", "--t-mm 0.25"},
+                              {"--R 5 --t-over-R 0.025", "--R 5 --t-mm 0.125"}};
+    for (int k = 0; k < 2; k++) {
+        snprintf(args, sizeof args, "formulas --E-ratio 2 --delta 10 --json %s", cases[k][0]);
+        assert_int_equal(run(args, 1, ref, sizeof ref), 0);
+        snprintf(args, sizeof args, "formulas --E-ratio 2 --delta 10 --json %s", cases[k][1]);
+        int rc = run(args, 1, out, sizeof out);
+        if (rc != 0) {
+            run(args, 2, out, sizeof out);
+            fail_msg("'%s' exited %d: %s", args, rc, out);
+        }
+        printf("  %s: t/R %.17g, t %.17g mm, delta_c2 %.6g\n", cases[k][1], jnum(out, "t_over_R"),
+               jnum(out, "t_mm"), jnum(out, "delta_c2_over_omega_c_su"));
+        assert_true(jnum(out, "t_over_R") == 0.025);
+        assert_true(jnum(out, "t_over_R") == jnum(ref, "t_over_R"));
+        assert_true(jnum(out, "mu_s_wsp") == jnum(ref, "mu_s_wsp"));
+        assert_true(jnum(out, "delta_c2_over_omega_c_su") == jnum(ref, "delta_c2_over_omega_c_su"));
+    }
+    /* the FE asperity (coarsest mesh, elastic, 0.1 s): the same load */
+    assert_int_equal(run("asperity --mesh 0 --delta 1 --E-ratio 2 --t-over-R 0.025 --json", 1, ref,
+                         sizeof ref), 0);
+    assert_int_equal(run("asperity --mesh 0 --delta 1 --E-ratio 2 --t-mm 0.25 --json", 1, out,
+                         sizeof out), 0);
+    printf("  asperity --t-mm 0.25: P %.10g N (--t-over-R 0.025: %.10g N)\n", jnum(out, "P_N"),
+           jnum(ref, "P_N"));
+    assert_true(jnum(out, "P_N") == jnum(ref, "P_N"));
+    /* from a --config file too */
+    write_ini("t-mm = 0.25\nE-ratio = 2\n");
+    snprintf(args, sizeof args, "formulas --config %s --delta 10 --json", ini);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    assert_true(jnum(out, "t_over_R") == 0.025);
+    /* both forms of the thickness: refused naming both, wherever each came from */
+    expect_fail("formulas --t-mm 0.25 --t-over-R 0.025", "t-mm = 0.25", "t-over-R = 0.025");
+    expect_fail("asperity --delta 1 --t-over-R 0.025 --t-mm 0.25", "t-mm = 0.25",
+                "t-over-R = 0.025");
+    write_ini("t-over-R = 0.025\n");
+    snprintf(args, sizeof args, "formulas --config %s --t-mm 0.25", ini);
+    expect_fail(args, "t-mm = 0.25", "t-over-R = 0.025");
+    expect_fail("formulas --t-mm 10", "t-mm = 10", "t/R = 1");
+    expect_fail("formulas --R 2 --t-mm 3", "t-mm = 3", "R = 2 mm");
+    expect_fail("formulas --t-mm -0.1", "t-mm = -0.1", "must be >= 0");
+    expect_fail("formulas --t-mm 1um", "t-mm = '1um'", "not a number");
+    /* and the help says what it is */
+    const char *help[] = {"formulas --help", "asperity --help"};
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(run(help[k], 1, out, sizeof out), 0);
+        if (!strstr(out, "--t-mm MM") || !strstr(out, "t-mm / R"))
+            fail_msg("'%s' does not document --t-mm MM as t/R = t-mm / R", help[k]);
+    }
+}
+
 static void test_csv(void **state)
 {
     (void)state;
@@ -403,6 +462,7 @@ int main(void)
         cmocka_unit_test(test_bad_placements), cmocka_unit_test(test_bad_syntax),
         cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
         cmocka_unit_test(test_config_directory),  cmocka_unit_test(test_suggestions),
+        cmocka_unit_test(test_thickness_mm),
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),

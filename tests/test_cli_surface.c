@@ -527,6 +527,15 @@ static void test_predict_bad_values(void **state)
     expect_fail(PR "--summit-density 100 --summit-radius 0.05 --sigma-s inf --pressures 1",
                 "sigma-s = 'inf'", "finite number", NULL);
     expect_fail(PR ST "--t-mm -1e-3 --pressures 1", "t-mm = -0.001", "must be >= 0", NULL);
+    /* every summit has its own radius: the coating is a thickness, not a t/R
+     * (which was taken against the common R = 10 mm: t = 0.2 mm) */
+    expect_fail(PR ST "--t-over-R 0.02 --pressures 1", "t-over-R = 0.02",
+                "every summit has its own radius", "--t-mm MM");
+    expect_fail(PR ST "--t-over-R 0.02 --t-mm 1e-3 --pressures 1", "t-over-R = 0.02",
+                "--t-mm MM", NULL);
+    write_file("tr.ini", "t-over-R = 0.02\n");
+    expect_fail(PR ST "--config tr.ini --pressures 1", "t-over-R = 0.02",
+                "every summit has its own radius", "--t-mm MM");
     expect_fail(PR ST "--model table --pressures 1", "model = 'table'", "hertz or wsp", NULL);
     expect_fail(PR ST "--mode exact --pressures 1", "mode = 'exact'",
                 "statistical or deterministic", NULL);

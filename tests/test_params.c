@@ -105,6 +105,34 @@ static void test_validate_cross(void **state)
     }
 }
 
+/* t-mm: the thickness in mm becomes t/R with the final R, whichever came
+ * first; never together with t-over-R; t/R < 1. */
+static void test_resolve_thickness(void **state)
+{
+    (void)state;
+    stc_params p;
+    stc_params_default(&p);
+    assert_int_equal(stc_params_set(&p, "t-mm", "0.125"), STC_OK);
+    assert_int_equal(stc_params_set(&p, "R", "5"), STC_OK);
+    assert_int_equal(stc_params_resolve(&p), STC_OK);
+    assert_true(p.t_over_R == 0.025 && p.t_mm_set && !p.t_over_R_set);
+    assert_int_equal(stc_params_resolve(&p), STC_OK); /* idempotent */
+    assert_true(p.t_over_R == 0.025);
+    assert_true(fabs(stc_params_t(&p) - 0.125) < 1e-16);
+    assert_int_equal(stc_params_set(&p, "t-over-R", "0.025"), STC_OK);
+    stc_error_clear();
+    assert_int_equal(stc_params_resolve(&p), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "t-mm = 0.125 conflicts with t-over-R = 0.025"));
+    stc_params_default(&p);
+    assert_int_equal(stc_params_set(&p, "t-mm", "10"), STC_OK);
+    assert_int_equal(stc_params_resolve(&p), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "t-mm = 10 with R = 10 mm: t/R = 1 must be < 1"));
+    /* the key table lists it with the others */
+    int found = 0, n = 0;
+    for (; stc_params_key(n); n++) found += strcmp(stc_params_key(n), "t-mm") == 0;
+    assert_true(found == 1 && n == 10 && stc_params_key(-1) == NULL);
+}
+
 static stc_status collect(void *user, const char *section, const char *key,
                           const char *value)
 {
@@ -165,6 +193,7 @@ int main(void)
         cmocka_unit_test(test_defaults),       cmocka_unit_test(test_set_and_derive),
         cmocka_unit_test(test_invalid_values), cmocka_unit_test(test_unknown_key),
         cmocka_unit_test(test_validate_cross), cmocka_unit_test(test_ini),
+        cmocka_unit_test(test_resolve_thickness),
     };
     return cmocka_run_group_tests_name("params", tests, NULL, NULL);
 }

@@ -20,10 +20,14 @@ typedef struct stc_material {
 
 /* The common options (SPEC §2): a substrate sphere of radius R carrying a
  * bonded coating of thickness t = (t/R) R.  Coating properties are given
- * relative to the substrate unless set explicitly. */
+ * relative to the substrate unless set explicitly.  The thickness may be
+ * given in mm instead (t_mm): stc_params_resolve then sets t_over_R. */
 typedef struct stc_params {
     double R;        /* substrate radius, mm; default 10 */
     double t_over_R; /* coating thickness / R; 0 = uncoated; default 0 */
+    double t_mm;     /* coating thickness, mm, when t_mm_set; default 0 */
+    int t_mm_set;    /* nonzero when t-mm was given (stc_params_set) */
+    int t_over_R_set; /* nonzero when t-over-R was given (stc_params_set) */
     double E_su;     /* substrate Young's modulus, MPa; default 200000 */
     double E_ratio;  /* Eco/Esu; default 1 */
     double E_over_Y; /* E/Y of both layers (used unless Y_su/Y_co set); default 1000 */
@@ -38,7 +42,7 @@ typedef struct stc_params {
 void stc_params_default(stc_params *p);
 
 /* Set one common option from text, e.g. key "t-over-R", value "0.025".
- * Keys: R, t-over-R, E-su, E-ratio, E-over-Y, Y-su, Y-co, nu, nu-co
+ * Keys: R, t-over-R, t-mm, E-su, E-ratio, E-over-Y, Y-su, Y-co, nu, nu-co
  * (a leading "--" is accepted; '_' and '-' are interchangeable).
  * Returns STC_OK, STC_EINVAL with a message naming key, value and the valid
  * range, or STC_EUNSUPPORTED (no message) when the key is not a common one. */
@@ -50,6 +54,12 @@ const char *stc_params_key(int i);
 
 /* Check the whole set for consistency (ranges that involve several keys). */
 stc_status stc_params_validate(const stc_params *p);
+
+/* Finish a set given through stc_params_set, once every key is in: a
+ * thickness given as t-mm becomes t_over_R = t_mm / R with the final R
+ * (refused when t-over-R was given too, or when t/R would reach 1); then
+ * stc_params_validate.  STC_OK or STC_EINVAL naming the keys. */
+stc_status stc_params_resolve(stc_params *p);
 
 /* Resolved layer materials (substrate, coating).  Either pointer may be NULL. */
 void stc_params_materials(const stc_params *p, stc_material *su, stc_material *co);

@@ -36,7 +36,8 @@ static const cli_opt opts[] = {
     {"summit-density", "ETA", "statistical run without a map: summits per mm²"},
     {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},
     {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"},
-    {"t-mm", "MM", "coating thickness, mm (default: t-over-R × R of the common options)"},
+    {"t-over-R", "X", "refused: every summit has its own radius; give the coating thickness as "
+                      "--t-mm MM (a common option)"},
     {"table", "FILE", "asperity response from an FE friction table (`stiction table build`): "
                       "the coating counts, each summit with its own t/R; mu_s with an error band"},
     {"fill", NULL, "with --table: first compute the table's missing points that these loads "
@@ -121,7 +122,11 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
     else if (strcmp(key, "summit-density") == 0) s = set_positive(key, v, &o->eta, 0);
     else if (strcmp(key, "summit-radius") == 0) s = set_positive(key, v, &o->R, 0);
     else if (strcmp(key, "sigma-s") == 0) s = set_positive(key, v, &o->sigma_s, 0);
-    else if (strcmp(key, "t-mm") == 0) s = set_positive(key, v, &o->t_mm, 1);
+    else if (strcmp(key, "t-over-R") == 0)
+        /* the common t/R would be taken against the common R (10 mm) */
+        s = stc_error(STC_EINVAL, __FILE__, __LINE__, "t-over-R = %s: every summit has its own "
+                      "radius, so one t/R is no thickness; give the coating thickness with "
+                      "--t-mm MM", v);
     else if (strcmp(key, "pressures") == 0) s = set_list(key, v, &o->pressures, &o->np, 1);
     else if (strcmp(key, "separations") == 0) s = set_list(key, v, &o->separations, &o->ns, 0);
     else return cli_surface_import_opt(&o->imp, key, v);
@@ -674,7 +679,9 @@ static const char *USAGE =
     "Greenwood-Williamson summation: N, P, A, Qmax summed over the summits; mu_s = sum Qmax /\n"
     "sum P (never a mean of asperity mu_s).  Separations are measured from the MEAN SUMMIT\n"
     "HEIGHT in units of sigma_s.  The closed-form models use ONE layer's properties (the\n"
-    "coating enters only through t/R until FE tables exist).";
+    "coating enters only through t/R until FE tables exist).  The coating is --t-mm MM thick\n"
+    "on every summit, each summit with its own radius and so its own t/R (--t-over-R is\n"
+    "refused).";
 
 int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
 {
@@ -688,7 +695,6 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     int done, rc;
     o.rule = SRF_RULE_8;
     o.wsp = 1;
-    o.t_mm = -1;
     o.imp.zscale = 1.0;
     stc_params_default(&p);
     rc = cli_parse(cmd->name, USAGE, argc, argv, opts, &p, set_opt, &o, &done);
@@ -698,7 +704,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     /* a bad --out is refused before any work is done */
     if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
         goto out;
-    if (o.t_mm < 0) o.t_mm = stc_params_t(&p);
+    o.t_mm = p.t_mm; /* 0 unless --t-mm: uncoated */
     if (s == STC_OK && o.fill) s = fill_table(cmd->name, &o, &p);
     if (s == STC_OK) s = o.table ? make_table_models(&o, &p, &aux, &m) : make_model(&o, &p, &m);
     if (s == STC_OK) s = make_gw(&o, m, &g);

@@ -93,18 +93,20 @@ static const char *near_hint(char *buf, size_t n, const char *pre, const char *n
     return buf;
 }
 
-/* Route one key to the common parameters or to the subcommand. */
+/* Route one key to the subcommand or to the common parameters: an option
+ * the subcommand lists is its own, also where a common key has its name
+ * (surface predict refuses t-over-R with its own reason). */
 static stc_status dispatch(void *u, const char *section, const char *key,
                            const char *value)
 {
     dispatch_ctx *d = u;
     (void)section;
-    if (d->params) {
-        stc_status s = stc_params_set(d->params, key, value);
-        if (s != STC_EUNSUPPORTED) return s;
-    }
     if (d->set && find_opt(d->opts, key)) {
         stc_status s = d->set(d->ctx, key, value);
+        if (s != STC_EUNSUPPORTED) return s;
+    }
+    if (d->params) {
+        stc_status s = stc_params_set(d->params, key, value);
         if (s != STC_EUNSUPPORTED) return s;
     }
     char hint[96];
@@ -138,7 +140,10 @@ void cli_common_help(FILE *f)
 {
     fputs("Common options (units mm, N, MPa):\n"
           "  --R MM            substrate radius (default 10)\n"
-          "  --t-over-R X      coating thickness / R, 0 = uncoated (default 0)\n"
+          "  --t-over-R X      coating thickness / R, 0 = uncoated (default 0; not in\n"
+          "                    surface predict, whose summits have their own radii)\n"
+          "  --t-mm MM         coating thickness in mm, instead of --t-over-R: t/R =\n"
+          "                    t-mm / R with the run's R (surface predict: on every summit)\n"
           "  --E-su MPA        substrate Young's modulus (default 200000)\n"
           "  --E-ratio X       Eco/Esu (default 1)\n"
           "  --E-over-Y X      E/Y of both layers (default 1000)\n"
@@ -286,7 +291,7 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
         }
         if ((s = dispatch(&d, "", key, value)) != STC_OK) return cli_fail(cmdname, s);
     }
-    if (params && (s = stc_params_validate(params)) != STC_OK) return cli_fail(cmdname, s);
+    if (params && (s = stc_params_resolve(params)) != STC_OK) return cli_fail(cmdname, s);
     return CLI_EXIT_OK;
 }
 
