@@ -200,6 +200,30 @@ stc_status stc_params_validate(const stc_params *p)
     return STC_OK;
 }
 
+/* One yield strength given and the other left to E-over-Y (a default the
+ * user may never have chosen) is refused wherever two layers are described:
+ * a coating (t > 0), coating properties of its own (E-ratio != 1, nu-co), or
+ * Y-co itself.  A homogeneous sphere takes Y-su alone. */
+static stc_status check_yield_pair(const stc_params *p)
+{
+    int su = p->Y_su > 0.0, co = p->Y_co > 0.0;
+    if (su == co) return STC_OK;
+    if (co)
+        return STC_FAIL(STC_EINVAL, "Y-co = %g given without Y-su: the substrate's yield "
+                        "strength would be E-su / E-over-Y = %g MPa; give the substrate's yield "
+                        "strength too (Y-su, MPa), or neither and E-over-Y for both layers",
+                        p->Y_co, p->E_su / p->E_over_Y);
+    char why[64];
+    if (p->t_over_R > 0.0) snprintf(why, sizeof why, "t = %g mm", stc_params_t(p));
+    else if (p->E_ratio != 1.0) snprintf(why, sizeof why, "E-ratio = %g", p->E_ratio);
+    else if (p->nu_co_set) snprintf(why, sizeof why, "nu-co = %g", p->nu_co);
+    else return STC_OK; /* one layer: Y-su is all there is */
+    return STC_FAIL(STC_EINVAL, "Y-su = %g given without Y-co, with a coating (%s): its yield "
+                    "strength would be E_co / E-over-Y = %g MPa; give the coating's yield "
+                    "strength too (Y-co, MPa), or neither and E-over-Y for both layers", p->Y_su,
+                    why, p->E_su * p->E_ratio / p->E_over_Y);
+}
+
 stc_status stc_params_resolve(stc_params *p)
 {
     if (p->t_mm_set) {
@@ -211,6 +235,7 @@ stc_status stc_params_resolve(stc_params *p)
                   "coating thinner than the sphere's radius)", p->t_mm, p->R, tR);
         p->t_over_R = tR;
     }
+    STC_CALL(check_yield_pair(p));
     return stc_params_validate(p);
 }
 

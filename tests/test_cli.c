@@ -198,7 +198,8 @@ static void test_suggestions(void **state)
     expect_fail("formulas --dleta 3", "unknown option '--dleta'", "(did you mean --delta?)");
     expect_fail("formulas --t-over-r 0.01", "unknown option '--t-over-r'",
                 "(did you mean --t-over-R?)");                              /* case */
-    expect_fail("formulas --E_ration 2", "unknown option '--E-ration'", "(did you mean --E-ratio?)");
+    expect_fail("formulas --E_ration 2", "unknown option '--E-ration'",
+                "(did you mean --E-ratio?)");
     expect_fail("formulas --confg x.ini", "unknown option '--confg'", "(did you mean --config?)");
     expect_fail("asperity --elements-per-contat 3", "unknown option '--elements-per-contat'",
                 "(did you mean --elements-per-contact?)");
@@ -414,6 +415,43 @@ static void test_thickness_mm(void **state)
     }
 }
 
+/* Yield strengths: a run with a coating (t > 0, E-ratio != 1 or nu-co)
+ * that gives one of Y-su, Y-co would take the other from the default
+ * E-over-Y (Y-su 1500 left the coating at E_co/1000 = 200 MPa): both or
+ * neither.  Y-co alone describes a coating too.  A homogeneous sphere
+ * takes Y-su alone. */
+static void test_yield_pair(void **state)
+{
+    (void)state;
+    char args[256];
+    expect_fail("formulas --Y-su 1500 --t-over-R 0.01", "Y-su = 1500 given without Y-co",
+                "give the coating's yield strength too");
+    expect_fail("formulas --Y-su 1500 --t-mm 0.1", "Y-su = 1500 given without Y-co",
+                "(t = 0.1 mm)");
+    expect_fail("formulas --Y-su 1500 --E-ratio 2", "Y-su = 1500 given without Y-co",
+                "(E-ratio = 2)");
+    expect_fail("formulas --Y-su 1500 --nu-co 0.25", "Y-su = 1500 given without Y-co", NULL);
+    expect_fail("formulas --Y-co 7000 --t-over-R 0.01 --E-ratio 2", "Y-co = 7000 given without "
+                "Y-su", "give the substrate's yield strength too");
+    expect_fail("formulas --Y-co 7000", "Y-co = 7000 given without Y-su", NULL);
+    expect_fail("asperity --mesh 0 --delta 1 --t-over-R 0.025 --E-ratio 2 --Y-su 1500",
+                "Y-su = 1500 given without Y-co", NULL);
+    expect_fail("halfspace --delta 0.5 --E-ratio 2 --Y-su 325", "Y-su = 325 given without Y-co",
+                NULL);
+    write_ini("t-over-R = 0.01\nE-ratio = 2\nY-su = 1500\n");
+    snprintf(args, sizeof args, "formulas --config %s", ini);
+    expect_fail(args, "Y-su = 1500 given without Y-co", NULL);
+    /* both, from the file and the command line; neither; or no coating */
+    snprintf(args, sizeof args, "formulas --config %s --Y-co 7000 --json", ini);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    assert_true(jnum(out, "Y_su_MPa") == 1500 && jnum(out, "Y_co_MPa") == 7000);
+    assert_int_equal(run("formulas --t-over-R 0.01 --E-ratio 2 --E-over-Y 500 --json", 1, out,
+                         sizeof out), 0);
+    assert_true(jnum(out, "Y_su_MPa") == 400 && jnum(out, "Y_co_MPa") == 800);
+    assert_int_equal(run("formulas --Y-su 325 --json", 1, out, sizeof out), 0);
+    assert_true(jnum(out, "Y_su_MPa") == 325);
+}
+
 static void test_csv(void **state)
 {
     (void)state;
@@ -443,8 +481,11 @@ static void test_halfspace(void **state)
     expect_fail(args, "delta = -1", "> 0");
     snprintf(args, sizeof args, "%s --delta 0.5 --delta-mm 0.001", w);
     expect_fail(args, "one of --delta and --delta-mm", NULL);
-    snprintf(args, sizeof args, "%s --delta 0.5 --t-over-R 0.01", w);
+    /* (with a coating, Y-su alone is refused first, by the common options) */
+    snprintf(args, sizeof args, "%s --Y-co 325 --delta 0.5 --t-over-R 0.01", w);
     expect_fail(args, "t-over-R = 0.01", "homogeneous");
+    snprintf(args, sizeof args, "%s --delta 0.5 --t-over-R 0.01", w);
+    expect_fail(args, "Y-su = 325 given without Y-co", NULL);
     snprintf(args, sizeof args, "%s --delta 0.5 --cells 64 --json", w);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
     assert_json(out);
@@ -462,7 +503,7 @@ int main(void)
         cmocka_unit_test(test_bad_placements), cmocka_unit_test(test_bad_syntax),
         cmocka_unit_test(test_bad_delta),         cmocka_unit_test(test_bad_config),
         cmocka_unit_test(test_config_directory),  cmocka_unit_test(test_suggestions),
-        cmocka_unit_test(test_thickness_mm),
+        cmocka_unit_test(test_thickness_mm),      cmocka_unit_test(test_yield_pair),
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),

@@ -533,6 +533,11 @@ static void test_predict_bad_values(void **state)
                 "every summit has its own radius", "--t-mm MM");
     expect_fail(PR ST "--t-over-R 0.02 --t-mm 1e-3 --pressures 1", "t-over-R = 0.02",
                 "--t-mm MM", NULL);
+    /* a coated run with one yield strength: the other is not left to E-over-Y */
+    expect_fail(PR ST "--t-mm 1.5e-3 --Y-su 1500 --pressures 1", "Y-su = 1500 given without Y-co",
+                NULL, NULL);
+    expect_fail(PR ST "--E-ratio 2 --Y-co 7000 --pressures 1", "Y-co = 7000 given without Y-su",
+                NULL, NULL);
     write_file("tr.ini", "t-over-R = 0.02\n");
     expect_fail(PR ST "--config tr.ini --pressures 1", "t-over-R = 0.02",
                 "every summit has its own radius", "--t-mm MM");
@@ -752,6 +757,11 @@ static void test_roundtrip_predict(void **state)
         assert_true(jnum_k(det, "contacts_per_mm2", k) == jnum_k(det, "contacts", k));
         assert_true(jnum_k(det, "load_fraction_outside_model_range", k) < 0.5);
     }
+    /* the bundled example configuration runs as it is */
+    assert_int_equal(run("surface predict --config '" STC_DATA_DIR "/../examples/tin-on-steel-"
+                         "predict.ini' --surface map.h5 --pressures 10 --json", 1, det, sizeof det),
+                     0);
+    check_points(det, p, 1);
     /* --out DIR: the three files, complete, and no temporaries */
     struct stat st;
     assert_int_equal(stat(P("out-dir/gw.json"), &st), 0);

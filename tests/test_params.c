@@ -106,7 +106,7 @@ static void test_validate_cross(void **state)
 }
 
 /* t-mm: the thickness in mm becomes t/R with the final R, whichever came
- * first; never together with t-over-R; t/R < 1. */
+ * first; never together with t-over-R; t/R < 1.  And the yield pair. */
 static void test_resolve_thickness(void **state)
 {
     (void)state;
@@ -127,6 +127,15 @@ static void test_resolve_thickness(void **state)
     assert_int_equal(stc_params_set(&p, "t-mm", "10"), STC_OK);
     assert_int_equal(stc_params_resolve(&p), STC_EINVAL);
     assert_non_null(strstr(stc_errmsg(), "t-mm = 10 with R = 10 mm: t/R = 1 must be < 1"));
+    /* one yield strength of two layers: refused; of one layer: taken */
+    stc_params_default(&p);
+    assert_int_equal(stc_params_set(&p, "Y-su", "1500"), STC_OK);
+    assert_int_equal(stc_params_resolve(&p), STC_OK);
+    assert_int_equal(stc_params_set(&p, "t-mm", "0.1"), STC_OK);
+    assert_int_equal(stc_params_resolve(&p), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "Y-su = 1500 given without Y-co"));
+    assert_int_equal(stc_params_set(&p, "Y-co", "7000"), STC_OK);
+    assert_int_equal(stc_params_resolve(&p), STC_OK);
     /* the key table lists it with the others */
     int found = 0, n = 0;
     for (; stc_params_key(n); n++) found += strcmp(stc_params_key(n), "t-mm") == 0;

@@ -57,8 +57,11 @@ stc_status stc_params_validate(const stc_params *p);
 
 /* Finish a set given through stc_params_set, once every key is in: a
  * thickness given as t-mm becomes t_over_R = t_mm / R with the final R
- * (refused when t-over-R was given too, or when t/R would reach 1); then
- * stc_params_validate.  STC_OK or STC_EINVAL naming the keys. */
+ * (refused when t-over-R was given too, or when t/R would reach 1); one
+ * yield strength without the other is refused where the set describes two
+ * layers (t > 0, E-ratio != 1, nu-co or Y-co given), since the other would
+ * come from E-over-Y unasked; then stc_params_validate.  STC_OK or
+ * STC_EINVAL naming the keys. */
 stc_status stc_params_resolve(stc_params *p);
 
 /* Resolved layer materials (substrate, coating).  Either pointer may be NULL. */

@@ -110,9 +110,9 @@ static stc_status dispatch(void *u, const char *section, const char *key,
         if (s != STC_EUNSUPPORTED) return s;
     }
     char hint[96];
+    const char *near = near_option(key, d->opts, d->params != NULL, 0);
     return stc_error(STC_EINVAL, __FILE__, __LINE__, "unknown option '%s'%s", key,
-                     near_hint(hint, sizeof hint, "", near_option(key, d->opts, d->params != NULL, 0),
-                               " (see --help for the valid keys)"));
+                     near_hint(hint, sizeof hint, "", near, " (see --help for the valid keys)"));
 }
 
 /* The normalised option name of argument a ("--t_over_R=3" -> "t-over-R")
@@ -148,7 +148,9 @@ void cli_common_help(FILE *f)
           "  --E-ratio X       Eco/Esu (default 1)\n"
           "  --E-over-Y X      E/Y of both layers (default 1000)\n"
           "  --Y-su MPA        substrate yield strength (overrides E-over-Y)\n"
-          "  --Y-co MPA        coating yield strength (overrides E-over-Y)\n"
+          "  --Y-co MPA        coating yield strength (overrides E-over-Y); with a coating\n"
+          "                    (t > 0, E-ratio != 1 or --nu-co) give both --Y-su and --Y-co\n"
+          "                    or neither\n"
           "  --nu X            Poisson's ratio (default 0.32)\n"
           "  --nu-co X         coating Poisson's ratio (default: --nu)\n"
           "  --config FILE     INI file with the same keys (command line overrides)\n"
