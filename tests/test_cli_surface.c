@@ -650,7 +650,7 @@ static void test_roundtrip_synth_stats(void **state)
     assert_true(n > 0);
     assert_true(stats_rel(jnum(buf, "summit_density_per_mm2"), n / area) < 1e-12);
     assert_true(stats_rel(jnum(buf, "sigma_mm"), 1e-3) < 1e-10);   /* exact after synthesis */
-    /* exact amplitudes: the measured moments are the target's (issue 5: 1e-10) */
+    /* exact amplitudes: the measured moments are the target's (to 1e-10) */
     assert_true(stats_rel(jnum(buf, "m0"), m0) < 1e-10);
     assert_true(stats_rel(jnum(buf, "m2"), m2) < 1e-10);
     assert_true(stats_rel(jnum(buf, "m4"), m4) < 1e-10);

@@ -1,5 +1,5 @@
-/* Tangential step of the asperity solver (issue 4), coarse versions of the
- * acceptance checks; the full-size ones are tools/validate-shear.py.
+/* Tangential step of the asperity solver: coarse versions of the checks
+ * whose full-size forms are in tools/validate-shear.py.
  *
  * One shared run (group setup): the homogeneous Wu-Shi-Polycarpou sphere
  * (E 74 GPa, ν 0.33, Y 325 MPa, R' 10.5 mm), slip normal step to
@@ -165,7 +165,7 @@ static void test_full_slip_plateau(void **state)
     assert_true(fabs(R.res.KT_after) < 0.05);
 }
 
-/* μs = Q_max / P against the WSP fit (issue 4 acceptance 1: 5 %).
+/* μs = Q_max / P against the WSP fit (within 5 %).
  * Measured at level 0: +3.87 % (+1.33 % with the nodes rule). */
 static void test_wsp_mu(void **state)
 {
@@ -343,7 +343,7 @@ static void test_cli_errors(void **state)
 }
 
 /* A short valid run: the stiffness criterion with α = 0.9 stops after a few
- * increments; every JSON key of the issue is there and the files exist. */
+ * increments; every documented JSON key is there and the files exist. */
 static void test_cli_json(void **state)
 {
     (void)state;

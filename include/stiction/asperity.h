@@ -1,6 +1,6 @@
 /* stiction — finite-element model of one coated spherical asperity pressed
- * by a rigid flat (SPEC §2–§4): implicit static Newton, CHOLMOD, active-set
- * contact with an analytic plane.
+ * by a rigid flat (docs/design.md §2–§3): implicit static Newton, CHOLMOD,
+ * active-set contact with an analytic plane.
  *
  * Model: substrate sphere of radius R with a bonded coating of thickness t,
  * both elastic–perfectly plastic (von Mises); base plane fixed; flat at
@@ -225,7 +225,7 @@ void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);
  * (ParaView).  `prefix` is borrowed. */
 stc_status asp_solver_write_fields(const asp_solver *s, const char *prefix);
 
-/* ---- tangential step: shear to sliding inception (issue 4) -------------
+/* ---- tangential step: shear to sliding inception -------------------------
  * After the normal step (asp_solver_load or asp_solver_load_to_P) the flat
  * is held at δ and moved along +x by ux (3D half model only).  Contact
  * stays closed (thesis §3.2.3.3); the interface follows the shear-limited

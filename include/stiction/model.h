@@ -1,10 +1,10 @@
 /* stiction — single-asperity response models behind one interface
- * (SPEC §7: "an asperity model gives P, A, Qmax versus δ for a summit of
- * radius R and coating t").  Units: mm, N, MPa.
+ * (an asperity model gives P, A, Qmax versus δ for a summit of radius R and
+ * coating t).  Units: mm, N, MPa.
  *
- * A model is normalised the way the FE tables are (SPEC §7): for a summit of
- * radius R it returns P/Pc, A/Ac, Qmax/Pc as functions of w = δ/ωc and t/R,
- * where ωc, Pc, Ac (SPEC §3) are those of the model's REFERENCE layer
+ * A model is normalised the way the FE tables are: for a summit of radius R
+ * it returns P/Pc, A/Ac, Qmax/Pc as functions of w = δ/ωc and t/R, where ωc,
+ * Pc, Ac (docs/design.md §6.1) are those of the model's REFERENCE layer
  * evaluated at the summit's own radius R (ωc ∝ R, Pc ∝ R², Ac ∝ R²).  The
  * coating thickness t (mm) is fixed by the model, so every summit has its own
  * t/R.  asp_model_eval() scales back to N and mm².
@@ -12,7 +12,7 @@
  * Models:
  *  - hertz:   elastic (Hertz) P and A only.  It has NO friction law: Qmax is
  *             NaN and ASP_NO_FRICTION is set (the shear limit over the Hertz
- *             area is not a friction law; SPEC §7, issue 5).
+ *             area is not a friction law).
  *  - wsp:     P, A from the Kogut & Etsion (2002) elastic–plastic fits,
  *             Qmax = μs_WSP(ω/ωc) P (Wu, Shi & Polycarpou 2012).
  *  - data:    P/Pc, A/Ac, Q/Pc tabulated on a (w, t/R) grid and interpolated
@@ -84,7 +84,7 @@ stc_status asp_model_create_wsp(const stc_params *p, double t_mm, asp_layer laye
  * power law continued from the first/last interval (flagged); t/R outside
  * the grid clamps to the nearest column (flagged).  With coating_aware == 0
  * (requires n_tR == 1) t/R is ignored.  The reference layer (normalisation)
- * is `ref` with Pc, ωc, Ac from SPEC §3.  All arrays are copied. */
+ * is `ref` with Pc, ωc, Ac of docs/design.md §6.1.  All arrays are copied. */
 typedef struct asp_model_data {
     const char *name;       /* e.g. "table:coated-TiN.h5" (copied) */
     stc_material ref;       /* reference layer for ωc, Pc, Ac */
@@ -139,7 +139,7 @@ const char *asp_model_layer_name(const asp_model *m); /* "substrate", "coating" 
 void asp_model_get_range(const asp_model *m, asp_model_range *out);
 double asp_model_t(const asp_model *m);              /* coating thickness, mm */
 const stc_material *asp_model_ref(const asp_model *m); /* reference layer (borrowed) */
-double asp_model_omega_c(const asp_model *m, double R); /* mm, SPEC §3 */
+double asp_model_omega_c(const asp_model *m, double R); /* mm, docs/design.md §6.1 */
 double asp_model_P_c(const asp_model *m, double R);     /* N */
 double asp_model_A_c(const asp_model *m, double R);     /* mm² */
 double asp_model_E_star(const asp_model *m);            /* E/(1-ν²) of the reference, MPa */

@@ -1,5 +1,5 @@
 /* stiction asperity --shear: normal step (to δ, or to a load with --load)
- * then the tangential ramp to sliding inception (issue 4).  A thin layer
+ * then the tangential ramp to sliding inception.  A thin layer
  * over asp_solver_shear / asp_solver_load_to_P (include/stiction/asperity.h);
  * the option table and parser live here, cli_asperity.c dispatches. */
 #include <math.h>
