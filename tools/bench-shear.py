@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""make bench, combined loading (issue 4 item 4): work-precision of mu_s.
+"""make bench, combined loading: work-precision of mu_s.
 
 bench-shear.py CLI [MESHES [CASE]]
                                 (CASE: only the cases whose name contains it;
@@ -22,7 +22,7 @@ cases (delta = 1 and 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step)
 mu_s, its error against the finest level run, wall time, DOFs, Newton
 iterations and factorizations of the whole run (normal step + ramp), ramp
 increments and peak resident memory (getrusage of the child).  Prints one
-table and whether issue 4's target holds (a level-0 point within 2 % of the
+table and whether the target holds (a level-0 point within 2 % of the
 finest mesh in < 60 s); the runs are independent processes, one at a time,
 on the solver's default threads (both cores), so the times are those of one
 run on the machine as loaded.
@@ -44,7 +44,7 @@ CASES = [
     ("t/R .025 Eco/Esu 2 delta 1 stick", COATED + ["--delta", "1"]),
     ("t/R .025 Eco/Esu 2 delta 10 stick", COATED + ["--delta", "10"]),
 ]
-# issue 4's target: one point at the default mesh within 2 % of the finest
+# the target: one point at the default mesh within 2 % of the finest
 # mesh's mu_s, in under 60 s on this 2-core machine
 TARGET_ERR, TARGET_S = 2.0, 60.0
 # level 0 with its surface nodes moved by about half an element relative to

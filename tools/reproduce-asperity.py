@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""make reproduce, asperity part (issue 3): thesis Fig. 4.3 and Figs. 4.4-4.5.
+"""make reproduce, asperity part: thesis Fig. 4.3 and Figs. 4.4-4.5.
 
 reproduce-asperity.py CLI OUTDIR
 
@@ -8,7 +8,7 @@ omega <= 0.0002 mm, elastic (yield strengths just below E), slip: P-omega
 curves with the uncoated sphere.  Figs. 4.4-4.5: t/R = 0.05, Eco/Esu =
 2 ... 10, stick, E/Y = 1000: L/Lc2 and A/Ac2 versus delta/delta_c2 up to 1
 against the Ronen et al. (2017) relations L/Lc2 = (d/dc2)^1.25, A/Ac2 =
-d/dc2 (SPEC section 4), normalised by the fits' dc2, Lc2, Ac2.  Writes CSV
+d/dc2, normalised by the fits' dc2, Lc2, Ac2.  Writes CSV
 data, PNG figures (gnuplot, 'png' terminal) and a deviations table.
 """
 import json

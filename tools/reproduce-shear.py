@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""make reproduce, combined loading (issue 4): thesis Figs. 4.8, 4.10, 4.16-4.21.
+"""make reproduce, combined loading: thesis Figs. 4.8, 4.10, 4.16-4.21.
 
 reproduce-shear.py CLI OUTDIR [--jobs N] [--mesh LEVEL] [--only fig4_8,fig4_10,...]
 
@@ -251,7 +251,7 @@ def fig416(rn, out):
                     line.append("%8.3f (%.3f)%s" % (r["Q_max_over_P_c"], r["mu_s"],
                                                     "*" if kt is not None and kt > 0.05 else " "))
                 print("  t/R %-5g Eco/Esu %g: %s" % (tr, er, "  ".join(line)))
-    spec6_checks(rn)
+    grid_checks(rn)
 
 
 def initial_slope(csv):
@@ -264,11 +264,11 @@ def initial_slope(csv):
     return math.nan
 
 
-def spec6_checks(rn):
-    """What SPEC section 6 says the grid shows, measured on our runs: the same
+def grid_checks(rn):
+    """What the thesis reports for the grid, measured on our runs: the same
     initial tangent for every Eco/Esu, a higher Qmax for a stiffer coating,
     and mu_s ordered by Eco/Esu with a spread growing with t/R."""
-    print("SPEC 6 checks (ratios to Eco/Esu = 1 at the same t/R and delta):")
+    print("Grid checks (ratios to Eco/Esu = 1 at the same t/R and delta):")
     for tr in GRID_TR:
         for d in GRID_DELTA:
             base = rn.result("grid_t%g_E1_d%g" % (tr, d))

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""make validate / make bench for the asperity FE solver (issue 3).
+"""make validate / make bench for the asperity FE solver.
 
-validate-asperity.py validate CLI REPORT.md   full-size acceptance checks
+validate-asperity.py validate CLI REPORT.md   full-size checks
 validate-asperity.py bench CLI                work-precision tables
 
 Every number comes from `stiction asperity --json` runs; closed forms from
 `stiction formulas --json` are not needed: Hertz, ωc, Pc and the coated fits
-are recomputed here from SPEC §3-§4 (same formulas as asperity/formulas.c).
-Exit status 1 if an acceptance check fails.
+are recomputed here from the published relations (docs/design.md §6.1-§6.3; same
+formulas as asperity/formulas.c).  Exit status 1 if a check fails.
 """
 import json
 import math
@@ -137,7 +137,7 @@ def omega_c(E, nu, Y, R):
 
 
 def brizmer(nu):
-    """Brizmer, Kligerman & Etsion 2006 stick fits (SPEC section 3)."""
+    """Brizmer, Kligerman & Etsion 2006 stick fits."""
     return 6.82 * nu - 7.83 * (nu * nu + 0.0586), 8.88 * nu - 10.13 * (nu * nu + 0.089)
 
 
@@ -195,7 +195,7 @@ def yield_section(cli, rep):
 
 
 def ronen(tR, er, nu=0.32, EY=1000.0):
-    """Ronen, Goltsberg & Etsion 2017 stick fits (SPEC section 4), in units
+    """Ronen, Goltsberg & Etsion 2017 stick fits, in units
     of omega_c_su (= omega_c_co here: same E/Y and nu in both layers)."""
     dc = 6.82 * nu - 7.83 * (nu * nu + 0.0586)
     d1 = dc * (1 + 0.007 * (er - 1) ** 0.646 * (1 / EY) ** 0.244 * tR ** -1.21)
@@ -234,7 +234,7 @@ def coated_section(cli, rep):
 
 
 def coated_convergence(cli, rep):
-    """Issue 3 item 5: coated stick case (t/R = 0.025, Eco/Esu = 2) at three
+    """Coated stick case (t/R = 0.025, Eco/Esu = 2) at three
     mesh levels, observed order of dc1 and dc2."""
     rep.out("## 5. Convergence of the coated stick first yields (t/R = 0.025, Eco/Esu = 2)")
     rep.out("")
@@ -266,7 +266,7 @@ def coated_convergence(cli, rep):
 
 def validate(cli, path):
     rep = Report()
-    rep.out("# Asperity FE solver: validation (issue 3)")
+    rep.out("# Asperity FE solver: validation")
     rep.out("")
     hertz_section(cli, rep)
     yield_section(cli, rep)
@@ -358,9 +358,9 @@ def return_map_table(cli):
 
 
 def target_curve(cli):
-    """Issue 3 acceptance 6: the slip curve to 60 wc with P_smooth within
+    """The target curve: the slip curve to 60 wc with P_smooth within
     0.5 % of the mesh-converged (level 3) curve in under 1 s."""
-    print("Issue-3 target: --delta 1:60:12 (slip, default material), P_smooth vs level 3")
+    print("Target: --delta 1:60:12 (slip, default material), P_smooth vs level 3")
     base = ["--delta", "1:60:12", "--contact", "slip", "--threads", "1"]
     fin, wf, _ = run(cli, base + ["--mesh", "3"])
     def smooth(p):
@@ -393,10 +393,10 @@ def target_curve(cli):
 
 
 def target_3d(cli, fin, smooth):
-    """Issue 3 acceptance 6: the same curve with the 3D half model (mesh
+    """The target curve with the 3D half model (mesh
     level 0) in under 30 s; error against the axisymmetric level-3 curve
     (the two models agree to ~0.05 % for Hertz)."""
-    print("Issue-3 target, 3D: --model 3d --mesh 0 --delta 1:60:12 (slip), vs axisymmetric level 3")
+    print("Target, 3D: --model 3d --mesh 0 --delta 1:60:12 (slip), vs axisymmetric level 3")
     # OMP_WAIT_POLICY=passive: the idle OpenMP thread sleeps instead of
     # spinning; it saved 3 s while PCG ran on one thread, and makes no
     # difference since the Krylov phase runs on two (n = 4 curve: 17.9 s

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 4 acceptance 1: the homogeneous Wu-Shi-Polycarpou sphere under
+"""The homogeneous Wu-Shi-Polycarpou sphere under
 combined loading against the WSP fit mu_s = 0.3 coth(0.57 (omega/omega_c)^0.41)
 (Wu, Shi & Polycarpou 2012; thesis eq. 4.1), within 5 %.
 
@@ -20,7 +20,7 @@ import sys
 import time
 
 from wsp_case import WSP, write_progress, wsp_mu as wsp_fit
-TOL = 0.05  # issue 4, acceptance 1
+TOL = 0.05  # the band on mu_s against the fit
 
 
 def run(cli, level, omega):

@@ -1,5 +1,5 @@
 """The homogeneous Wu-Shi-Polycarpou sphere of the thesis's combined-loading
-check (issue 4), shared by validate-shear.py, bench-shear.py and
+check, shared by validate-shear.py, bench-shear.py and
 reproduce-shear.py: E = 74 GPa, nu = 0.33, Y = 325 MPa, R' = 10.5 mm, slip
 normal step (thesis section 4.1.3), as `stiction asperity` arguments, and the
 WSP fit (the same formula as stc_wsp_mu in asperity/formulas.c); and the

@@ -1,6 +1,6 @@
 #!/bin/sh
 # make bench fragment: FFT synthesis of a 4096² self-affine surface plus
-# summit extraction must take < 3 s on the 2-core reference machine (issue 5).
+# summit extraction must take < 3 s on the 2-core reference machine.
 # Called as: 30-surface-synth.sh CLI RESULTS_DIR.  Times the two CLI steps
 # (synthesis + HDF5 write; read + spectral moments + 8-neighbour summits) and
 # writes RESULTS_DIR/bench-surface-synth.json.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# make bench fragment: Greenwood-Williamson summation (issue 5).
+# make bench fragment: Greenwood-Williamson summation.
 #   statistical:   a 100-point mu_s-load curve (pressure-controlled: a Brent
 #                  solve per point) in < 50 ms;
 #   deterministic: < 0.1 s per load point over >= 10^6 summits (OpenMP

@@ -1,5 +1,5 @@
 #!/bin/sh
-# make bench fragment (issue 4 item 4): work-precision of mu_s (error vs the
+# make bench fragment: work-precision of mu_s (error vs the
 # finest 3D level run, wall time, DOFs, Newton iterations, factorizations,
 # ramp increments, peak memory) at omega/omega_c = 3 and 12 (homogeneous WSP
 # sphere) and delta = 1 and 10 omega_c_su, t/R = 0.025, Eco/Esu = 2 (stick); at

@@ -1,5 +1,5 @@
 #!/bin/sh
-# make reproduce fragment (issue 3): thesis Fig. 4.3 (coated elastic P-omega
+# make reproduce fragment: thesis Fig. 4.3 (coated elastic P-omega
 # curves with the uncoated sphere) and Figs. 4.4-4.5 (L/Lc2, A/Ac2 versus
 # delta/delta_c2 against the Ronen relations), from the asperity FE solver.
 # Called as: 20-asperity.sh CLI RESULTS_DIR; writes RESULTS_DIR/asperity/.

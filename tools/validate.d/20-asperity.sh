@@ -1,5 +1,5 @@
 #!/bin/sh
-# make validate fragment (issue 3): full-size checks of the asperity FE
+# make validate fragment: full-size checks of the asperity FE
 # solver -- Hertz with Richardson extrapolation over mesh levels 1-3 and the
 # observed order, yield inception (slip vs Kogut & Etsion / Green, stick vs
 # Brizmer 2006), coated first/second yield against the thesis's Table 4.2.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# make validate fragment (issue 5): full-size checks of the surface layer --
+# make validate fragment: full-size checks of the surface layer --
 # Nayak/McCool summit statistics over seeds of 2048^2 maps (8- and
 # 4-neighbour rules), random-amplitude moments across seeds against their
 # delta-method bound, and GW statistical vs deterministic sums on a 4096^2

@@ -1,5 +1,5 @@
 #!/bin/sh
-# make validate fragment (issue 4, acceptance 1): the homogeneous
+# make validate fragment: the homogeneous
 # Wu-Shi-Polycarpou sphere under combined loading, mu_s against the WSP fit
 # 0.3 coth(0.57 (omega/omega_c)^0.41) within 5 % for omega/omega_c in
 # {0.5, 1, 3, 6, 12, 24, 48, 72}, 3D mesh level 0 (STICTION_SHEAR_LEVELS=0,1 adds the default mesh: very slow today), with wall times.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# make validate fragment (issue 4): the elastic junction growth of the FE
+# make validate fragment: the elastic junction growth of the FE
 # tangential step against the elastic half-space boundary elements
 # (stiction halfspace), WSP sphere kept elastic at 0.5, 1 and 3 omega_c, FE at
 # two node placements (--elements-per-contact 6 and 6.6), 3 % band on the area.

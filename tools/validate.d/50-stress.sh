@@ -1,5 +1,5 @@
 #!/bin/sh
-# make validate fragment (issues 3 and 4, numerical stability): the normal
+# make validate fragment (numerical stability): the normal
 # step and the shear ramp at the edges of the parameter space (Poisson's
 # ratio 0.05 / 0.49, E/Y 100 / 10000, t/R 1e-4 ... 0.2, Eco/Esu 0.2 ... 50,
 # tau_c 1 / 5000 MPa, delta 0.1 ... 100 wc, load control, a thin coating far
