@@ -576,7 +576,7 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
  * Past yield a contact node entering the flat makes P jump (the contact
  * area is quantized by the surface nodes; between entries perfect
  * plasticity caps the mean pressure, so P(δ) is a sawtooth).  Measured on
- * the homogeneous slip curve to 60 ωc (closing note of issue 3): sawtooth
+ * the homogeneous slip curve to 60 ωc (docs/design.md §3.2): sawtooth
  * rms 4.2 / 2.0 / 0.8 % at mesh levels 0 / 1 / 2, while a smooth fit
  * through the same points agreed to 0.5 % across the three levels.  So the
  * converged load is estimated by a local linear regression (LOESS,

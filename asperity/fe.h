@@ -11,7 +11,7 @@
  * Voigt order for stress/strain: [xx, yy, zz, xy, yz, zx] with engineering
  * shear strains.  In the axisymmetric case the six slots hold
  * [rr, zz, θθ, rz, 0, 0].
- * Small-strain kinematics: adequate for δ/R below about 1e-2 (SPEC §2).
+ * Small-strain kinematics: adequate for δ/R below about 1e-2 (docs/design.md §2.1).
  */
 #ifndef STICTION_FE_H
 #define STICTION_FE_H

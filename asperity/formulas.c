@@ -1,6 +1,7 @@
-/* Closed-form contact relations of SPEC §3–§5: Hertz, yield inception of a
- * homogeneous sphere (slip and stick), the published fits for a hard-coated
- * sphere (slip and stick) and the Wu–Shi–Polycarpou friction fit.
+/* Closed-form contact relations of docs/design.md §6.1–§6.4: Hertz, yield
+ * inception of a homogeneous sphere (slip and stick), the published fits for
+ * a hard-coated sphere (slip and stick) and the Wu–Shi–Polycarpou friction
+ * fit.
  *
  * Every function here is pure: no allocation, no globals, thread-safe.
  * Each fit reports in a flag word whether its inputs lie inside the range it
@@ -18,7 +19,7 @@
 #define STICK_TR_MAX 0.05      /* thesis §3.2.2: 0.002 <= t/R <= 0.05 */
 #define BRIZMER_NU_MIN 0.2     /* Brizmer et al. 2006 as summarised in thesis §3.1.1.1 */
 #define BRIZMER_NU_MAX 0.5
-#define WSP_W_MIN 0.5          /* preloads of Wu, Shi & Polycarpou 2012 (SPEC §5) */
+#define WSP_W_MIN 0.5          /* preloads of Wu, Shi & Polycarpou 2012 (docs/design.md §6.4) */
 #define WSP_W_MAX 72.0
 
 /* ---- flag words ------------------------------------------------------- */
@@ -185,7 +186,7 @@ stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out)
 
 /* ---- coated sphere ---------------------------------------------------- */
 
-/* Pc_co/Pc_su, corrected form (SPEC §4 remark).  The thesis (eq. 3.6) prints
+/* Pc_co/Pc_su, corrected form (docs/design.md §6.3).  The thesis (eq. 3.6) prints
  * [(1 − ν_co²)/(1 − ν_su²)] unsquared and (Eco/Esu)²; but Pc ∝ Cv³ Y³
  * (1 − ν²)² / E² (eq. 3.4), so the ratio carries the square of the ν term
  * and (Esu/Eco)².  Only this form turns eq. 3.5 into the same-ν form eq.

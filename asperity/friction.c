@@ -12,7 +12,7 @@
  * symmetric (associated slip rule), so the stiffness stays SPD and CHOLMOD's
  * LLᵀ of the fixed pattern still applies; it only touches the node's own
  * 2x2 diagonal block, which is always in the pattern.  Why not exact
- * stick constraints: docs/tangential-step.md §2.
+ * stick constraints: docs/design.md §4.1.
  */
 #include <math.h>
 

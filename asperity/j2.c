@@ -1,6 +1,7 @@
 /* Isotropic linear elasticity + von Mises (J2) perfect plasticity, small
  * strain: two closed-form return maps and their consistent (algorithmic)
- * tangents, with the hardening modulus H = 0 (perfect plasticity, SPEC §2).
+ * tangents, with the hardening modulus H = 0 (perfect plasticity,
+ * docs/design.md §2.1).
  *
  * Radial return (backward Euler): Simo & Hughes, "Computational
  * Inelasticity" (1998), box 3.1 and eq. 3.3.13.  First-order accurate in
@@ -38,9 +39,9 @@
  * (derivation in exact()'s comment).  But a load increment's strain path
  * is curved, and there the midpoint rule is the more accurate one: 4-25x
  * smaller stress errors on turning paths (test_j2), and the 3D slip curve
- * to 60 ωc at 2 steps per node entry sits 0.5 % lower (docs §28).  So the
- * midpoint rule stays the default; this is the reference for straight
- * paths and an option (--return-map exact).
+ * to 60 ωc at 2 steps per node entry sits 0.5 % lower (docs/design.md
+ * §3.4).  So the midpoint rule stays the default; this is the reference for
+ * straight paths and an option (--return-map exact).
  *
  * Voigt order [xx, yy, zz, xy, yz, zx], engineering shear strains
  * γ = 2ε.  Stress shear slots hold tensor components.  Hence:

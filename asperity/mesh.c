@@ -381,7 +381,7 @@ static stc_status build_axisym(const asp_mesh_spec *s, double a_min, double n, i
      * a_min and a_max (growing by q alone left ~4.7 across a 6 ωc contact
      * on the 1:60 ωc curve at n = 6; with it the curve's P_smooth error
      * against level 3 fell from 0.3-0.74 % to 0.15-0.46 % for n = 6..12,
-     * docs/tangential-step.md §25) */
+     * docs/design.md §2.3) */
     int na = graded_sizes(Rp * M_PI_2, h0, 1.25 * amin, h, 1.25 * s->a_max, q, hmax,
                           amin < s->a_max ? 1.0 / n : 0.0, &arc);
     int nd = depth_levels(s, amin, h0, h, q, hmax, Rp - rc, &d);

@@ -81,7 +81,7 @@ enum { M3_N0 = 6 };              /* elements across a_max at level 0 (mesh.c) */
  * surface grid is carried by every shell, so its width sets the cost of the
  * whole mesh; the contact radius stays below a_max (solver safety 1.1), and
  * measured (Hertz, a/R = 0.01, level 0) 1.25 -> 1.0 cut the DOFs by 22 %
- * with the P error unchanged within 0.1 % (issue 3 work-precision notes). */
+ * with the P error unchanged within 0.1 % (docs/design.md §2.4). */
 static const double M3_FINE_LAT = 1.0;
 static const double M3_FINE_DEP = 0.8;  /* fine zone depth / a_max (Hertz τmax at 0.48 a) */
 static const double M3_TOP_FLAG = 3.0;  /* ASP_NODE_TOP within this × a_max of the axis */
@@ -110,7 +110,7 @@ static const double M3_SHELL_G = 0.3;
  * (Boussinesq).  6 c and one step by default: Hertz +0.16 % (level 0) /
  * +0.05 % (level 1); μs of a combined-loading run moves by +0.23 % (WSP
  * 3 ωc) / -0.23 % (t/R 0.025, Eco/Esu 2, δ = 30 ωc_su) for 1.8x / 1.5x
- * less wall time (docs/tangential-step.md §13).  A second step at 24 c
+ * less wall time (docs/design.md §2.5).  A second step at 24 c
  * adds +0.07 % (level 0) to Hertz. */
 enum { M3_NCOARSEN = 2, M3_COARSEN_DEFAULT = 1 };
 static const double M3_COARSEN_T[M3_NCOARSEN] = {6.0, 24.0};
@@ -249,7 +249,7 @@ static stc_status plan_make(const asp_mesh_spec *spec, m3_plan *p)
      * contact at different δ, so a load curve's node-entry sawtooth is finer.  Measured
      * (slip curve 1:60:12 ωc, n = 4, coarsen 1, against the axisymmetric level 3): the raw
      * P's worst tooth -2.68 -> -1.39 %, the smoothed P's worst error 0.68 -> 0.55 %;
-     * docs/tangential-step.md §26. */
+     * docs/design.md §2.4. */
     double k_fast = 0.9 / log(umax);
     if (p->c_ref > p->c) k_fast = fmin(k_fast, 1.0 / log(p->c_ref / p->c));
     p->kappa = fmax(1.0 / log(1.0 / p->c), k_fast);

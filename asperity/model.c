@@ -2,8 +2,8 @@
  *
  * Every model is a normalised response (P/Pc, A/Ac, Q/Pc versus w = δ/ωc and
  * t/R) behind a small vtable; asp_model_eval scales it to the summit's own
- * radius.  ωc, Pc, Ac per unit radius come from stc_critical_eval (SPEC §3):
- * ωc ∝ R, Pc ∝ R², Ac ∝ R².
+ * radius.  ωc, Pc, Ac per unit radius come from stc_critical_eval
+ * (docs/design.md §6.1): ωc ∝ R, Pc ∝ R², Ac ∝ R².
  */
 #include <math.h>
 #include <stdio.h>
@@ -84,7 +84,7 @@ static stc_status layer_material(const stc_params *p, asp_layer layer, stc_mater
 
 /* ------------------------------------------------------------ hertz */
 
-/* Hertz in normalised form: P/Pc = w^{3/2}, A/Ac = w (SPEC §3: Pc, Ac are
+/* Hertz in normalised form: P/Pc = w^{3/2}, A/Ac = w (docs/design.md §6.1: Pc, Ac are
  * the Hertz load and area at ωc). */
 static unsigned hertz_norm(const asp_model *m, double w, double tR, double *p, double *a,
                            double *q)
@@ -131,7 +131,7 @@ stc_status asp_model_create_hertz(const stc_params *p, double t_mm, asp_layer la
  *   6 <  w <= 110: P/Pc = 1.40 w^1.263,  A/Ac = 0.94 w^1.146
  *   w > 110:       fully plastic (KE 2002; Abbott–Firestone area), A = 2 Ac w,
  *                  mean pressure H = 2.8 Y (Tabor), so P/Pc = 2 w · 2.8 Y Ac/Pc.
- * KE normalise with K H = (0.454 + 0.41 ν) 2.8 Y; we use Cv Y (SPEC §3,
+ * KE normalise with K H = (0.454 + 0.41 ν) 2.8 Y; we use Cv Y (docs/design.md §6.5,
  * Green 2005): (1.271 + 1.148 ν) versus (1.234 + 1.256 ν), 0.1 % apart at
  * ν = 0.32.  The fits are not continuous: P jumps +3 % at w = 1, +2 % at 6,
  * +7 % at 110; A jumps −7 % at 1, +3 % at 6, +7 % at 110.  GW quadrature
@@ -141,7 +141,7 @@ stc_status asp_model_create_hertz(const stc_params *p, double t_mm, asp_layer la
 #define KE_W3 110.0
 #define TABOR_H_OVER_Y 2.8 /* Tabor (1951): hardness of a fully plastic contact */
 
-#define WSP_W_LO 0.5  /* preloads of Wu, Shi & Polycarpou (2012), SPEC §5 */
+#define WSP_W_LO 0.5  /* preloads of Wu, Shi & Polycarpou (2012), docs/design.md §6.4 */
 #define WSP_W_HI 72.0
 
 static const double ke_breaks[] = {KE_W1, KE_W2, KE_W3};
@@ -191,7 +191,8 @@ stc_status asp_model_create_wsp(const stc_params *p, double t_mm, asp_layer laye
     m->norm = wsp_norm;
     m->load = ke_load;
     /* in range where every output is a fit inside its data: the WSP μs fit's
-     * preloads 0.5 <= ω/ωc <= 72 (SPEC §5; KE's P, A alone extend to 110) */
+     * preloads 0.5 <= ω/ωc <= 72 (docs/design.md §6.4; KE's P, A alone extend
+     * to 110) */
     m->range = (asp_model_range){WSP_W_LO, WSP_W_HI, 0.0, INFINITY, 0, 1};
     m->breaks = ke_breaks;
     m->nbreaks = 3;

@@ -1,16 +1,17 @@
 /* Node-placement ensemble of the combined-loading run (include/stiction/asperity.h,
- * asp_shear_placements; docs/tangential-step.md §21).
+ * asp_shear_placements; docs/design.md §4.5).
  *
  * A single mesh reads the junction growth in steps of whole node closures:
  * where the surface nodes sit relative to the contact edge moves a level-0 μs
- * by up to ±12 % (§19), while the preload is smooth.  The members here are the
- * same model on meshes with elements_per_contact N_j = N_0 + j T / k,
- * j = 0 … k-1, where T = a_max / a0 is the shift that moves the surface grid by
- * one node spacing at the preload contact edge (h = a_max / N, so the edge sits
- * at a0 N / a_max spacings from the axis): the members sample the node-entry
- * sawtooth at k evenly spaced phases of one period, and their mean is the
- * stratified average over it.  Member 0's normal step gives a0; the other
- * members then run concurrently with it, one thread each. */
+ * by up to ±12 % (docs/design.md §4.5), while the preload is smooth.  The
+ * members here are the same model on meshes with elements_per_contact
+ * N_j = N_0 + j T / k, j = 0 … k-1, where T = a_max / a0 is the shift that
+ * moves the surface grid by one node spacing at the preload contact edge
+ * (h = a_max / N, so the edge sits at a0 N / a_max spacings from the axis):
+ * the members sample the node-entry sawtooth at k evenly spaced phases of one
+ * period, and their mean is the stratified average over it.  Member 0's
+ * normal step gives a0; the other members then run concurrently with it, one
+ * thread each. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>

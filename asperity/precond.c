@@ -4,7 +4,7 @@
  * of its non-factorized part Kd + W).  A PCG/GMRES iteration is one of
  * each plus vector updates; both are memory bound and ran on one core
  * while the other idled: 7.7 s of the 24 s graded 3D load curve (n = 4,
- * docs/tangential-step.md §27).
+ * docs/design.md §3.6).
  *
  * Each kernel is split into two fixed parts, whatever the number
  * of threads that runs them, and the parts' contributions to shared entries

@@ -1,6 +1,6 @@
-/* Tangential step of the asperity solver (issue 4): after the normal step
+/* Tangential step of the asperity solver: after the normal step
  * the flat is held at δ and moved along +x by ux until the asperity slides.
- * Design and its numbers: docs/tangential-step.md.
+ * Design and its numbers: docs/design.md §4.
  *
  *   - contact nodes keep u_z prescribed (no separation, thesis §3.2.3.3);
  *     their tangential DOFs are free and carry the shear-limited stick law
@@ -153,7 +153,7 @@ static stc_status alloc_shear(asp_solver *s)
     return STC_OK;
 }
 
-/* Tributary areas (docs/tangential-step.md §3): contact nodes get the part
+/* Tributary areas (docs/design.md §4.1): contact nodes get the part
  * of their hat function on the contact disc of radius a (the sub-element
  * radius of the normal step), so Σ A_k is the cap area and not a
  * ring-quantised node count; the disc area on still-open nodes goes to the
@@ -207,8 +207,8 @@ static stc_status full_areas(asp_solver *s)
     return st;
 }
 
-/* Junction growth, rule ASP_JUNCTION_FOOTPRINT (docs/tangential-step.md
- * §11): after each accepted increment the contact's extent along +x, -x
+/* Junction growth, rule ASP_JUNCTION_FOOTPRINT (docs/design.md
+ * §4.2): after each accepted increment the contact's extent along +x, -x
  * and +y is read from the gaps ahead of its edges (asp_contact_footprint),
  * never shrinking, and the areas are the hat integrals over the two
  * half-ellipses it spans, so the junction grows by fractions of an element
@@ -240,7 +240,7 @@ static double tau_c_default(const asp_solver *s, double tau_opt, stc_material *l
 /* Start the stick law with the force the normal step left at each contact
  * node: after a stick step the tangential reaction r (= fint on the frozen
  * DOFs) becomes the spring force, s = g + r/(A k_t); after a slip step the
- * traction is zero, s = g (docs/tangential-step.md §3). */
+ * traction is zero, s = g (docs/design.md §4.1). */
 static void initial_slip(asp_solver *s)
 {
     const asp_mesh *m = s->mesh;
@@ -501,7 +501,7 @@ typedef struct ramp {
  * Δux -> 0, Newton cycled between slip / plastic states and the ramp
  * failed after 10 halvings at ux = 5.85 ωc; now it reaches inception
  * (μs 0.938, 41 s).  Runs without cut-backs keep lam = 1 and their bits
- * (docs/tangential-step.md §29). */
+ * (docs/design.md §4.2). */
 static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
 {
     /* lam = 1 is only the first try after an accept, which left carea at
@@ -514,7 +514,7 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
     s->ux = ux;
     s->fric_frozen = 1;
     /* predictor: the last accepted increment scaled to this Δux
-     * (docs/tangential-step.md §5).  Without it the increment starts from
+     * (docs/design.md §4.3).  Without it the increment starts from
      * u_conv, whose trial state at every plastic Gauss point lies on the
      * yield surface (elastic tangent there) and whose stuck nodes are
      * frozen: the first iterate is an elastic predictor, PCG on the last

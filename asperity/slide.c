@@ -385,7 +385,8 @@ void asp_find_delta_opts_default(asp_find_delta_opts *o)
 
 double asp_hertz_delta_guess(double P, double E, double nu, double R)
 {
-    double Es = E / (1.0 - nu * nu); /* rigid flat: P = (4/3) E* √R δ^{3/2} (SPEC §3) */
+    /* rigid flat: P = (4/3) E* √R δ^{3/2} (docs/design.md §6.1) */
+    double Es = E / (1.0 - nu * nu);
     return pow(3.0 * P / (4.0 * Es * sqrt(R)), 2.0 / 3.0);
 }
 

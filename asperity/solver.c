@@ -35,37 +35,31 @@
  * (symmetric, skew); Newton stays quadratic through corrections / GMRES
  * against K + Kd + Kk (skew_correct, gmres).
  *
- * Cost (closing note of issue 3): the element loop and the factorization
- * are each ~1-5 ms on an axisymmetric mesh, so the work is the NUMBER of
- * evaluations; small axisymmetric systems run on one thread (see create).
- * Issue-3 target (slip curve to 60 ωc, P_smooth within 0.5 % of the
- * level-3 curve, < 1 s): elements_per_contact = 8 (2728 DOFs, 46
- * increments) measured max 0.48 % vs level 3 (0.43 % vs level 2) at 1.5x
- * the CPU time of level 0 (0.88 % vs level 3); n = 7 and 9 were worse
- * (1.72 %, 0.76 %): the P_smooth error is set by how the node-entry
- * sawtooth is sampled, not monotone in n.  With P_smooth averaging over δ
- * (trapezoid weights, asp_contact.c) two errors are left (curve3d helper,
- * vs level 3, harness runs, n = 6..12): a mid-curve (22-38 ωc) bias, the
- * same for every n and ~1/steps per node (-1.1 | -0.55 | -0.35 | -0.2 %
- * at 2 | 4 | 6 | 8; session 6 found it to be the radial return's
- * first-order error in the increment, not the sampling: the midpoint
- * return, now the default, leaves -0.15 .. -0.2 %, j2.c), and the end
- * point (one-sided window), -0.8 .. +1.9 % at 60 ωc whatever the steps
- * (n = 7: +1.4 .. +1.9 %).  Max error n = 6..12 at 4 steps: 0.84 1.44
- * 0.72 0.67 0.75 0.60 0.59 %.  Tried and not robust either: windows 1.5x
- * and 3x, loading 15 % past the end (0.37-0.86 %), dithered steps
- * (0.52-1.37 %).  0.5 % for every n near 8 in < 1 s is not met.
- * Session 11: loading on to 1.5 δ_max (asp_solver_load_tail, the CLI does
- * it for axisymmetric curves) gives the end a two-sided window: against a
- * level-3 curve loaded to 120 ωc, max error from 6.4 ωc on for n = 6..12:
- * 0.42 0.73 0.47 0.41 0.30 0.29 0.21 % (60 ωc: +0.21 .. +0.32 %); left
- * is 1 ωc, +0.46 .. +0.80 %: first yield, ~6 elements across that contact
- * (+0.33 % on a mesh sized to it alone) plus where its edge falls.
- * Session 12: the elastic node entries sampled before a curve point
- * (asp_options.sample_elastic, step_limit) and the surface between a_min
- * and a_max sized to arc length / n (mesh.c): max error over all 12
- * points for n = 6..12: 0.29 0.46 0.26 0.22 0.23 0.16 0.24 % (1 ωc +0.10
- * .. +0.26 %), level 0 in 0.6 s; met (docs/tangential-step.md §25).
+ * Cost: the element loop and the factorization are each ~1-5 ms on an
+ * axisymmetric mesh, so the work is the NUMBER of evaluations; small
+ * axisymmetric systems run on one thread (see create).
+ * Target for the axisymmetric slip curve to 60 ωc: P_smooth within 0.5 % of
+ * the level-3 curve in < 1 s.  The P_smooth error is set by how the
+ * node-entry sawtooth is sampled, not monotone in n, and has three parts
+ * (curve3d helper, against level 3, n = 6..12):
+ *   - a mid-curve (22-38 ωc) bias, the same for every n and ~1/steps per
+ *     node (-1.1 | -0.55 | -0.35 | -0.2 % at 2 | 4 | 6 | 8): the radial
+ *     return's first-order error in the increment, not the sampling; the
+ *     midpoint return (the default, j2.c) leaves -0.15 .. -0.2 %;
+ *   - the end point, -0.8 .. +1.9 % at 60 ωc whatever the steps with a
+ *     one-sided window: loading on to 1.5 δ_max (asp_solver_load_tail, the
+ *     CLI does it for axisymmetric curves) gives it a two-sided one (against
+ *     a level-3 curve loaded to 120 ωc, 60 ωc: +0.21 .. +0.32 %);
+ *   - 1 ωc, +0.46 .. +0.80 % without the next two measures: first yield,
+ *     ~6 elements across that contact (+0.33 % on a mesh sized to it alone)
+ *     plus where its edge falls.  The elastic node entries are sampled
+ *     before a curve point (asp_options.sample_elastic, step_limit) and the
+ *     surface between a_min and a_max is sized to arc length / n (mesh.c).
+ * With all of them the max error over the 12 points for n = 6..12 is 0.29
+ * 0.46 0.26 0.22 0.23 0.16 0.24 % (1 ωc +0.10 .. +0.26 %), level 0 in 0.6 s:
+ * the target is met (docs/design.md §2.3, §3.3).  Tried and not robust:
+ * windows 1.5x and 3x, loading 15 % past the end (0.37-0.86 %), dithered
+ * steps (0.52-1.37 %).
  * 3D (speed3d): a factorization costs ~50 triangular solves there, so the
  * Newton steps are solved by PCG preconditioned with the last factor
  * (Newton-Krylov, see linear_step); level-0 slip curve to 60 ωc: the same
@@ -1183,7 +1177,7 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
      * factorization now costs ~60 iterations; idle machine, whole runs):
      * graded 3D curve n = 4 20.9 -> 17.2 s, WSP 3 / 12 ωc shear 12.2 / 15.5
      * -> 10.6 / 13.8 s, coated stick δ = 10 shear 43.0 -> 37.7 s
-     * (docs/tangential-step.md §27) */
+     * (docs/design.md §3.5, §3.6) */
     if (s->have_factor && krylov_pays(s) && 2 * s->k_last <= s->opt.krylov_max) {
         STC_CALL(krylov_alloc(s));
         if (s->skew) STC_CALL(gmres_alloc(s));
@@ -1210,7 +1204,7 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
  * which they converged in 5.  Measured: level-0 curve 76.4 -> 68.5 s, same
  * increments and answers.  6 was too few: WSP 3 / 12 ωc shear ramps have
  * increments that converge after such a plateau (μs moved 2.6e-4, 40 %
- * slower); with 10 they are unchanged; docs/tangential-step.md §27. */
+ * slower); with 10 they are unchanged; docs/design.md §3.5. */
 enum { NEWTON_STALL = 10 };
 
 /* Newton with backtracking line search for the current constraints.  With
@@ -1417,12 +1411,12 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     double dres = 0.8 * s->omega_est;
     s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
     /* default level: 1 axisymmetric, 0 in 3D.  A 3D level costs ~5-10x the
-     * one below (3D Hertz point level 0: <= 0.2 %, issue 3); the μs of a
+     * one below (3D Hertz point level 0: <= 0.2 %); the μs of a
      * combined-loading run moved by <= 1 % from 6 to 8.5 elements across
      * a_max (WSP 3 and 6 ωc; t/R 0.025, Eco/Esu 2, δ = 1 and 30 ωc_su) and
      * by +3.3 % / +0.6 % / +3.0 % to level 1 (WSP 3 / 6 ωc, coated δ = 30;
      * 12-36 min a point);
-     * docs/tangential-step.md §10 */
+     * docs/design.md §2.2, §2.6 */
     int base = s->opt.geom == ASP_GEOM_3D ? 0 : 1;
     s->level = s->opt.mesh_level >= 0 ? s->opt.mesh_level
                                       : base + (ASP_MESH_DEFAULT - s->opt.mesh_level);
@@ -1432,7 +1426,7 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
      * threads): graded n = 4 without coarsening 0.50 % in 13.7 s (0.44 to
      * 0.76 % as the node placement shifts), graded n = 6 with it 0.57 % in
      * 54 s, uniform level 0 -33 % at 1 ωc and -6.2 % at 6.4 ωc in 6.5 s
-     * (docs/tangential-step.md §26, §28) */
+     * (docs/design.md §2.4) */
     int graded = s->opt.geom == ASP_GEOM_3D && s->opt.grade_3d && s->a_min < s->a_max &&
                  t <= 0.8 * s->a_min;
     int sc = (graded && s->opt.shell_coarsen < 0) ? 0 : s->opt.shell_coarsen;
@@ -1510,7 +1504,7 @@ stc_status asp_solver_create(const stc_params *p, const asp_options *o, double d
          * OpenBLAS.  Measured, two runs each, idle machine: graded curve
          * n = 4 18.2 -> 17.6 s, WSP 3 / 12 ωc shear 11.8 / 14.0 -> 10.8 /
          * 13.0 s, coated stick δ = 10 shear 40.3 s either way; answers equal
-         * to all printed digits (docs/tangential-step.md §27) */
+         * to all printed digits (docs/design.md §3.5) */
         s->cc.nrelax[0] = 8, s->cc.nrelax[1] = 32, s->cc.nrelax[2] = 96;
         s->cc.zrelax[0] = 0.8, s->cc.zrelax[1] = 0.2, s->cc.zrelax[2] = 0.1;
     }

@@ -12,7 +12,7 @@
  * distance from the axis): the consistent nodal weights of a traction that
  * is uniform over the contact and zero outside (the shear-limited law at
  * full slip), so Σ f_i = τc × the cap area exactly instead of jumping by
- * a ring of nodes at a time (docs/tangential-step.md §4).
+ * a ring of nodes at a time (docs/design.md §4.1).
  */
 #include <math.h>
 #include <string.h>

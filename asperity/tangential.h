@@ -1,5 +1,5 @@
 /* Internal building blocks of the tangential (shear) step of the asperity
- * solver (not installed).  Design: docs/tangential-step.md.
+ * solver (not installed).  Design: docs/design.md §4.
  *
  *   friction.c  nodal shear-limited stick law (penalty-regularised return
  *               map with its consistent 2x2 tangent), pure kernel
@@ -239,7 +239,7 @@ typedef struct asp_find_delta_result {
 stc_status asp_find_delta(asp_load_fn fn, void *ctx, double P_target, double delta0,
                           const asp_find_delta_opts *o, asp_find_delta_result *res);
 
-/* Hertz guess δ = (3 P / (4 E* √R))^{2/3} (rigid flat, SPEC §3). */
+/* Hertz guess δ = (3 P / (4 E* √R))^{2/3} (rigid flat, docs/design.md §6.1). */
 double asp_hertz_delta_guess(double P, double E, double nu, double R);
 
 #endif

@@ -1,7 +1,7 @@
-/* Greenwood–Williamson summation (include/stiction/gw.h; SPEC §7).
+/* Greenwood–Williamson summation (include/stiction/gw.h; docs/design.md §5.4).
  *
  *   N/An = η ∫_d^∞ φ(z) dz,   P/An = η ∫_d^∞ P_asp(z − d) φ(z) dz,
- *   A/An, Q/An likewise;      μs = Q/P                (GW 1966; SPEC §7)
+ *   A/An, Q/An likewise;      μs = Q/P                (GW 1966; docs/design.md §5.4)
  *
  * Statistical modes integrate in standard units s = z/σs (h = d/σs) with
  * GSL QAGS between the asperity model's breakpoints and QAGIU for the tail;

@@ -1,5 +1,5 @@
 /* FFT synthesis of periodic Gaussian (optionally Johnson-translated) height
- * maps with a prescribed power spectrum (SPEC §7).
+ * maps with a prescribed power spectrum (docs/design.md §5.1).
  *
  * Method (Hu & Tonder 1992, Int. J. Mach. Tools Manuf. 32:83; Persson et al.
  * 2005, J. Phys.: Condens. Matter 17:R1): each Fourier mode gets amplitude

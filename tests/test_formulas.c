@@ -1,4 +1,4 @@
-/* Closed-form contact relations (SPEC §3–§5): published numbers, exact
+/* Closed-form contact relations (docs/design.md §6.1–§6.4): published numbers, exact
  * identities between the formulas, range flags and error paths. */
 #include <math.h>
 #include <setjmp.h>
@@ -44,7 +44,7 @@ static stc_coated coated(double tR, double er)
     return c;
 }
 
-/* Thesis Table 4.2 (SPEC §4), values printed to two decimals, as printed in
+/* Thesis Table 4.2 (docs/design.md §6.3), values printed to two decimals, as printed in
  * data/thesis/table4_2.csv.  At t/R = 0.05 the thesis prints δc2/ωc_su =
  * 35.88 under Eco/Esu = 2 and 39.61 under 4; eq. 3.12 gives 39.61 for 2 and
  * 35.88 for 4.  Eq. 3.12 falls strictly with Eco/Esu at fixed E/Y (factor
@@ -71,7 +71,7 @@ static void test_table_4_2(void **state)
                c.delta_c2_over_omega_c_su, d2[k], crosswise ? ", printed in the other column" : "");
         assert_true(round_to(c.delta_c1_over_omega_c_su, 2) == d1[i]);
         assert_true(round_to(c.delta_c2_over_omega_c_su, 2) == d2[k]);
-        /* E/Y equal in both layers: ωc_co = ωc_su (SPEC §4) */
+        /* E/Y equal in both layers: ωc_co = ωc_su (docs/design.md §6.1) */
         assert_rel(c.delta_c2_over_omega_c_co, c.delta_c2_over_omega_c_su, 1e-14, "wc_co = wc_su");
     }
 }
@@ -95,8 +95,8 @@ static void test_hertz(void **state)
     assert_true(h.P == 0.0 && h.p0 == 0.0 && h.a == 0.0); /* no 0/0 at first touch */
 }
 
-/* SPEC §3: ν = 0.32, E/Y = 1000, R = 10 mm → ωc ≈ 5.32e-5 mm, δc/ωc ≈ 0.922.
- * And Pc is the Hertz load at ωc (eq. 3.4 follows from eq. 3.3 that way). */
+/* docs/design.md §6.1–§6.2: ν = 0.32, E/Y = 1000, R = 10 mm → ωc ≈ 5.32e-5
+ * mm, δc/ωc ≈ 0.922.  And Pc is the Hertz load at ωc (eq. 3.4 follows from eq. 3.3 that way). */
 static void test_critical(void **state)
 {
     (void)state;

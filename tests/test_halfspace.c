@@ -93,7 +93,7 @@ static void test_hertz(void **state)
 
 /* Full slip at τc = Y/√3 (Y = 325 MPa) at 0.5 ωc of the WSP sphere: the contact
  * grows on the trailing side (−x) only, by 7.5 % of a0 on fine grids
- * (docs/tangential-step.md §20: 512 cells +7.6 %, area +4.9 %); on 64 cells
+ * (docs/design.md §5.6: 512 cells +7.6 %, area +4.9 %); on 64 cells
  * (4 % of a0 each) within two cells of that; lead and side stay within a cell
  * of a0; the load hardly changes and the trailing side carries tension. */
 static void test_junction_growth(void **state)

@@ -177,7 +177,7 @@ static void test_elements_per_contact(void **state)
  * every surface interval is at most its distance from the axis / n (and not
  * much finer), so each contact radius of the curve has about n elements
  * across (growth by q = 1.3 alone gave intervals of ~0.3 times the
- * distance, docs/tangential-step.md §25). */
+ * distance, docs/design.md §2.3). */
 static void test_proportional_surface(void **state)
 {
     (void)state;

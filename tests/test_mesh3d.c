@@ -333,8 +333,8 @@ static void test_speed_and_dump(void **state)
     asp_mesh_destroy(&M);
 }
 
-/* coarsen < 0 is exactly the mesh before coarsening existed: node and
- * element counts recorded from that code (mesh3d.c as of 2026-11-21). */
+/* coarsen < 0 is exactly the mesh without shell coarsening: node and
+ * element counts recorded from the mesher without it. */
 static void test_uncoarsened(void **state)
 {
     (void)state;

@@ -113,7 +113,7 @@ static void test_wsp_published_fits(void **state)
     asp_model_destroy(&m);
 }
 
-/* ωc ∝ R, Pc ∝ R², Ac ∝ R² (SPEC §3): same w, radius ×3 → P, A ×9. */
+/* ωc ∝ R, Pc ∝ R², Ac ∝ R² (docs/design.md §6.1): same w, radius ×3 → P, A ×9. */
 static void test_radius_scaling(void **state)
 {
     (void)state;

@@ -235,7 +235,7 @@ static void test_rising_after(void **state)
  * with the whole contact at its limit and Q nearly flat there, that point is
  * inception (a plastic mechanism), Q_max the largest Q so far; with part of
  * the contact stuck, or Q still rising steeply, or under the stiffness
- * criterion, nothing is declared.  The ramp of docs/tangential-step.md §21
+ * criterion, nothing is declared.  The ramp of docs/design.md §4.4
  * (WSP 3 wc, N = 12, rows): limit fractions 0.95 / 0.97 / 1.00, Q 25.48 /
  * 25.57 / 25.63 N, KT/KT_1 0.006 over the last increment. */
 static void test_mechanism(void **state)

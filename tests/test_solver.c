@@ -1,5 +1,5 @@
-/* Asperity FE solver, coarse versions of the issue-3 acceptance checks
- * (the full-size ones are in tools/validate.d/20-asperity.sh):
+/* Asperity FE solver, coarse versions of the normal-step checks of
+ * `make validate` (the full-size ones: tools/validate.d/20-asperity.sh):
  * Hertz and its mesh convergence, yield inception (slip, stick), coated
  * first yield in the coating, equilibrium, zero penetration, error paths,
  * field output.  Tolerances are those of the coarse meshes used here, each
@@ -309,7 +309,7 @@ static void test_smooth_load(void **state)
     assert_true(sm < 0.01);
 }
 
-/* The issue-3 curve 1:60:12 wc (slip) on mesh level 0 as the CLI solves
+/* The reference curve 1:60:12 wc (slip) on mesh level 0 as the CLI solves
  * it: elastic node entries sampled (asp_options.sample_elastic) and loaded
  * on past the last point (asp_solver_load_tail).  Reference: P_smooth of
  * `stiction asperity --delta 1:60:12 --contact slip --mesh 3` (42292 DOFs;
@@ -319,7 +319,7 @@ static void test_smooth_load(void **state)
  * +0.12 +0.15 +0.17 +0.13 %; without the tail the last two points read one
  * side of their window; without the elastic
  * sampling the 1 wc window is fitted across the yield bend from a few
- * increments (+0.8 %, docs/tangential-step.md §23, §25). */
+ * increments (+0.8 %, docs/design.md §3.3). */
 static void test_smooth_tail(void **state)
 {
     (void)state;
@@ -645,7 +645,7 @@ static void test_return_map_steps(void **state)
     printf("# mean |error|: midpoint %.3f %%, radial %.3f %%, exact %.3f %%\n", 100 * em, 100 * er,
            100 * ex);
     /* the midpoint's error is a fraction of the radial return's, and inside
-     * the 0.5 % the issue-3 load curve allows */
+     * the 0.5 % the axisymmetric load curve is held to (docs/design.md §2.3) */
     assert_true(em < 0.5 * er);
     assert_true(em < 0.005);
     assert_true(er > 0.004);

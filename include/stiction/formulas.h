@@ -1,4 +1,4 @@
-/* stiction — closed-form contact relations (SPEC §3–§5).
+/* stiction — closed-form contact relations (docs/design.md §6.1–§6.4).
  *
  * Every function is pure and thread-safe.  Units: mm, N, MPa.  Each fit
  * reports whether its inputs lie inside the range the fit was made for
@@ -48,7 +48,7 @@ const char *stc_fit_flag_text(stc_fit_family fam, unsigned bit);
  * joined by "; " into buf (at most n bytes, NUL-terminated); returns buf. */
 const char *stc_fit_describe_family(stc_fit_family fam, unsigned flags, char *buf, int n);
 
-/* --- Hertz: elastic sphere on a rigid flat (SPEC §3) --- */
+/* --- Hertz: elastic sphere on a rigid flat (docs/design.md §6.1) --- */
 typedef struct stc_hertz {
     double E_star; /* E/(1-ν²), MPa */
     double P;      /* load, N */
@@ -58,7 +58,7 @@ typedef struct stc_hertz {
 } stc_hertz;
 stc_status stc_hertz_eval(const stc_material *m, double R, double delta, stc_hertz *out);
 
-/* --- Yield inception of a homogeneous sphere (SPEC §3) --- */
+/* --- Yield inception of a homogeneous sphere (docs/design.md §6.1–§6.2) --- */
 typedef struct stc_critical {
     double Cv;              /* 1.234 + 1.256 ν (Kogut & Etsion 2002; thesis §3.1.1.1) */
     double omega_c;         /* critical interference, mm (slip) */
@@ -78,10 +78,10 @@ stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out)
 double stc_brizmer_delta_ratio(double nu);
 double stc_brizmer_load_ratio(double nu);
 
-/* --- Coated sphere fits (SPEC §4) --- */
+/* --- Coated sphere fits (docs/design.md §6.3) --- */
 typedef struct stc_coated {
     /* slip: Goltsberg, Etsion & Davidi 2011; Chen, Goltsberg & Etsion 2016 */
-    double Pc_co_over_Pc_su;        /* corrected form, SPEC §4 remark */
+    double Pc_co_over_Pc_su;        /* corrected form, docs/design.md §6.3 */
     double tR_p;                    /* (t/R)_p */
     double omega_c1_over_omega_c_co;
     double omega_c2_over_omega_c_co;

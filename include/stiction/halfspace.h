@@ -19,7 +19,7 @@
  *
  * This is the reference for the elastic junction growth of the asperity's
  * tangential step (a rigid flat on an elastic sphere, full slip at τc, no
- * separation; docs/tangential-step.md §20) and the seed of the roadmap's
+ * separation; docs/design.md §5.6) and the seed of the roadmap's
  * deterministic rough-surface contact.  Library code never prints.
  */
 #ifndef STICTION_HALFSPACE_H
