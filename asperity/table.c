@@ -66,9 +66,9 @@ void tbl_numerics_default(tbl_numerics *n)
     n->placements = 2;
     /* measured: four-member means move by +0.04 / +1.5 % from the default 3D
      * mesh to one full refinement (t/R .025, Eco/Esu 2, δ = 1 / 30 ωc_su,
-     * docs/tangential-step.md §24, §26) */
+     * docs/design.md §4.6) */
     n->err_floor = 0.015;
-    /* one mesh: ±4–8 % with where the nodes fall (WSP sphere, §19, §29) */
+    /* one mesh: ±4–8 % with where the nodes fall (WSP sphere, docs/design.md §4.5) */
     n->err_single = 0.06;
 }
 

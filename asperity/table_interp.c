@@ -1,7 +1,7 @@
 /* Interpolation of a friction table with error bars, and the asperity model
  * the surface prediction sums (include/stiction/table.h).
  *
- * P, A and P at inception are nearly free of numerical noise (SPEC §8): along
+ * P, A and P at inception are nearly free of numerical noise: along
  * δ they follow monotone Steffen (1990) cubics in ln P versus ln w through
  * each (t/R, Eco/Esu) column's done points (exact for power laws such as
  * Hertz), between columns linear in ln t/R and ln Eco/Esu.  Their error bar

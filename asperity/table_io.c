@@ -91,7 +91,7 @@ static int write_root(hid_t f, const tbl_table *t)
            stc_h5_put_s(f, "command", t->command) |
            stc_h5_put_d(f, "build_wall_s", t->build_wall_s) |
            stc_h5_put_s(f, "units", "responses normalised by omega_c, P_c, A_c of the "
-                                    "substrate (SPEC 3)") |
+                                    "substrate (Kogut & Etsion 2002)") |
            stc_h5_put_s(f, "layout", "points/* are [n_E_ratio][n_t_over_R][n_delta]") |
            stc_h5_put_d(f, "R_mm", TBL_REF_R_MM) | stc_h5_put_d(f, "E_su_MPa", TBL_REF_E_SU_MPA) |
            stc_h5_put_i(f, "points_done", done) | stc_h5_put_i(f, "points_failed", failed) |

@@ -316,6 +316,25 @@ static void test_fill(void **state)
     assert_json(out);
     assert_non_null(strstr(out, "\"done\": 4"));
     assert_non_null(strstr(out, "\"pending\": 6"));
+    /* --points: a CSV row per point, the done ones with their numbers */
+    assert_int_equal(run("table info fill.h5 --points", 1, out, sizeof out), 0);
+    int rows = 0, done_rows = 0;
+    for (char *l = strtok(out, "\n"); l; l = strtok(NULL, "\n")) {
+        rows++;
+        if (strstr(l, ",done,")) {
+            done_rows++;
+            double mu = 0.0;
+            char *c = l;
+            for (int k = 0; k < 9 && c; k++) c = strchr(c + 1, ','); /* to mu_s */
+            assert_non_null(c);
+            mu = strtod(c + 1, NULL);
+            assert_true(mu > 0.2 && mu < 2.0);
+        }
+    }
+    assert_int_equal(rows, 11);
+    assert_int_equal(done_rows, 4);
+    expect_refusal("table info fill.h5 --points --json", 2, "--json conflicts with --points",
+                   NULL);
     assert_int_equal(run(FILL_RUN " --fill --jobs 1", 2, out, sizeof out), 0);
     assert_non_null(strstr(out, "touch 4 of the table's 10 points; 0 computed now"));
     assert_non_null(strstr(out, "4 were there"));

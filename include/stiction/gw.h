@@ -1,5 +1,5 @@
 /* stiction — Greenwood–Williamson summation of asperity responses over a
- * summit population (SPEC §7; Greenwood & Williamson 1966).  Units: mm, N,
+ * summit population (Greenwood & Williamson 1966).  Units: mm, N,
  * MPa; every sum is returned per unit nominal area An.
  *
  * Separation d is measured from the MEAN SUMMIT HEIGHT (as in GW 1966) and

@@ -1,4 +1,4 @@
-/* stiction — FE friction tables (SPEC §8): sweeps of the single-asperity
+/* stiction — FE friction tables (docs/table-format.md): sweeps of the single-asperity
  * solver over (δ/ωc_su, t/R, Eco/Esu) for one material family, stored in
  * HDF5, interpolated with error bars, and turned into an asperity model for
  * the Greenwood–Williamson sum (include/stiction/gw.h).
@@ -44,7 +44,7 @@ typedef struct tbl_family {
     double alpha;                    /* stiffness criterion's KT ratio; default 0.1 */
 } tbl_family;
 
-/* The thesis's family (Table 4.1; SPEC §8). */
+/* The family of Patel's thesis grid (its Table 4.1; docs/table-format.md). */
 void tbl_family_default(tbl_family *f);
 /* Ranges of every field; STC_EINVAL naming the field. */
 stc_status tbl_family_validate(const tbl_family *f);
@@ -80,7 +80,7 @@ const char *tbl_state_name(tbl_state s); /* "pending", "done", "failed" */
 enum { TBL_REASON_MAX = 192 };
 
 /* One grid point.  Responses normalised by the substrate's ωc, Pc, Ac
- * (SPEC §3) at the point's R. */
+ * (Kogut & Etsion 2002) at the point's R. */
 typedef struct tbl_point {
     int state;            /* tbl_state */
     double P_Pc, A_Ac;    /* preload (end of the normal step), means over the members */
@@ -253,7 +253,7 @@ int tbl_is_homogeneous(const tbl_table *t);
 
 /* ---- the surface prediction's asperity model --------------------------------- */
 
-/* What the model's P and Qmax are (the GW sum's μs = ΣQmax/ΣP, SPEC §8). */
+/* What the model's P and Qmax are (the GW sum's μs = ΣQmax/ΣP, docs/table-format.md). */
 typedef enum tbl_model_kind {
     TBL_MODEL_PRELOAD = 0, /* P = preload, Qmax = μs P_slide: the sum at a separation */
     TBL_MODEL_SLIDE = 1,   /* P = P at inception, Qmax as above */

@@ -1,5 +1,5 @@
 /* stiction surface predict: Greenwood–Williamson friction summation of an
- * asperity model over a summit population (SPEC §7), versus nominal pressure
+ * asperity model over a summit population (Greenwood & Williamson 1966), versus nominal pressure
  * or separation.  Writes CSV + JSON + a gnuplot PNG of μs and A/An. */
 #include <errno.h>
 #include <math.h>
@@ -254,8 +254,6 @@ static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **ou
     srf_map_destroy(&map);
     return s;
 }
-
-static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **out);
 
 /* --fill: the table's missing points that the loads touch, computed and
  * added to the table file.  The contact states come from a guide model: the
@@ -674,12 +672,14 @@ static void report_timing(const srf_gw *g, int n, double setup, double points)
 
 static const char *USAGE =
     "(--surface FILE | --summit-density ETA --summit-radius MM --sigma-s MM)\n"
-    "       (--pressures LIST | --separations LIST) [--model hertz|wsp] [--t-mm MM]\n"
-    "       [--mode statistical|deterministic] [--out DIR] [--csv F] [--png F] [--json]\n\n"
+    "       (--pressures LIST | --separations LIST) [--table FILE [--fill] | --model hertz|wsp]\n"
+    "       [--t-mm MM] [--mode statistical|deterministic] [--out DIR] [--csv F] [--png F]\n"
+    "       [--json]\n\n"
     "Greenwood-Williamson summation: N, P, A, Qmax summed over the summits; mu_s = sum Qmax /\n"
     "sum P (never a mean of asperity mu_s).  Separations are measured from the MEAN SUMMIT\n"
-    "HEIGHT in units of sigma_s.  The closed-form models use ONE layer's properties (the\n"
-    "coating enters only through t/R until FE tables exist).  The coating is --t-mm MM thick\n"
+    "HEIGHT in units of sigma_s.  The asperity response: an FE friction table (--table; the\n"
+    "coating counts, mu_s comes with an error band), or a closed-form model with ONE layer's\n"
+    "properties (the coating then enters only through t/R).  The coating is --t-mm MM thick\n"
     "on every summit, each summit with its own radius and so its own t/R (--t-over-R is\n"
     "refused).";
 

@@ -271,7 +271,7 @@ out:
 /* ---- info ------------------------------------------------------------------------- */
 
 typedef struct {
-    int json;
+    int json, points;
     double *w;
     int nw;
     double tR, E;
@@ -280,6 +280,7 @@ typedef struct {
 
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON"},
+    {"points", NULL, "print every point's stored values instead, as CSV (one row a point)"},
     {NULL, NULL, NULL},
 };
 
@@ -287,6 +288,7 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
 {
     query_args *q = ctx;
     if (!strcmp(key, "json")) return cli_parse_flag(key, value, &q->json);
+    if (!strcmp(key, "points")) return cli_parse_flag(key, value, &q->points);
     if (!strcmp(key, "delta")) {
         free(q->w);
         q->w = NULL;
@@ -422,18 +424,55 @@ static void info_text(const tbl_table *t, const char *path)
     }
 }
 
+/* --points: the stored values of every point, CSV. */
+static void info_points(const tbl_table *t)
+{
+    static const char *const state[] = {"pending", "done", "failed"};
+    printf("index,delta_over_omega_c,t_over_R,E_ratio,state,P_over_P_c,A_over_A_c,"
+           "P_slide_over_P_c,Q_max_over_P_c,mu_s,mu_s_err,mu_s_preload,mu_s_min,mu_s_max,"
+           "ux_slide_over_omega_c,members,newton_iterations,factorizations,wall_s,cpu_s,"
+           "reason\n");
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        printf("%d,%.10g,%.10g,%.10g,%s", i, w, tR, E,
+               p->state >= 0 && p->state <= 2 ? state[p->state] : "?");
+        if (p->state == TBL_DONE)
+            printf(",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%d,%d,%.4g,"
+                   "%.4g,", p->P_Pc, p->A_Ac, p->P_slide_Pc, p->Q_max_Pc, p->mu_s, p->mu_s_err,
+                   p->mu_s_preload, p->mu_s_min, p->mu_s_max, p->ux_slide_wc, p->members,
+                   p->newton_iterations, p->factorizations, p->wall_s, p->cpu_s);
+        else printf(",,,,,,,,,,,,,,%.4g,%.4g,", p->wall_s, p->cpu_s);
+        /* the reason is free text: quoted, its quotes doubled */
+        putchar('"');
+        for (const char *c = p->reason; *c; c++) {
+            if (*c == '"') putchar('"');
+            putchar(*c);
+        }
+        printf("\"\n");
+    }
+}
+
 static int table_info(const cli_cmd *cmd, int argc, char **argv)
 {
     const char *path = NULL;
     cli_peel_positional(&argc, &argv, &path);
     query_args q = {0};
     int done;
-    int rc = cli_parse(cmd->name, "FILE [--json]\nSummarise a table: "
-                       "family, grid, coverage, failed points, build time, fit errors.",
+    int rc = cli_parse(cmd->name, "FILE [--json | --points]\nSummarise a table: "
+                       "family, grid, coverage, failed points, build time, fit errors;\n"
+                       "or list its points' stored values (--points).",
                        argc, argv, info_opts, NULL, query_set, &q, &done);
     tbl_table *t = NULL;
+    if (!rc && !done && q.json && q.points) {
+        fprintf(stderr, "stiction %s: --json conflicts with --points: --points prints CSV\n",
+                cmd->name);
+        rc = CLI_EXIT_USAGE;
+    }
     if (!rc && !done && !(rc = open_table(cmd->name, path, &t))) {
-        if (q.json) info_json(t, path);
+        if (q.points) info_points(t);
+        else if (q.json) info_json(t, path);
         else info_text(t, path);
     }
     tbl_destroy(&t);
