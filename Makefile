@@ -44,7 +44,7 @@ SHARED    := $(O)/lib/libstiction.so
 CLI       := $(O)/bin/stiction
 DEPSTAMP  := $(O)/obj/.deps-ok
 
-.PHONY: all deps demo check fuzz validate bench reproduce install clean
+.PHONY: all deps demo check fuzz tables validate bench reproduce install clean
 .DELETE_ON_ERROR:
 
 all: $(STATIC) $(SHARED) $(CLI)
@@ -99,14 +99,17 @@ fuzz: all $(O)/tests-bin/test_fuzz
 demo: all
 	@tools/demo.sh $(CLI)
 
+tables: all
+	@tools/tables.sh $(CLI) $(TABLES)
+
 validate: all
-	@tools/fragments.sh validate $(CLI)
+	@ONLY=$(ONLY) tools/fragments.sh validate $(CLI)
 
 bench: all
-	@tools/fragments.sh bench $(CLI)
+	@ONLY=$(ONLY) tools/fragments.sh bench $(CLI)
 
 reproduce: all
-	@tools/fragments.sh reproduce $(CLI)
+	@ONLY=$(ONLY) tools/fragments.sh reproduce $(CLI)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/stiction \
@@ -119,7 +122,9 @@ install: all
 	install -m 755 $(CLI) $(DESTDIR)$(PREFIX)/bin/
 	for d in data/*/; do \
 	    install -d $(DESTDIR)$(PREFIX)/share/stiction/$$d && \
-	    install -m 644 $$d*.csv $(DESTDIR)$(PREFIX)/share/stiction/$$d || exit 1; \
+	    for f in $$d*.csv $$d*.h5; do \
+	        [ ! -e "$$f" ] || install -m 644 "$$f" $(DESTDIR)$(PREFIX)/share/stiction/$$d || exit 1; \
+	    done; \
 	done
 	install -m 644 data/README.md $(DESTDIR)$(PREFIX)/share/stiction/data/
 	sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' \

@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""make bench: the cost of the FE friction tables.
+
+1. Per bundled table (data/tables/*.h5): points done, the build's wall time,
+   CPU seconds per point (mean, range, by t/R), Newton iterations and
+   factorizations per point, read from the points' own records.
+2. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
+   one table point at the thesis family's settings run by `stiction asperity
+   --shear` with the normal step and the shear ramp timed apart (the normal
+   step's share of a point is the most that sharing it could save).
+
+Usage: bench-tables.py CLI [TABLE ...]"""
+import csv
+import glob
+import io
+import json
+import statistics
+import subprocess
+import sys
+
+
+def run(cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr))
+    return p.stdout
+
+
+def table_costs(cli, path):
+    info = json.loads(run([cli, "table", "info", path, "--json"]))
+    rows = [r for r in csv.DictReader(io.StringIO(run([cli, "table", "info", path, "--points"])))
+            if r["state"] == "done"]
+    print("%s: %d points, %d done, %d failed, %d pending; build %.1f min wall"
+          % (path, info["points"], info["done"], info["failed"], info["pending"],
+             info["build_wall_s"] / 60))
+    if not rows:
+        return
+    cpu = [float(r["cpu_s"]) for r in rows]
+    print("  CPU s per point: mean %.1f, min %.1f, max %.1f; total %.1f CPU min"
+          % (statistics.mean(cpu), min(cpu), max(cpu), sum(cpu) / 60))
+    print("  %-8s %7s %12s %12s %10s %10s" % ("t/R", "points", "CPU s mean", "CPU s max",
+                                               "Newton", "factor."))
+    for t in sorted({float(r["t_over_R"]) for r in rows}):
+        sel = [r for r in rows if float(r["t_over_R"]) == t]
+        c = [float(r["cpu_s"]) for r in sel]
+        print("  %-8g %7d %12.1f %12.1f %10.0f %10.0f"
+              % (t, len(sel), statistics.mean(c), max(c),
+                 statistics.mean(int(r["newton_iterations"]) for r in sel),
+                 statistics.mean(int(r["factorizations"]) for r in sel)))
+
+
+def normal_share(cli):
+    print("\nnormal step versus shear ramp of one point (thesis family, t/R 0.025, "
+          "Eco/Esu 2, stick, one placement, one thread):")
+    print("  %-10s %10s %10s %12s" % ("delta/wc", "normal s", "ramp s", "normal share"))
+    for d in (1, 10, 30):
+        out = json.loads(run([cli, "asperity", "--t-over-R", "0.025", "--E-ratio", "2",
+                              "--contact", "stick", "--delta", str(d), "--shear", "--threads",
+                              "1", "--json"]))
+        normal = out["wall_s"]
+        ramp = out["shear_wall_s"]
+        print("  %-10g %10.1f %10.1f %11.0f %%" % (d, normal, ramp,
+                                                  100 * normal / (normal + ramp)))
+
+
+def main():
+    cli = sys.argv[1]
+    tables = sys.argv[2:] or sorted(glob.glob("data/tables/*.h5"))
+    for t in tables:
+        table_costs(cli, t)
+    normal_share(cli)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,309 @@
+#!/usr/bin/env python3
+"""Full-size checks of an FE friction table (the thesis family's, by default).
+
+0. Point accuracy: table points (both ends of t/R and delta, Eco/Esu 2 and 4)
+   against the same point one mesh level finer with four node placements (a
+   one-point table, --mesh-level 1 --placements 4): the stored mu_s within
+   2 % and the stored error estimate at least as large as the difference.
+
+1. Held-out points: fresh FE runs between the grid nodes (in delta, t/R and
+   Eco/Esu), each computed exactly as a table point (a one-point table of the
+   same family and numerics), against the table's interpolated values: mu_s
+   within 3 %, within two standard errors for at least 90 % of the points,
+   the preload P/Pc within 1 %.
+2. Surface checks: Greenwood-Williamson sums over a Gaussian summit
+   population from the table at Eco/Esu = 1 (uncoated: one material), 2 and 4:
+   a stiffer coating gives a higher surface mu_s (the single-asperity trend of
+   the thesis's Fig. 4.21), and coated and uncoated differ by more than the
+   error band.
+
+Usage: validate-tables.py CLI WORKDIR REPORT.md [--table FILE] [--config INI]
+       [--jobs N]
+The held-out runs are kept in WORKDIR/heldout/ (each a resumable table
+build), so an interrupted validation goes on where it stopped.
+"""
+import argparse
+import concurrent.futures
+import csv
+import io
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+# delta/omega_c_su, t/R, Eco/Esu: each between nodes of examples/thesis-table.ini
+# on one axis or more (axes 0.5 1 2 4 8 15 30 60; 0.005 0.025 0.05; 1 2 4)
+# table nodes checked against one full refinement, cheapest first
+REFINED = [
+    (0.5, 0.05, 4.0),
+    (0.5, 0.005, 2.0),
+    (4.0, 0.025, 2.0),
+    (15.0, 0.025, 4.0),
+    (60.0, 0.05, 2.0),
+    (60.0, 0.005, 4.0),
+]
+
+HELD_OUT = [
+    (3.0, 0.025, 2.0),    # delta
+    (11.0, 0.005, 4.0),   # delta
+    (42.0, 0.05, 2.0),    # delta
+    (0.7, 0.05, 4.0),     # delta
+    (8.0, 0.012, 2.0),    # t/R
+    (30.0, 0.035, 4.0),   # t/R
+    (2.0, 0.035, 2.0),    # t/R
+    (4.0, 0.025, 2.8),    # E-ratio
+    (15.0, 0.005, 1.4),   # E-ratio
+    (1.4, 0.012, 2.8),    # all three
+]
+
+
+def run(cmd, check=True):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if check and p.returncode != 0:
+        sys.exit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr))
+    return p
+
+
+def fe_point(cli, config, work, k, pt, sub="heldout", extra=()):
+    """One fresh FE point, as the table computes its points; resumable."""
+    d, t, e = pt
+    path = os.path.join(work, sub, "p%02d.h5" % k)
+    t0 = time.time()
+    p = run([cli, "table", "build", "--config", config, "--deltas", repr(d),
+             "--t-over-R", repr(t), "--E-ratio", repr(e), "--out", path, "--jobs", "1",
+             "--quiet"] + list(extra), check=False)
+    if p.returncode != 0:
+        return {"error": p.stderr.strip()}
+    rows = list(csv.DictReader(io.StringIO(run([cli, "table", "info", path,
+                                                 "--points"]).stdout)))
+    r = rows[0]
+    r["wall_run_s"] = time.time() - t0
+    return r
+
+
+def table_point(cli, table, pt):
+    rows = csv.DictReader(io.StringIO(run([cli, "table", "info", table, "--points"]).stdout))
+    for r in rows:
+        if all(abs(float(r[k]) - v) <= 1e-9 * v for k, v in
+               zip(("delta_over_omega_c", "t_over_R", "E_ratio"), pt)):
+            return r
+    sys.exit("%s: no point at delta %g, t/R %g, E-ratio %g" % ((table,) + pt))
+
+
+def refined(cli, table, config, work, jobs, rep):
+    os.makedirs(os.path.join(work, "refined"), exist_ok=True)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
+        fe = list(ex.map(lambda kp: fe_point(cli, config, work, kp[0], kp[1], "refined",
+                                             ("--mesh-level", "1", "--placements", "4")),
+                         enumerate(REFINED)))
+    rep.append("## Point accuracy: table points against one full refinement\n")
+    rep.append("Reference: the same point on the 3D mesh one level finer (twice the elements "
+               "across the contact) with four node placements (`stiction table build --config "
+               "%s --deltas D --t-over-R T --E-ratio E --mesh-level 1 --placements 4`).\n"
+               % config)
+    rep.append("| delta/wc | t/R | Eco/Esu | mu_s table | stored error | mu_s refined | +- | "
+               "diff | covered | P/Pc diff | CPU s refined |")
+    rep.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    n = within = covered = 0
+    worst = 0.0
+    failed = 0
+    for pt, f in zip(REFINED, fe):
+        if "error" in f or f.get("state") != "done":
+            failed += 1
+            rep.append("| %g | %g | %g | failed: %s |" % (pt + ((f.get("error") or
+                                                              f.get("reason")),)))
+            continue
+        r = table_point(cli, table, pt)
+        mt, et = float(r["mu_s"]), float(r["mu_s_err"])
+        mr, er = float(f["mu_s"]), float(f["mu_s_err"])
+        d = (mt - mr) / mr
+        dp = (float(r["P_over_P_c"]) - float(f["P_over_P_c"])) / float(f["P_over_P_c"])
+        n += 1
+        within += abs(d) <= 0.02
+        covered += et >= abs(mt - mr)
+        worst = max(worst, abs(d))
+        rep.append("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %+.2f %% | %s | %+.2f %% | "
+                   "%.0f |" % (pt + (mt, et, mr, er, 100 * d,
+                                     "yes" if et >= abs(mt - mr) else "no", 100 * dp,
+                                     float(f["cpu_s"]))))
+    rep.append("")
+    checks = []
+    if n:
+        checks = [("table point mu_s within 2 % of one full refinement", within == n,
+                   "%d of %d (largest %.2f %%)" % (within, n, 100 * worst)),
+                  ("stored error estimate covers the difference", covered == n,
+                   "%d of %d" % (covered, n))]
+    if failed:
+        checks.append(("refined FE runs finished", False, "%d failed" % failed))
+    return checks
+
+
+def query(cli, table, pt):
+    d, t, e = pt
+    out = run([cli, "table", "query", table, "--delta", repr(d), "--t-over-R", repr(t),
+               "--E-ratio", repr(e), "--json"]).stdout
+    return json.loads(out)[0]
+
+
+def held_out(cli, table, config, work, jobs, rep):
+    os.makedirs(os.path.join(work, "heldout"), exist_ok=True)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
+        fe = list(ex.map(lambda kp: fe_point(cli, config, work, *kp),
+                         enumerate(HELD_OUT)))
+    rep.append("## Held-out points: fresh FE runs between the grid nodes\n")
+    rep.append("Each point is a one-point table of the same family and numerics (`stiction "
+               "table build --config %s --deltas D --t-over-R T --E-ratio E`), compared "
+               "with `stiction table query %s`. sigma_t: the table's standard error; "
+               "sigma_p: the fresh point's own error estimate.\n" % (config, table))
+    rep.append("| delta/wc | t/R | Eco/Esu | mu_s FE | +- | mu_s table | +- sigma_t | diff | "
+               "diff/sigma_t | diff/sqrt(st^2+sp^2) | P/Pc FE | P/Pc table | diff P | "
+               "CPU s |")
+    rep.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    n = 0
+    within3 = within2t = within2c = p1 = 0
+    worst_mu = worst_p = 0.0
+    failed = []
+    for pt, f in zip(HELD_OUT, fe):
+        if "error" in f or f.get("state") != "done":
+            failed.append((pt, f.get("error") or f.get("reason")))
+            rep.append("| %g | %g | %g | failed: %s |" % (pt + ((f.get("error") or
+                                                              f.get("reason")),)))
+            continue
+        q = query(cli, table, pt)
+        mf, sf = float(f["mu_s"]), float(f["mu_s_err"])
+        mt, st = q["mu_s"], q["mu_s_err"]
+        pf, ptab = float(f["P_over_P_c"]), q["P_over_P_c"]
+        dmu = (mt - mf) / mf
+        dp = (ptab - pf) / pf
+        zt = abs(mt - mf) / st
+        zc = abs(mt - mf) / math.hypot(st, sf)
+        n += 1
+        within3 += abs(dmu) <= 0.03
+        within2t += zt <= 2
+        within2c += zc <= 2
+        p1 += abs(dp) <= 0.01
+        worst_mu = max(worst_mu, abs(dmu))
+        worst_p = max(worst_p, abs(dp))
+        rep.append("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %+.2f %% | %.2f | %.2f | "
+                   "%.4f | %.4f | %+.2f %% | %.0f |" % (pt + (mf, sf, mt, st, 100 * dmu, zt,
+                                                           zc, pf, ptab, 100 * dp,
+                                                           float(f["cpu_s"]))))
+    rep.append("")
+    checks = []
+    if n:
+        checks = [
+            ("held-out mu_s within 3 % of the fresh FE run", within3 == n,
+             "%d of %d (largest %.2f %%)" % (within3, n, 100 * worst_mu)),
+            ("held-out mu_s within two standard errors (table and point combined) for >= 90 %",
+             within2c >= 0.9 * n, "%d of %d" % (within2c, n)),
+            ("held-out P/Pc within 1 %", p1 == n,
+             "%d of %d (largest %.2f %%)" % (p1, n, 100 * worst_p)),
+        ]
+        rep.append("Within two of the table's own standard errors alone: %d of %d.\n"
+                   % (within2t, n))
+    if failed:
+        checks.append(("held-out FE runs finished", False, "%d failed" % len(failed)))
+    return checks
+
+
+def surface(cli, table, rep):
+    """GW sums over Gaussian populations at Eco/Esu 1, 2, 4 and each t/R."""
+    # R = 0.1 mm; sigma_s about 4 and 10 omega_c_su of that radius (E/Y = 1000,
+    # nu = 0.32): the load's contacts near delta = 10 and 30 omega_c_su
+    eta, R = 1000.0, 0.1
+    pressures = [0.02, 0.05, 0.1, 0.2]
+    rep.append("## Surface: a stiffer coating, and coated versus uncoated\n")
+    rep.append("Gaussian summit heights (GW), eta = %g /mm^2, R = %g mm, the thesis family's "
+               "materials (E/Y = 1000, nu = 0.32), `stiction surface predict --table %s "
+               "--E-ratio E --t-mm T`; Eco/Esu = 1 is the uncoated sphere (one material). "
+               "mu_s +- the table's one-standard-error band (errors of the summits taken fully "
+               "correlated). Bands apart: the difference exceeds the sum of the two bands.\n"
+               % (eta, R, table))
+    rep.append("| sigma_s mm | t/R | P/An MPa | dmax/wc | mu_s Eco/Esu=1 | 2 | 4 | 4 vs 2 | "
+               "4 vs 1 | 2 vs 1 | outside |")
+    rep.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    up = apart41 = apart21 = total = 0
+
+    def cmp(a, sa, b, sb):
+        return "%+.1f %%, %s" % (100 * (a / b - 1), "bands apart" if abs(a - b) > sa + sb
+                                 else "bands overlap")
+
+    for sigma in (2.0e-6, 5.3e-6):
+        for tR in (0.005, 0.025, 0.05):
+            res = {}
+            for e in (1.0, 2.0, 4.0):
+                out = run([cli, "surface", "predict", "--table", table, "--E-ratio", repr(e),
+                           "--t-mm", repr(tR * R), "--summit-density", repr(eta),
+                           "--summit-radius", repr(R), "--sigma-s", repr(sigma),
+                           "--pressures", ",".join(map(repr, pressures)), "--json"]).stdout
+                res[e] = json.loads(out)
+            for i, p in enumerate(pressures):
+                m = {e: res[e][i]["mu_s"] for e in res}
+                s = {e: res[e][i]["mu_s_err"] for e in res}
+                frac = max(res[e][i]["load_fraction_outside_model_range"] for e in res)
+                total += 1
+                up += m[4.0] > m[2.0] > m[1.0]
+                apart41 += abs(m[4.0] - m[1.0]) > s[4.0] + s[1.0]
+                apart21 += abs(m[2.0] - m[1.0]) > s[2.0] + s[1.0]
+                rep.append("| %g | %g | %g | %.1f | %.4f +- %.4f | %.4f +- %.4f | %.4f +- %.4f | "
+                           "%s | %s | %s | %.3f |"
+                           % (sigma, tR, p, res[1.0][i]["delta_max_over_omega_c"], m[1.0], s[1.0],
+                              m[2.0], s[2.0], m[4.0], s[4.0], cmp(m[4.0], s[4.0], m[2.0], s[2.0]),
+                              cmp(m[4.0], s[4.0], m[1.0], s[1.0]),
+                              cmp(m[2.0], s[2.0], m[1.0], s[1.0]), frac))
+    rep.append("")
+    rep.append("Eco/Esu = 2 against the uncoated sphere: bands apart at %d of %d loads (at the "
+               "others the coating changes mu_s by less than the two bands together).\n"
+               % (apart21, total))
+    return [
+        ("stiffer coating gives a higher surface mu_s (Eco/Esu 4 > 2 > 1)", up == total,
+         "%d of %d loads" % (up, total)),
+        ("coated (Eco/Esu 4) and uncoated differ beyond the error bands", apart41 == total,
+         "%d of %d loads" % (apart41, total)),
+    ]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cli")
+    ap.add_argument("work")
+    ap.add_argument("report")
+    ap.add_argument("--table", default="data/tables/thesis.h5")
+    ap.add_argument("--config", default="examples/thesis-table.ini")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--no-refined", action="store_true",
+                    help="skip the point-accuracy part (hours of FE runs)")
+    a = ap.parse_args()
+    if not os.path.exists(a.table):
+        sys.exit("%s: no such table (make tables builds it)" % a.table)
+    info = json.loads(run([a.cli, "table", "info", a.table, "--json"]).stdout)
+    rep = ["# Validation: FE friction table %s\n" % a.table,
+           "Table: %d points, %d done, %d failed; built in %.0f s wall, %.1f CPU s per point; "
+           "mu_s surrogate leave-one-out error %.2f %% rms, %.2f %% largest, %.0f %% within "
+           "two standard deviations.\n" % (info["points"], info["done"], info["failed"],
+                                          info["build_wall_s"], info["cpu_s_per_point"],
+                                          100 * info["loo_rms_rel"], 100 * info["loo_max_rel"],
+                                          100 * info["loo_cover2"])]
+    checks = surface(a.cli, a.table, rep)
+    checks += held_out(a.cli, a.table, a.config, a.work, a.jobs, rep)
+    if not a.no_refined:
+        checks += refined(a.cli, a.table, a.config, a.work, a.jobs, rep)
+    rep.append("## Verdicts\n")
+    rep.append("| check | measured | verdict |")
+    rep.append("|---|---|---|")
+    ok = True
+    for name, passed, measured in checks:
+        ok &= passed
+        rep.append("| %s | %s | %s |" % (name, measured, "pass" if passed else "FAIL"))
+        print("%-4s %s: %s" % ("ok" if passed else "FAIL", name, measured))
+    with open(a.report + ".tmp", "w") as f:
+        f.write("\n".join(rep) + "\n")
+    os.replace(a.report + ".tmp", a.report)
+    print("wrote %s" % a.report)
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

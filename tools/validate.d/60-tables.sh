@@ -1,0 +1,12 @@
+#!/bin/sh
+# make validate fragment: the bundled thesis-family FE friction table against
+# fresh FE runs at held-out points between its nodes, and the surface checks
+# on it (stiffer coating, coated versus uncoated).  About 10 FE points (some
+# 15 CPU minutes); the runs are kept in RESULTS_DIR/tables/, so an
+# interrupted validation resumes.  Called as: 60-tables.sh CLI RESULTS_DIR;
+# writes RESULTS_DIR/validate-tables.md; exits non-zero if a check fails.
+set -eu
+CLI=$1
+OUT=$2
+mkdir -p "$OUT/tables"
+python3 "$(dirname "$0")/../validate-tables.py" "$CLI" "$OUT/tables" "$OUT/validate-tables.md"
