@@ -68,7 +68,7 @@ const char *stc_fit_flag_text(stc_fit_family fam, unsigned bit)
     case STC_FITS_WSP:
         if (bit == STC_FIT_DELTA)
             return "omega/omega_c outside [0.5, 72], the preloads Wu, Shi & Polycarpou (2012) "
-                   "report (SPEC §5); mu_s is undefined for omega <= 0";
+                   "report (docs/design.md §6.4); mu_s is undefined for omega <= 0";
         if (bit == STC_FIT_E_RATIO)
             return "coated input: the WSP fit is for a homogeneous sphere; the value is the "
                    "uncoated substrate's";

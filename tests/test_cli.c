@@ -317,7 +317,7 @@ static void test_json_uncoated(void **state)
  * -1.56 %.  At 3 ωc (printed, not checked) graded +0.94 %, uniform +0.08 %:
  * past yield a raw P carries the node-entry sawtooth (the uniform core at
  * 4 / 8 elements across reads -2.2 / -0.3 % there), so one point does not
- * rank the meshes (docs §28).  ~4 s for both. */
+ * rank the meshes (docs/design.md §2.4, §3.2).  ~4 s for both. */
 static void test_curve_3d_graded(void **state)
 {
     (void)state;

@@ -160,7 +160,7 @@ static void test_full_slip_plateau(void **state)
     /* the plateau is flat: the last increment changed Q by < 1 % */
     assert_true(fabs(l->Q - R.pts[R.n - 2].Q) < 0.01 * R.res.Q_max);
     /* and the flat plateau shows in the stiffness left after inception
-     * (measured 0.013; the thin hard coating of docs §15 leaves ~0.2) */
+     * (measured 0.013; the thin hard coating of docs/design.md §4.4 leaves ~0.2) */
     printf("# KT/KT_1 after inception %.4f\n", R.res.KT_after);
     assert_true(fabs(R.res.KT_after) < 0.05);
 }
@@ -181,7 +181,7 @@ static void test_wsp_mu(void **state)
 
 /* The two junction rules (asp_junction) bracket the contact growth: the
  * footprint reads it high on a coarse mesh, F_z/p_m of the nodes that touch
- * reads it low (docs/tangential-step.md §11), so the nodes rule gives the
+ * reads it low (docs/design.md §4.2), so the nodes rule gives the
  * smaller plateau; both start from the same preload (identical normal
  * step) and reach full slip.  Measured at 0.5 ωc, level 0: Q_max / (τc π
  * a0²) - 1 = +2.85 % (footprint), +0.8 % (nodes). */
@@ -400,7 +400,7 @@ static void test_cli_json(void **state)
 }
 
 /* Junction growth of the ELASTIC sphere against the half-space boundary
- * elements (surface/halfspace.c; docs/tangential-step.md §20): a rigid flat
+ * elements (surface/halfspace.c; docs/design.md §5.6, §4.2): a rigid flat
  * sheared in full slip at τc with no separation grows the contact on the
  * trailing side only (the Cerruti coupling lifts the surface behind the
  * traction toward the flat), by +4.9 % in area and +7.5 % along -x at 0.5 ωc
@@ -438,7 +438,8 @@ static void test_elastic_growth_bem(void **state)
  * plastic zone under the contact is small, so the midpoint rule and the
  * exact integration give the radial return's μs.  Measured: +2.1e-4 for
  * both (at 3 ωc, where a node enters the junction late in the ramp, the
- * exact map's μs is 1.4 % above the radial's: docs §28). */
+ * exact map's μs is 1.4 % above the radial's, the node-entry scatter of
+ * docs/design.md §4.5; the return maps: docs/design.md §3.4). */
 static void test_ramp_return_maps(void **state)
 {
     (void)state;
@@ -505,7 +506,7 @@ static void test_placements(void **state)
 }
 
 /* A thin coating much stronger in shear than its substrate (t/R 0.001,
- * Eco/Esu 4, stick, δ = 10 ωc_su; docs/tangential-step.md §29): the junction
+ * Eco/Esu 4, stick, δ = 10 ωc_su; docs/design.md §4.9, §4.2): the junction
  * reading after an accepted increment changes the stuck nodes' forces, and
  * before the cut-backs shared that step the ramp failed at ux = 5.85 ωc
  * (every cut try started 0.81 of the reaction out of equilibrium).  It must

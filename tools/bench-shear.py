@@ -9,13 +9,14 @@ bench-shear.py CLI [MESHES [CASE]]
                                  junction rule --junction nodes instead of
                                  the default footprint, whose finest mesh is
                                  the reference; the two rules bracket the
-                                 converged mu_s, docs/tangential-step.md §11;
+                                 converged mu_s, docs/design.md §4.2;
                                  ":c0" / ":c2" run the mesh with no / two
                                  2:1 coarsenings of the outer shells instead
-                                 of the default one, §13; ":rows" reads the
-                                 growth on every node row, --foot-rows 0.6,
-                                 §19; ":pK" averages K node placements,
-                                 --placements K, §21)
+                                 of the default one, docs/design.md §2.5;
+                                 ":rows" reads the growth on every node row,
+                                 --foot-rows 0.6, docs/design.md §4.2; ":pK"
+                                 averages K node placements, --placements K,
+                                 docs/design.md §4.5)
 
 For the homogeneous WSP sphere at omega/omega_c = 3 and 12 and for two coated
 cases (delta = 1 and 10 omega_c_su, t/R = 0.025, Eco/Esu = 2, stick normal step):
@@ -49,7 +50,7 @@ CASES = [
 TARGET_ERR, TARGET_S = 2.0, 60.0
 # level 0 with its surface nodes moved by about half an element relative to
 # the contact edge (a_max/a0 ~ 1.2 elements is one period): level-0 mu_s
-# swings by ~+-10 % with where the nodes sit (docs/tangential-step.md §19)
+# swings by ~+-10 % with where the nodes sit (docs/design.md §4.5)
 SHIFTED = "n6.6"
 
 

@@ -234,7 +234,7 @@ def fig416(rn, out):
                 "ux_at_slide_over_omega_c_su,KT_after_over_KT1,wall_s\n")
         print("Figs. 4.16-4.20: Qmax/Pc_su (mu_s) per t/R, Eco/Esu, delta/omega_c_su; "
               "* = Q still rising past inception (KT/KT1 after it > 0.05): mu_s there "
-              "depends on where inception is declared (docs/tangential-step.md 15)")
+              "depends on where inception is declared (docs/design.md §4.4)")
         for tr in GRID_TR:
             for er in GRID_ER:
                 line = []

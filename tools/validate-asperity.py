@@ -340,7 +340,7 @@ def return_map_table(cli):
     """Work against the increment error: P at 60 wc (slip, axisymmetric
     level 1) for 1..16 load steps per node entry, midpoint rule, radial
     return and exact integration along each increment's straight strain
-    path, against the midpoint rule at 16 (docs/tangential-step.md 14, 28)."""
+    path, against the midpoint rule at 16 (docs/design.md §3.4)."""
     print("Return map vs load increment: P at 60 wc, slip, level 1, against the midpoint "
           "rule at 16 steps per node entry")
     runs = {}
@@ -400,7 +400,7 @@ def target_3d(cli, fin, smooth):
     # OMP_WAIT_POLICY=passive: the idle OpenMP thread sleeps instead of
     # spinning; it saved 3 s while PCG ran on one thread, and makes no
     # difference since the Krylov phase runs on two (n = 4 curve: 17.9 s
-    # default, 18.1 s passive; docs/tangential-step.md §27)
+    # default, 18.1 s passive; docs/design.md §3.6)
     passive = {"OMP_WAIT_POLICY": "passive"}
     for name, args, env in (("auto (graded core, 4 elements across every contact)", [], None),
                             ("auto, OMP_WAIT_POLICY=passive", [], passive),

@@ -1,7 +1,6 @@
 #!/usr/bin/env python3
 """Elastic junction growth of the FE tangential step against the elastic
-half-space boundary elements (`stiction halfspace`; docs/tangential-step.md
-§20).
+half-space boundary elements (`stiction halfspace`; docs/design.md §5.6).
 
 validate-growth.py CLI OUT.csv [--omegas 0.5,1,3] [--n 6,6.6] [--cells 256]
 
@@ -11,9 +10,9 @@ at delta = omega x omega_c of the WSP sphere (Y = 325 MPa): slip normal step,
 then the ramp to full slip with no separation.  The growth is
 Q_max / (tau_c pi a0^2) - 1 for the FE (a0 its preload radius) and A / A0 - 1
 for the half-space.  FE runs at several --elements-per-contact values (the
-node placement moves with it, docs §19), one thread each, one at a time.
-Writes OUT.csv (via OUT.csv.tmp) and exits 1 if a run fails or an FE growth
-is more than 3 % (of the area) from the reference (the bound of
+node placement moves with it, docs/design.md §4.5), one thread each, one at a
+time.  Writes OUT.csv (via OUT.csv.tmp) and exits 1 if a run fails or an FE
+growth is more than 3 % (of the area) from the reference (the bound of
 tests/test_shear.c test_elastic_growth_bem).
 """
 import argparse

@@ -9,7 +9,7 @@ loads or τc.  A case passes when the run converges to finite, positive
 numbers (μs for a shear case, P for a normal one), or, for a case that must be
 refused, when the CLI exits 2 with a message naming the parameter.  Any other
 outcome (a failed run, a crash, a NaN) fails the scan; the reason is in the
-CSV.  The cases and what they found: docs/tangential-step.md §29 (the
+CSV.  The cases and what they found: docs/design.md §4.9 (the
 thin-coating shear case needs the junction reading inside the cut-back
 step).  Writes OUT.csv (OUT.csv.part while running).
 Exit status 1 if any case failed.

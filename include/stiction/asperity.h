@@ -118,9 +118,8 @@ typedef struct asp_options {
                                 across a_max).  Slip curve 1:60:12, level 0:
                                 within 0.50 % of the converged curve at every
                                 point in 13.7 s (uniform core: -33 % at 1 ωc,
-                                -6.2 % at 6.4 ωc in 6.5 s; docs/tangential-step.md
-                                §17, §26, §28); default 0 (the CLI sets it for a
-                                3D load curve) */
+                                -6.2 % at 6.4 ωc in 6.5 s; docs/design.md §2.4);
+                                default 0 (the CLI sets it for a 3D load curve) */
     int sample_elastic;      /* slip: 1 = while all is elastic, step through the
                                 surface node entries from δ/2 on (δ the target of
                                 asp_solver_load), steps_per_node per entry, so that
@@ -203,7 +202,7 @@ void asp_solver_info(const asp_solver *s, asp_info *info);
  * increments so far, so it is best called after the whole curve is solved.
  * A linear fit across the concave bend of ln P(ln δ) reads low: about
  * -0.2 % past first yield (-0.13 ... -0.23 % against a local quadratic on
- * the mesh-converged slip curve to 60 ωc, docs/tangential-step.md §28).
+ * the mesh-converged slip curve to 60 ωc, docs/design.md §3.2).
  * Writes *P (N; NaN if not enough increments) and returns the number of
  * increments used (0: no estimate). */
 int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
@@ -230,7 +229,7 @@ stc_status asp_solver_write_fields(const asp_solver *s, const char *prefix);
  * is held at δ and moved along +x by ux (3D half model only).  Contact
  * stays closed (thesis §3.2.3.3); the interface follows the shear-limited
  * stick law of Wu, Shi & Polycarpou (2012): a point sticks until its shear
- * stress reaches τc, then slips at τc.  Design: docs/tangential-step.md. */
+ * stress reaches τc, then slips at τc.  Design: docs/design.md §4. */
 
 typedef enum asp_shear_criterion {
     ASP_SHEAR_CRIT_SHEAR = 0,    /* WSP 2012: whole contact at τc and Q stopped rising */
@@ -239,7 +238,7 @@ typedef enum asp_shear_criterion {
 
 /* Defaults from asp_shear_options_default(). */
 /* Area of the contact as it grows during the ramp (junction growth); the
- * two rules bracket the mesh-converged answer (docs/tangential-step.md §11). */
+ * two rules bracket the mesh-converged answer (docs/design.md §4.2). */
 typedef enum asp_junction {
     ASP_JUNCTION_FOOTPRINT = 0, /* the edge advance read from the gaps ahead of it */
     ASP_JUNCTION_NODES = 1      /* a node that touches gets F_z / p_m */
@@ -258,7 +257,7 @@ typedef struct asp_shear_options {
     asp_return_map return_map; /* plastic integration during the ramp; default
                                   ASP_RETURN_RADIAL: with the ramp's long
                                   increments the midpoint rule can be far off
-                                  (docs/tangential-step.md §14) */
+                                  (docs/design.md §3.4) */
     double ramp_refine;  /* divides the ramp increment targets (bend, the largest
                             increment), for increment-convergence studies;
                             in [1, 64], default 1 */
@@ -268,8 +267,9 @@ typedef struct asp_shear_options {
                             at its own place between nodes), each row at least
                             its last node in contact, and averages them; 0 = the
                             three axis lines only; in [0, 0.9], default 0
-                            (docs/tangential-step.md §19: less node-placement
-                            noise, but +8.8 % growth read at WSP 0.5 ωc) */
+                            (docs/design.md §4.2, §4.5: less node-placement
+                            noise, but at WSP 0.5 ωc it reads 0.7-1.4 points
+                            more growth than the elastic reference) */
 } asp_shear_options;
 
 void asp_shear_options_default(asp_shear_options *o);
@@ -306,7 +306,7 @@ typedef struct asp_shear_result {
                             Q is flat past inception.  Well above 0: Q was still
                             rising (stuck but saturated nodes, P relaxing), so μs
                             depends on where inception is declared, not only on
-                            the Q(ux) curve (docs/tangential-step.md §15) */
+                            the Q(ux) curve (docs/design.md §4.4) */
     double tau_c;        /* τc used, MPa */
     double a0;           /* contact radius after the normal step, mm */
     asp_shear_criterion criterion;
@@ -350,9 +350,9 @@ stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *p
 stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
                                 asp_point *out);
 
-/* Node-placement ensemble (docs/tangential-step.md §21).  One mesh reads the
+/* Node-placement ensemble (docs/design.md §4.5).  One mesh reads the
  * junction growth in whole node closures, so a single μs depends on where the
- * surface nodes sit relative to the contact edge (±12 % at level 0, §19).
+ * surface nodes sit relative to the contact edge (about ±10 % at level 0).
  * asp_shear_placements runs the normal step to δ (mm) and the ramp on k
  * meshes, elements_per_contact N_j = N_0 + j T / k (N_0 from o, T = a_max / a0
  * from member 0's preload: the shift that moves the surface grid by one node

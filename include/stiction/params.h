@@ -18,10 +18,10 @@ typedef struct stc_material {
     double Y;  /* yield strength, MPa */
 } stc_material;
 
-/* The common options (SPEC §2): a substrate sphere of radius R carrying a
- * bonded coating of thickness t = (t/R) R.  Coating properties are given
- * relative to the substrate unless set explicitly.  The thickness may be
- * given in mm instead (t_mm): stc_params_resolve then sets t_over_R. */
+/* The common options (docs/design.md §2.1): a substrate sphere of radius R
+ * carrying a bonded coating of thickness t = (t/R) R.  Coating properties are
+ * given relative to the substrate unless set explicitly.  The thickness may
+ * be given in mm instead (t_mm): stc_params_resolve then sets t_over_R. */
 typedef struct stc_params {
     double R;        /* substrate radius, mm; default 10 */
     double t_over_R; /* coating thickness / R; 0 = uncoated; default 0 */

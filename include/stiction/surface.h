@@ -1,6 +1,6 @@
 /* stiction — rough surfaces: FFT synthesis, import, summits, statistics
- * (SPEC §7).  Units: mm throughout (heights, lengths), 1/mm for curvature,
- * rad/mm for wavevectors q = 2π/λ.  Library code never prints.
+ * (docs/design.md §5).  Units: mm throughout (heights, lengths), 1/mm for
+ * curvature, rad/mm for wavevectors q = 2π/λ.  Library code never prints.
  *
  * Conventions stated once, used everywhere:
  *  - A map is an nx × ny periodic grid of heights z[j*nx + i] (row-major,

@@ -1,6 +1,6 @@
 #!/bin/sh
 # make bench fragment: work-precision of the elastic half-space reference
-# (stiction halfspace, surface/halfspace.c; docs/tangential-step.md §20).
+# (stiction halfspace, surface/halfspace.c; docs/design.md §5.6).
 # WSP sphere at 0.5 omega_c, full slip at tau_c = Y/sqrt(3): for 64, 128 and
 # 256 cells, the preload against Hertz, the junction growth against the
 # finest grid, CG iterations and wall time.  Called as: 25-halfspace.sh CLI

@@ -1,6 +1,7 @@
-/* stiction formulas: every closed-form relation of SPEC §3–§5 for one set of
- * materials and geometry, as a readable report, one JSON object (--json) or
- * a CSV sweep over t/R and Eco/Esu (--csv, used by make reproduce). */
+/* stiction formulas: every closed-form relation of docs/design.md §6.1–§6.4
+ * for one set of materials and geometry, as a readable report, one JSON
+ * object (--json) or a CSV sweep over t/R and Eco/Esu (--csv, used by make
+ * reproduce). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -316,7 +317,7 @@ static void text_coated(FILE *f, const model *m)
         return;
     }
     fprintf(f, "Coated sphere, slip (Goltsberg et al. 2011; Chen et al. 2016)\n");
-    fprintf(f, "  Pc_co/Pc_su           %10s   (corrected form, SPEC §4 remark)\n",
+    fprintf(f, "  Pc_co/Pc_su           %10s   (consistent form, docs/design.md §6.3)\n",
             num(a, c->Pc_co_over_Pc_su));
     fprintf(f, "  omega_c1/omega_c_co   %10s   (%s mm)\n", num(a, c->omega_c1_over_omega_c_co),
             num(b, c->omega_c1_mm));

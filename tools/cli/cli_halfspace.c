@@ -21,7 +21,7 @@ static const char usage[] =
     "the flat slides along +x in full slip (traction tau_c on the whole contact,\n"
     "raised in K steps) and no point that touched separates.  This is the\n"
     "reference for the elastic junction growth of stiction asperity --shear\n"
-    "(docs/tangential-step.md §20).  Contact areas are cell counts (a sub-cell\n"
+    "(docs/design.md §5.6).  Contact areas are cell counts (a sub-cell\n"
     "edge error of about one cell along the perimeter).";
 
 static const cli_opt opts[] = {
