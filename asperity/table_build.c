@@ -260,8 +260,9 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     for (int i = o->shard; i < np; i += o->shards) {
         if (o->only && !o->only[i]) continue;
         b.total++;
-        if (t->pt[i].state == TBL_PENDING) todo[n++] = i;
-        else b.done++, b.resumed++, b.failed += t->pt[i].state == TBL_FAILED;
+        int st_i = t->pt[i].state;
+        if (st_i == TBL_PENDING || (o->retry_failed && st_i == TBL_FAILED)) todo[n++] = i;
+        else b.done++, b.resumed++, b.failed += st_i == TBL_FAILED;
     }
     st = m->size > 1 ? tbl_mpi_serve(m, &b, todo, n) : run_points(&b, todo, n);
     tbl_mpi_end(m); /* every rank is done: the other ranks need not wait for the file */

@@ -869,13 +869,59 @@ static void test_partial(void **state)
     tbl_destroy(&full);
 }
 
+/* ---- 8. failed points computed again ---------------------------------- */
+
+/* A failed point stays failed in a resumed build, and is computed again
+ * with retry_failed (one coarse point: about a second). */
+static void test_retry_failed(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "retry", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/retry.h5", dir);
+    tbl_family f;
+    tbl_numerics num;
+    tbl_family_default(&f);
+    f.contact = ASP_CONTACT_SLIP;
+    tbl_numerics_default(&num);
+    num.elements_per_contact = 3.0;
+    num.placements = 1;
+    const double w[] = {1.0}, tr[] = {0.01}, er[] = {2.0};
+    tbl_table *t = NULL;
+    check_ok(tbl_create(&f, &num, w, 1, tr, 1, er, 1, &t), "tbl_create");
+    tbl_point p;
+    memset(&p, 0, sizeof p);
+    p.state = TBL_FAILED;
+    snprintf(p.reason, sizeof p.reason, "made to fail");
+    check_ok(tbl_point_set(t, 0, &p), "tbl_point_set");
+    check_ok(tbl_write(t, path), "tbl_write");
+    tbl_build_opts o;
+    tbl_build_summary sum;
+    tbl_build_opts_default(&o);
+    o.jobs = 1;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build");
+    assert_int_equal(sum.computed, 0);
+    assert_int_equal(tbl_point_get(t, 0)->state, TBL_FAILED);
+    o.retry_failed = 1;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build retry_failed");
+    assert_int_equal(sum.computed, 1);
+    assert_int_equal(sum.failed, 0);
+    tbl_destroy(&t);
+    check_ok(tbl_read(path, &t), "tbl_read");
+    const tbl_point *q = tbl_point_get(t, 0);
+    printf("retried point: %s, mu_s %.4f +- %.4f\n", q->state == TBL_DONE ? "done" : "not done",
+           q->mu_s, q->mu_s_err);
+    assert_int_equal(q->state, TBL_DONE);
+    assert_true(q->mu_s > 0.2 && q->mu_s < 2.0);
+    tbl_destroy(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_through_file), cmocka_unit_test(test_round_trip),
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_mu_smoothing),
         cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
-        cmocka_unit_test(test_partial),
+        cmocka_unit_test(test_partial),    cmocka_unit_test(test_retry_failed),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

@@ -167,6 +167,8 @@ typedef struct tbl_build_opts {
     int shard, shards;  /* compute only points with index % shards == shard; default 0, 1 */
     const unsigned char *only; /* nullable: [tbl_points] compute only the points i with
                                   only[i] != 0 (the rest stay as they are); default NULL */
+    int retry_failed;   /* compute the failed points of the share again (after a change
+                           to the solver, say); default 0: they stay failed */
     tbl_progress_fn progress; /* nullable */
     void *ctx;
 } tbl_build_opts;

@@ -101,6 +101,7 @@ static const cli_opt build_opts[] = {
                   "(default 1; the other ranks compute one at a time)"},
     {"shard", "I/N", "compute only points with index % N == I (job arrays; join with "
                      "merge); combines with mpirun"},
+    {"retry-failed", NULL, "compute the table's failed points again (after a solver change)"},
     {"init", NULL, "compute nothing: write FILE with the points it has (none for a new "
                    "table) for `surface predict --fill` or a later build"},
     {"quiet", NULL, "no progress lines"},
@@ -165,6 +166,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         else a->bo.shard = i, a->bo.shards = n;
     } else if (!strcmp(key, "quiet")) {
         s = cli_parse_flag(key, value, &a->quiet);
+    } else if (!strcmp(key, "retry-failed")) {
+        s = cli_parse_flag(key, value, &a->bo.retry_failed);
     } else if (!strcmp(key, "init")) {
         s = cli_parse_flag(key, value, &a->init);
     } else {
