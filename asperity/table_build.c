@@ -261,7 +261,12 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         if (o->only && !o->only[i]) continue;
         b.total++;
         int st_i = t->pt[i].state;
-        if (st_i == TBL_PENDING || (o->retry_failed && st_i == TBL_FAILED)) todo[n++] = i;
+        if (o->only_failed && st_i == TBL_PENDING) {
+            b.total--; /* not this run's share */
+            continue;
+        }
+        if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
+            todo[n++] = i;
         else b.done++, b.resumed++, b.failed += st_i == TBL_FAILED;
     }
     st = m->size > 1 ? tbl_mpi_serve(m, &b, todo, n) : run_points(&b, todo, n);

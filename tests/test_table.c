@@ -872,7 +872,8 @@ static void test_partial(void **state)
 /* ---- 8. failed points computed again ---------------------------------- */
 
 /* A failed point stays failed in a resumed build, and is computed again
- * with retry_failed (one coarse point: about a second). */
+ * with only_failed (one coarse point: about a second; retry_failed takes the
+ * same path with the pending points besides). */
 static void test_retry_failed(void **state)
 {
     char dir[128], path[192];
@@ -901,8 +902,8 @@ static void test_retry_failed(void **state)
     check_ok(tbl_build(t, path, &o, &sum), "tbl_build");
     assert_int_equal(sum.computed, 0);
     assert_int_equal(tbl_point_get(t, 0)->state, TBL_FAILED);
-    o.retry_failed = 1;
-    check_ok(tbl_build(t, path, &o, &sum), "tbl_build retry_failed");
+    o.only_failed = 1;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build only_failed");
     assert_int_equal(sum.computed, 1);
     assert_int_equal(sum.failed, 0);
     tbl_destroy(&t);

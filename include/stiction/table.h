@@ -169,6 +169,7 @@ typedef struct tbl_build_opts {
                                   only[i] != 0 (the rest stay as they are); default NULL */
     int retry_failed;   /* compute the failed points of the share again (after a change
                            to the solver, say); default 0: they stay failed */
+    int only_failed;    /* compute the failed points again and no pending one; default 0 */
     tbl_progress_fn progress; /* nullable */
     void *ctx;
 } tbl_build_opts;

@@ -102,6 +102,7 @@ static const cli_opt build_opts[] = {
     {"shard", "I/N", "compute only points with index % N == I (job arrays; join with "
                      "merge); combines with mpirun"},
     {"retry-failed", NULL, "compute the table's failed points again (after a solver change)"},
+    {"only-failed", NULL, "compute the table's failed points again and no pending one"},
     {"init", NULL, "compute nothing: write FILE with the points it has (none for a new "
                    "table) for `surface predict --fill` or a later build"},
     {"quiet", NULL, "no progress lines"},
@@ -168,6 +169,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         s = cli_parse_flag(key, value, &a->quiet);
     } else if (!strcmp(key, "retry-failed")) {
         s = cli_parse_flag(key, value, &a->bo.retry_failed);
+    } else if (!strcmp(key, "only-failed")) {
+        s = cli_parse_flag(key, value, &a->bo.only_failed);
     } else if (!strcmp(key, "init")) {
         s = cli_parse_flag(key, value, &a->init);
     } else {
