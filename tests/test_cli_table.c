@@ -347,6 +347,44 @@ static void test_fill(void **state)
 #undef FILL_RUN
 }
 
+/* A table with failed points: the prediction runs over the done ones and
+ * warns, naming how many failed and where the reasons are. */
+static void test_failed_points_warned(void **state)
+{
+    (void)state;
+    tbl_family f;
+    tbl_numerics num;
+    tbl_family_default(&f);
+    tbl_numerics_default(&num);
+    const double w[] = {0.5, 1, 2, 4, 8, 16, 32}, tr[] = {0.01, 0.05}, er[] = {1, 2};
+    tbl_table *t = NULL;
+    assert_int_equal(tbl_create(&f, &num, w, 7, tr, 2, er, 2, &t), STC_OK);
+    for (int i = 0; i < tbl_points(t); i++) {
+        double wi, tR, E;
+        tbl_coords(t, i, &wi, &tR, &E);
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        if (i == 3) {
+            p.state = TBL_FAILED;
+            snprintf(p.reason, sizeof p.reason, "made to fail");
+        } else {
+            p.state = TBL_DONE;
+            p.P_Pc = p.P_slide_Pc = pow(wi, 1.5); /* a power law stands for the response */
+            p.A_Ac = wi;
+            p.mu_s = p.mu_s_preload = p.mu_s_min = p.mu_s_max = 0.5;
+            p.mu_s_err = 0.01;
+            p.Q_max_Pc = 0.5 * p.P_Pc;
+            p.members = 1;
+        }
+        assert_int_equal(tbl_point_set(t, i, &p), STC_OK);
+    }
+    assert_int_equal(tbl_write(t, P("failed.h5")), STC_OK);
+    tbl_destroy(&t);
+    expect_refusal("surface predict --table failed.h5 --E-ratio 2 --t-mm 0.0014 "
+                   "--summit-density 2000 --summit-radius 0.07 --sigma-s 1e-6 --pressures 0.1",
+                   0, "warning: 1 points of the table failed", "table info failed.h5");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -354,6 +392,7 @@ int main(void)
         cmocka_unit_test(test_shards_merge),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_fill),
+        cmocka_unit_test(test_failed_points_warned),
     };
     return cmocka_run_group_tests_name("cli_table", tests, setup, teardown);
 }

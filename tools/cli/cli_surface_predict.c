@@ -733,6 +733,12 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
         if (o.json) json_points(stdout, &c, pts, n, 0);
         else table_points(&c, pts, n);
         warn_outside(cmd->name, &c, pts, n);
+        int nf = 0;
+        if (aux.t) tbl_count(aux.t, NULL, &nf, NULL);
+        if (nf > 0)
+            fprintf(stderr, "stiction %s: warning: %d points of the table failed (`stiction table "
+                    "info %s` gives the reasons); the interpolation runs over its done points "
+                    "around them\n", cmd->name, nf, o.table);
     }
 out:
     if (rc != CLI_EXIT_OK && o.out_made) rmdir(o.out); /* empty: outputs go in by rename */
