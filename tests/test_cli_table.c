@@ -382,7 +382,7 @@ static void test_failed_points_warned(void **state)
     tbl_destroy(&t);
     expect_refusal("surface predict --table failed.h5 --E-ratio 2 --t-mm 0.0014 "
                    "--summit-density 2000 --summit-radius 0.07 --sigma-s 1e-6 --pressures 0.1",
-                   0, "warning: 1 points of the table failed", "table info failed.h5");
+                   0, "warning: 1 of the table's points failed", "table info failed.h5");
 }
 
 int main(void)

@@ -736,7 +736,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
         int nf = 0;
         if (aux.t) tbl_count(aux.t, NULL, &nf, NULL);
         if (nf > 0)
-            fprintf(stderr, "stiction %s: warning: %d points of the table failed (`stiction table "
+            fprintf(stderr, "stiction %s: warning: %d of the table's points failed (`stiction table "
                     "info %s` gives the reasons); the interpolation runs over its done points "
                     "around them\n", cmd->name, nf, o.table);
     }
