@@ -406,6 +406,10 @@ int tbl_bracket(const double *ax, int n, double x, double *frac)
     int i = 0;
     while (i < n - 2 && x >= ax[i + 1]) i++;
     double f = (log(x) - log(ax[i])) / (log(ax[i + 1]) - log(ax[i]));
-    *frac = fmin(1.0, fmax(0.0, f));
+    /* a value on a node up to rounding (t/R from t and R, a resampled grid)
+     * is on it: 0 or 1 exactly, so that callers skip the other side */
+    if (f < 1e-9) f = 0.0;
+    if (f > 1.0 - 1e-9) f = 1.0;
+    *frac = f;
     return i;
 }
