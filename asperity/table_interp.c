@@ -392,14 +392,15 @@ stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm
     for (int i = 0; i < nw; i++) {
         int k = w0 + i / DENSE_W;
         double f = (double)(i % DENSE_W) / DENSE_W;
-        w[i] = k >= w1 ? t->ax[0][w1]
-                       : exp((1 - f) * log(t->ax[0][k]) + f * log(t->ax[0][k + 1]));
+        w[i] = k >= w1 || f == 0.0 ? t->ax[0][k >= w1 ? w1 : k] /* nodes exactly */
+                                   : exp((1 - f) * log(t->ax[0][k]) + f * log(t->ax[0][k + 1]));
     }
     for (int j = 0; j < nt; j++) {
         int k = t0 + j / DENSE_TR;
         double f = (double)(j % DENSE_TR) / DENSE_TR;
-        tR[j] = k >= t1 ? t->ax[1][t1]
-                        : exp((1 - f) * log(t->ax[1][k]) + f * log(t->ax[1][k + 1]));
+        tR[j] = k >= t1 || f == 0.0
+                    ? t->ax[1][k >= t1 ? t1 : k]
+                    : exp((1 - f) * log(t->ax[1][k]) + f * log(t->ax[1][k + 1]));
     }
     for (int j = 0; j < nt; j++)
         for (int i = 0; i < nw; i++) {

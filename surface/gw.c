@@ -434,7 +434,8 @@ static stc_status load_quantile(srf_gw *g, double h, double *w_out)
 static stc_status outside_share(srf_gw *g, double h, double P, double *frac)
 {
     double r1 = 0, r2 = 0, e;
-    if (g->tR < g->range.tR_lo || g->tR > g->range.tR_hi) {
+    /* beyond rounding: t/R = t/R from t and R may miss an axis end in the last bit */
+    if (g->tR < g->range.tR_lo * (1 - 1e-12) || g->tR > g->range.tR_hi * (1 + 1e-12)) {
         *frac = 1.0;
         return STC_OK;
     }

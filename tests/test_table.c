@@ -922,6 +922,36 @@ static void test_interp_t_over_R(void **state)
     tbl_destroy(&t);
 }
 
+/* ---- 7c. a population at an end of the t/R axis ------------------------- */
+
+/* Summits whose t/R is the axis's first or last value, computed from t and
+ * R, are inside the table (the resampled model keeps the nodes exactly, and
+ * the range check allows for the last bit). */
+static void test_t_over_R_at_axis_ends(void **state)
+{
+    (void)state;
+    tbl_table *t = hertz_table(0.0, 0.02, 5);
+    check_ok(tbl_fit(t), "tbl_fit");
+    stc_params p;
+    family_params(2.0, &p);
+    const double R[] = {T_MM / TR[0], T_MM / TR[NTR - 1]}; /* t/R = 0.005 and 0.05 */
+    for (int k = 0; k < 2; k++) {
+        asp_model *tm = NULL;
+        srf_gw *g = NULL;
+        check_ok(tbl_model_create(t, &p, T_MM, TBL_MODEL_PRELOAD, &tm), "model");
+        double wc = asp_model_omega_c(tm, R[k]);
+        check_ok(srf_gw_create_gaussian(tm, ETA, R[k], 3.0 * wc, NULL, &g), "gw");
+        srf_gw_point q;
+        check_ok(srf_gw_at_separation(g, 1.0, &q), "gw at separation");
+        printf("t/R = %.17g: load outside the table %.3g\n", T_MM / R[k],
+               q.load_fraction_outside);
+        assert_true(q.load_fraction_outside < 0.01);
+        srf_gw_destroy(&g);
+        asp_model_destroy(&tm);
+    }
+    tbl_destroy(&t);
+}
+
 /* ---- 8. failed points computed again ---------------------------------- */
 
 /* A failed point stays failed in a resumed build, and is computed again
@@ -976,7 +1006,7 @@ int main(void)
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_mu_smoothing),
         cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),
-        cmocka_unit_test(test_retry_failed),
+        cmocka_unit_test(test_t_over_R_at_axis_ends), cmocka_unit_test(test_retry_failed),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }
