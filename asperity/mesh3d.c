@@ -40,7 +40,9 @@
  * at the base, level 0; see M3_SHELL_Q), far-field size hmax = 0.15 R' /
  * √2^level, coating >= 4 elements (spacing min(h, t/4)).  A coating thicker
  * than the fine zone deepens the core box down to the interface (uniform h
- * to 0.8 a_max, then rows growing by q = 1 + 0.3 / √2^level).  Worst scaled
+ * to 0.8 a_max, then rows growing by q = 1 + 0.3 / √2^level); one that ends
+ * less than h/4 below the fine zone's last uniform row (M3_THICK_REST) is
+ * meshed like a thin one, with uniform rows t / ceil(t/h).  Worst scaled
  * Jacobian measured >= 0.34 for 0 <= t <= 0.5 mm, 0.003 <= a_max <= 2.5 mm
  * (R = 10, levels 0-2; tests/test_mesh3d.c).  Linear (chordal) boundary
  * faces: the volume error is ~0.3 % at level 1, halving per level.
@@ -86,6 +88,17 @@ static const double M3_FINE_LAT = 1.0;
 static const double M3_FINE_DEP = 0.8;  /* fine zone depth / a_max (Hertz τmax at 0.48 a) */
 static const double M3_TOP_FLAG = 3.0;  /* ASP_NODE_TOP within this × a_max of the axis */
 static const double M3_MAX_CORE = 0.5;  /* core must stay inside |p| < this (reference units) */
+/* Least depth, in units of h, by which the coating must reach below the fine
+ * zone's last uniform row (depth ceil(0.8 a_max / h) h) to get the
+ * thick-coating rows (make_rows); a coating that ends above that depth gets
+ * uniform rows t / ceil(t/h) <= h instead.  The thick-coating rows between
+ * the last uniform row and the interface are as thin as that remainder: a
+ * coating ending on or above the last uniform row made the interface row
+ * overtake it (inverted elements, e.g. t/R 0.016, n = 6.3-8 at δ = 1 ωc,
+ * E/Y 133), and a remainder below ~1e-3 h still inverted elements once the
+ * interface row was snapped onto the sphere.  With h/4 the thin-coating rows
+ * are >= 0.6 h and the thick-coating rows >= 0.11 h (n = 3 to 384). */
+static const double M3_THICK_REST = 0.25;
 /* Shell growth: step ratio q_s(ρ) = 1 + (M3_SHELL_Q / √2^level) (ρ/c)^M3_SHELL_G.
  * The P error of the 3D Hertz point (a/R = 0.01) is dominated by the radial
  * step of the shells, not by the size at the contact: fitted to 12 runs,
@@ -154,16 +167,20 @@ static int core_id(const m3_plan *p, int i, int j, int l)
     return (l * p->ny + j) * p->nx + i;
 }
 
-/* Row depths of the core (physical mm, converted by the caller).  Returns
- * the number of rows L (depths d[0..L]) or -1 when more than cap. */
+/* Row depths of the core (physical mm, converted by the caller): nf =
+ * ceil(zf / h) uniform rows of h through the fine zone (depth zf), and a
+ * row exactly at the coating's depth t.  Returns the number of rows L
+ * (depths d[0..L], strictly increasing) or -1 when more than cap. */
 static int make_rows(double h, double t, double zf, double q, double *d, int cap,
                      int *lint)
 {
-    int L = 0;
+    int L = 0, nf = (int)ceil(zf / h - 1e-9);
     d[0] = 0.0;
     *lint = -1;
-    if (t > 0.0 && t <= zf) {
-        /* thin coating: >= 4 uniform rows, then grow back to h */
+    if (t > 0.0 && t < (nf + M3_THICK_REST) * h) {
+        /* thin coating (t <= zf), or one ending less than M3_THICK_REST h
+         * below the last uniform row: >= 4 uniform rows of t / ceil(t/h)
+         * <= h, then grow back to h */
         int nc = (int)ceil(t / h - 1e-9);
         if (nc < 4) nc = 4;
         double s = t / nc;
@@ -175,7 +192,6 @@ static int make_rows(double h, double t, double zf, double q, double *d, int cap
             L++;
         }
     } else {
-        int nf = (int)ceil(zf / h - 1e-9);
         for (int k = 1; k <= nf && L < cap; k++) d[++L] = h * k;
         if (t > 0.0) {
             /* thick coating: grow by q from h and land exactly on t */

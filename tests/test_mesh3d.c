@@ -16,6 +16,7 @@
 #include <cmocka.h>
 
 #include "fe.h"
+#include "stiction/formulas.h"
 
 static const double R = 10.0;
 
@@ -539,6 +540,104 @@ static void test_graded_core(void **state)
     asp_mesh_destroy(&G), asp_mesh_destroy(&U), asp_mesh_destroy(&U2);
 }
 
+/* Checks one coated mesh: every element positive (scaled Jacobian), on its
+ * side of the interface |X| = R, >= 4 coating layers on the axis, and no
+ * node row on the axis down to t + 2h closer than 0.1 of the coating's
+ * spacing min(h, t/4) to the next.  Returns the number of failed checks
+ * (printing them); *worst, *thin: the worst quality and the thinnest row
+ * over that spacing. */
+static int coated_mesh_ok(double t, double a, double n, double *worst, double *thin)
+{
+    asp_mesh_spec s = {R, t, a, 0, n, 0, 0.0};
+    asp_mesh *M = NULL;
+    if (asp_mesh_half3d(&s, &M) != STC_OK) {
+        printf("  t = %.9g a_max = %.9g n = %g: %s\n", t, a, n, stc_errmsg());
+        return 1;
+    }
+    double q = -1.0, h = a / n, sp = fmin(h, t / 4.0), Rp = R + t;
+    int bad = 0;
+    if (asp_mesh_quality(M, &q) != STC_OK) {
+        printf("  t = %.9g a_max = %.9g n = %g: %s\n", t, a, n, stc_errmsg());
+        bad++;
+    }
+    *worst = fmin(*worst, q);
+    unsigned char *is_h = hanging_marks(M);
+    int wrong = 0;
+    for (int e = 0; e < M->nelem; e++)
+        for (int k = 0; k < 8; k++) {
+            if (is_h[M->conn[8 * e + k]]) continue;
+            double r = norm3(M->x + 3 * M->conn[8 * e + k]);
+            if (M->region[e] == ASP_REGION_COATING ? r < R * (1 - 1e-12) : r > R * (1 + 1e-12))
+                wrong++;
+        }
+    free(is_h);
+    /* node depths on the axis (x = y = 0 exactly), down to t + 2h */
+    double z[4096];
+    int nz = 0, layers = 0;
+    for (int k = 0; k < M->nnode && nz < 4096; k++) {
+        const double *x = M->x + 3 * k;
+        if (x[0] != 0.0 || x[1] != 0.0 || x[2] < Rp - t - 2.0 * h) continue;
+        int i = nz++;
+        for (; i > 0 && z[i - 1] < x[2]; i--) z[i] = z[i - 1]; /* descending */
+        z[i] = x[2];
+        layers += x[2] >= R * (1 - 1e-12);
+    }
+    double gap = 1e30;
+    for (int i = 1; i < nz; i++) gap = fmin(gap, z[i - 1] - z[i]);
+    *thin = fmin(*thin, gap / sp);
+    layers--;
+    if (wrong || layers < 4 || gap < 0.1 * sp) {
+        printf("  t = %.9g a_max = %.9g n = %g: %d nodes off their layer, %d coating layers on "
+               "the axis, thinnest row %.3g of min(h, t/4)\n", t, a, n, wrong, layers, gap / sp);
+        bad++;
+    }
+    asp_mesh_destroy(&M);
+    return bad;
+}
+
+/* A coating about as thick as the contact is wide, ending near the depth of
+ * the core's last uniform row ceil(0.8 n) h (h = a_max / n): the interface
+ * row used to land above that row whenever 0.8 a_max < t <= ceil(0.8 n) h,
+ * inverting the elements between them (595 of 31980 CLI normal-step meshes
+ * over t/R 0.002-0.1, δ 0.5-60 ωc, E/Y 133 and 1000, n 3-12, e.g. t/R 0.016,
+ * E/Y 133, δ = 1 ωc, n >= 6.3), and a sliver below it (t up to ~1e-3 h
+ * deeper) inverted too.  The CLI's meshes around such cases (a_max as the
+ * solver sizes it, R = 10, E/Y 133) and t placed at that row's depth
+ * within -1e-3 ... +5e-2 relative. */
+static void test_coating_at_core_row(void **state)
+{
+    (void)state;
+    double t0 = now(), worst = 1.0, thin = 1e30;
+    int nmesh = 0, nbad = 0;
+    stc_material su = {200000.0, 0.3, 1500.0};
+    stc_critical c;
+    assert_int_equal(stc_critical_eval(&su, R, &c), STC_OK);
+    const double tRs[] = {0.008, 0.016, 0.032, 0.064}, deltas[] = {1.0, 8.0};
+    const double ns[] = {3.0, 5.0, 6.0, 6.3, 6.62469, 7.0, 8.0};
+    for (size_t it = 0; it < sizeof tRs / sizeof tRs[0]; it++)
+        for (size_t id = 0; id < sizeof deltas / sizeof deltas[0]; id++)
+            for (size_t in = 0; in < sizeof ns / sizeof ns[0]; in++) {
+                double t = tRs[it] * R, d = deltas[id] * c.omega_c;
+                double a = (d <= 2.0 * c.omega_c ? 1.1 : 1.45) * sqrt((R + t) * d);
+                nbad += coated_mesh_ok(t, a, ns[in], &worst, &thin);
+                nmesh++;
+            }
+    const double eps[] = {-1e-3, 0.0, 1e-9, 1e-6, 1e-4, 1e-3, 5e-2}, as[] = {0.2, 1.0};
+    const double ne[] = {3.0, 6.0, 12.0};
+    for (size_t ie = 0; ie < sizeof eps / sizeof eps[0]; ie++)
+        for (size_t ia = 0; ia < sizeof as / sizeof as[0]; ia++)
+            for (size_t in = 0; in < sizeof ne / sizeof ne[0]; in++) {
+                double t = ceil(0.8 * ne[in]) * as[ia] / ne[in] * (1.0 + eps[ie]);
+                nbad += coated_mesh_ok(t, as[ia], ne[in], &worst, &thin);
+                nmesh++;
+            }
+    printf("coating at the core's last uniform row: %d meshes, %d failed; worst scaled "
+           "Jacobian %.3f, thinnest axis row %.2f of min(h, t/4); %.2f s\n",
+           nmesh, nbad, worst, thin, now() - t0);
+    assert_int_equal(nbad, 0);
+    assert_true(worst > 0.3);
+}
+
 static void test_invalid(void **state)
 {
     (void)state;
@@ -567,6 +666,7 @@ int main(void)
         cmocka_unit_test(test_uncoarsened),
         cmocka_unit_test(test_hanging),
         cmocka_unit_test(test_graded_core),
+        cmocka_unit_test(test_coating_at_core_row),
         cmocka_unit_test(test_invalid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
