@@ -258,13 +258,9 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         return st;
     }
     for (int i = o->shard; i < np; i += o->shards) {
-        if (o->only && !o->only[i]) continue;
-        b.total++;
         int st_i = t->pt[i].state;
-        if (o->only_failed && st_i == TBL_PENDING) {
-            b.total--; /* not this run's share */
-            continue;
-        }
+        if ((o->only && !o->only[i]) || (o->only_failed && st_i == TBL_PENDING)) continue;
+        b.total++;
         if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
             todo[n++] = i;
         else b.done++, b.resumed++, b.failed += st_i == TBL_FAILED;

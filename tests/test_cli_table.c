@@ -73,15 +73,9 @@ static int wait_rc(pid_t pid)
 /* Run the CLI in the scratch directory; which = 1 captures stdout, 2 stderr. */
 static int run(const char *args, int which, char *out, size_t n)
 {
-    static char cmd[2 * PATH_MAX + 4096];
-    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s %s", dir, cli, args,
-             which == 1 ? "2>/dev/null" : "2>&1 >/dev/null");
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t got = fread(out, 1, n - 1, p);
-    out[got] = '\0';
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    static char cmd[PATH_MAX + 2048]; /* cli_capture adds its redirection */
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' %s", dir, cli, args);
+    return cli_capture(cmd, which, out, n);
 }
 
 static int count_lines(const char *path, const char *needle)

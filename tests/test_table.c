@@ -27,6 +27,7 @@
 #include "stiction/model.h"
 #include "stiction/surface.h"
 #include "stiction/table.h"
+#include "rand_util.h"
 
 /* The grid of every table here: w = δ/ωc log-spaced over five decades. */
 #define NW 40
@@ -49,16 +50,6 @@ static void w_axis(double *w)
 {
     for (int i = 0; i < NW; i++)
         w[i] = W_LO * pow(W_HI / W_LO, (double)i / (NW - 1));
-}
-
-/* splitmix64 (Steele, Lea & Flood 2014): uniform in (0, 1). */
-static double unif(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    z ^= z >> 31;
-    return ((z >> 11) + 0.5) / 9007199254740992.0;
 }
 
 static double now(void)
