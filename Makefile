@@ -21,7 +21,7 @@ CSTD      := -std=c11 -D_DEFAULT_SOURCE
 WARN      := -Wall -Wextra -Werror
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
-CPPFLAGS  += -Iinclude -Iasperity -Isurface -I/usr/include/suitesparse -DSTC_VERSION='"$(VERSION)"'
+CPPFLAGS  += -I/usr/include/suitesparse -DSTC_VERSION='"$(VERSION)"'
 CFLAGS    += $(CSTD) $(OPTFLAGS) $(WARN) -fopenmp -fPIC $(PKG_CFLAGS)
 # GSL's CBLAS calls are served by OpenBLAS (no -lgslcblas: one CBLAS only)
 LDLIBS    += -lgsl -lfftw3_omp $(PKG_LIBS) -lcholmod -lopenblas -lpng -lm
@@ -31,7 +31,19 @@ CFLAGS    += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-
 LDFLAGS   += -fsanitize=address,undefined
 endif
 
-LIB_SRC   := $(sort $(wildcard asperity/*.c surface/*.c))
+# Layers: core/ (status, checks, parsing, HDF5 attributes) under asperity/
+# (one asperity, friction tables) and surface/ (rough surfaces, GW sums; it
+# uses the asperity models through include/stiction/model.h and table.h);
+# the CLI (tools/cli/) on top.  Each layer is compiled seeing the public
+# headers and its own private ones only; the tests are unit tests of the
+# internals and see every private folder.
+INC_core     := -Iinclude -Icore
+INC_asperity := $(INC_core) -Iasperity
+INC_surface  := $(INC_core) -Isurface
+INC_cli      := -Iinclude -Itools/cli
+INC_tests    := $(INC_core) -Iasperity -Isurface -Itests
+
+LIB_SRC   := $(sort $(wildcard core/*.c asperity/*.c surface/*.c))
 CLI_SRC   := $(sort $(wildcard tools/cli/*.c))
 TEST_SRC  := $(sort $(wildcard tests/test_*.c))
 LIB_OBJ   := $(LIB_SRC:%.c=$(O)/obj/%.o)
@@ -62,7 +74,12 @@ deps:
 
 $(O)/obj/%.o: %.c | $(DEPSTAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(LAYER_INC) $(CPPFLAGS) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(O)/obj/core/%.o:      LAYER_INC = $(INC_core)
+$(O)/obj/asperity/%.o:  LAYER_INC = $(INC_asperity)
+$(O)/obj/surface/%.o:   LAYER_INC = $(INC_surface)
+$(O)/obj/tools/cli/%.o: LAYER_INC = $(INC_cli)
 
 # The element kernels dominate FE assembly; -O3 (vectorised loops) makes them
 # about 1.8x faster (measured: hex8 force + stiffness 12.2 us -> 6.8 us).
@@ -85,7 +102,7 @@ $(CLI): $(CLI_OBJ) $(STATIC)
 
 $(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) $(wildcard tests/*.h) | $(DEPSTAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) -Itests -DSTC_DATA_DIR='"$(CURDIR)/data"' $(CFLAGS) -o $@ $< $(STATIC) \
+	$(CC) $(INC_tests) $(CPPFLAGS) -DSTC_DATA_DIR='"$(CURDIR)/data"' $(CFLAGS) -o $@ $< $(STATIC) \
 	    -lcmocka $(LDFLAGS) $(LDLIBS)
 
 check: all $(TEST_BIN)

@@ -15,6 +15,7 @@
 #define STICTION_TANGENTIAL_H
 
 #include "fe.h"
+#include "stiction/asperity.h" /* asp_hertz_delta_guess (slide.c) */
 #include "stiction/status.h"
 
 /* ---- nodal stick law (friction.c) ------------------------------------- */
@@ -238,8 +239,5 @@ typedef struct asp_find_delta_result {
  * message prefixed. */
 stc_status asp_find_delta(asp_load_fn fn, void *ctx, double P_target, double delta0,
                           const asp_find_delta_opts *o, asp_find_delta_result *res);
-
-/* Hertz guess δ = (3 P / (4 E* √R))^{2/3} (rigid flat, docs/design.md §6.1). */
-double asp_hertz_delta_guess(double P, double E, double nu, double R);
 
 #endif

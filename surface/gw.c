@@ -18,6 +18,7 @@
 #include <gsl/gsl_roots.h>
 
 #include "stiction/gw.h"
+#include "stiction/parse.h"
 #include "stc_check.h"
 
 #define TABOR_H_OVER_Y 2.8 /* Tabor (1951): H = 2.8 Y; GW 1966 plasticity index */

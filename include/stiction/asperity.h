@@ -350,6 +350,15 @@ stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *p
 stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
                                 asp_point *out);
 
+/* Hertz interference (mm) of an elastic sphere of radius R (mm), modulus E
+ * (MPa) and Poisson ratio nu pressed on a rigid flat by the load P (N):
+ * δ = (3 P / (4 E* √R))^{2/3}, E* = E / (1 − ν²) (docs/design.md §6.1).
+ * An elastic–plastic sphere needs more δ for the same P (its P(δ) lies
+ * below Hertz), so a multiple of this sizes the mesh (asp_solver_create's
+ * delta_max) for asp_solver_load_to_P, and it is that solve's first guess.
+ * Pure, thread-safe. */
+double asp_hertz_delta_guess(double P, double E, double nu, double R);
+
 /* Node-placement ensemble (docs/design.md §4.5).  One mesh reads the
  * junction growth in whole node closures, so a single μs depends on where the
  * surface nodes sit relative to the contact edge (about ±10 % at level 0).

@@ -9,7 +9,6 @@
 #include "cli.h"
 #include "stiction/asperity.h"
 #include "stiction/formulas.h"
-#include "tangential.h"
 
 static stc_status bad(const char *key, const char *value, const char *what)
 {
