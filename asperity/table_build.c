@@ -166,7 +166,7 @@ stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
 /* After a point: journal first, then the table, then the caller. */
 void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p)
 {
-#pragma omp critical(tbl_build_finish)
+    omp_set_lock(&b->lock);
     {
         int stop = 0;
         if (journal_append(b->fd, i, p) != 0) b->io_error = errno ? errno : EIO, stop = 1;
@@ -189,6 +189,7 @@ void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p)
             b->stop = 1;
         }
     }
+    omp_unset_lock(&b->lock);
 }
 
 /* The serial path: the points on this process's threads, one per point. */
@@ -219,10 +220,9 @@ static stc_status run_points(tbl_build_state *b, const int *todo, int n)
         tbl_point p;
         stc_status s = tbl_build_compute(b->t, todo[k], &p);
         if (s != STC_OK) {
-#pragma omp critical(tbl_build_finish)
-            {
-                if (bad == STC_OK) bad = s, snprintf(why, sizeof why, "%s", stc_errmsg());
-            }
+            omp_set_lock(&b->lock);
+            if (bad == STC_OK) bad = s, snprintf(why, sizeof why, "%s", stc_errmsg());
+            omp_unset_lock(&b->lock);
 #pragma omp atomic write
             b->stop = 1;
             continue;
@@ -265,7 +265,11 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
             todo[n++] = i;
         else b.done++, b.resumed++, b.failed += st_i == TBL_FAILED;
     }
+    /* a lock of this build rather than a named critical section, whose lock
+     * would be a global symbol of the shared library */
+    omp_init_lock(&b.lock);
     st = m->size > 1 ? tbl_mpi_serve(m, &b, todo, n) : run_points(&b, todo, n);
+    omp_destroy_lock(&b.lock);
     tbl_mpi_end(m); /* every rank is done: the other ranks need not wait for the file */
     free(todo);
     close(b.fd);

@@ -5,6 +5,8 @@
 #ifndef STICTION_TABLE_IMPL_H
 #define STICTION_TABLE_IMPL_H
 
+#include <omp.h>
+
 #include "stiction/table.h"
 #include "table_fit.h"
 
@@ -53,6 +55,8 @@ typedef struct tbl_build_state {
     int stop;                   /* nonzero: hand out no more points */
     int io_error;               /* errno of a failed journal append, else 0 */
     double t0, cpu;             /* start (monotonic s); CPU s of the computed points */
+    omp_lock_t lock;            /* serialises tbl_build_finish and the first-failure
+                                   record; initialised around the computing phase */
 } tbl_build_state;
 
 /* Point i of t computed on the calling thread: tbl_point_compute at the
@@ -60,7 +64,7 @@ typedef struct tbl_build_state {
 stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p);
 
 /* A finished point: journal it (synced), store it in the table, report it.
- * Thread-safe (one critical section).  Sets b->stop on a journal error or
+ * Thread-safe (b->lock).  Sets b->stop on a journal error or
  * when the progress callback asks to stop. */
 void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p);
 

@@ -186,19 +186,21 @@ typedef struct {
     int open;           /* ranks not yet told to stop */
     uint64_t hash;
     int shard, shards;
-    stc_status fail;    /* the first failure (critical tbl_mpi_fail) */
+    stc_status fail;    /* the first failure (under lock) */
     char why[WHY_MAX];
+    omp_lock_t lock;    /* guards fail and why while the farm runs (farm_run); a
+                           lock of the farm's, not a named critical section,
+                           whose lock would be a global symbol of the library */
 } farm;
 
 static void farm_fail(farm *f, stc_status s, const char *msg)
 {
-#pragma omp critical(tbl_mpi_fail)
-    {
-        if (f->fail == STC_OK) {
-            f->fail = s;
-            snprintf(f->why, sizeof f->why, "%s", msg);
-        }
+    omp_set_lock(&f->lock);
+    if (f->fail == STC_OK) {
+        f->fail = s;
+        snprintf(f->why, sizeof f->why, "%s", msg);
     }
+    omp_unset_lock(&f->lock);
     if (f->b) {
 #pragma omp atomic write
         f->b->stop = 1;
@@ -229,11 +231,10 @@ static void farm_reply(farm *f, int src)
     if (d.index < 0) {
         stc_status fail;
         int stop = 0;
-#pragma omp critical(tbl_mpi_fail)
-        {
-            fail = f->fail;
-            snprintf(d.why, sizeof d.why, "%s", f->why);
-        }
+        omp_set_lock(&f->lock);
+        fail = f->fail;
+        snprintf(d.why, sizeof d.why, "%s", f->why);
+        omp_unset_lock(&f->lock);
         if (f->b) {
 #pragma omp atomic read
             stop = f->b->stop;
@@ -310,6 +311,7 @@ static void farm_compute(farm *f)
 
 static stc_status farm_run(const tbl_mpi *m, farm *f)
 {
+    omp_init_lock(&f->lock);
     f->open = m->size - 1;
     f->given = malloc((size_t)m->size * sizeof *f->given);
     if (f->given) for (int r = 0; r < m->size; r++) f->given[r] = -1;
@@ -334,6 +336,7 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
     omp_set_max_active_levels(levels);
     free(f->given);
     f->given = NULL;
+    omp_destroy_lock(&f->lock);
     if (f->fail != STC_OK) return STC_FAIL(f->fail, "%s", f->why);
     return STC_OK;
 }

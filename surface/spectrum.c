@@ -1,5 +1,6 @@
 /* FFTW planning (serialised) and spectral moments of maps and spectra. */
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 
 #include <omp.h>
@@ -10,7 +11,13 @@
 int srf_threads(int requested) { return requested > 0 ? requested : omp_get_max_threads(); }
 
 /* fftw_init_threads must run once before any threaded plan; the planner is
- * not thread-safe, so both live in one named critical section. */
+ * not thread-safe, so both run under one lock.  FFTW's planner state is
+ * process-wide, and so is the lock: a file-local mutex.  A named OpenMP
+ * critical section would do the same, but its lock is a global symbol
+ * (.gomp_critical_user_<name>) the shared library would export; an unnamed
+ * one shares its lock with every unnamed critical of the process, a
+ * caller's too, and would deadlock a call made inside one. */
+static pthread_mutex_t planner_lock = PTHREAD_MUTEX_INITIALIZER;
 static int fftw_threads_ready;
 
 static void plan_setup(int threads)
@@ -21,32 +28,29 @@ static void plan_setup(int threads)
 
 fftw_plan srf_plan_r2c(int nx, int ny, double *in, fftw_complex *out, int threads)
 {
-    fftw_plan p;
-#pragma omp critical(srf_fftw_planner)
-    {
-        plan_setup(threads);
-        /* ESTIMATE: planning must not overwrite the caller's data, and a
-         * MEASURE plan of a 4096² grid costs more than many executions. */
-        p = fftw_plan_dft_r2c_2d(ny, nx, in, out, FFTW_ESTIMATE);
-    }
+    pthread_mutex_lock(&planner_lock);
+    plan_setup(threads);
+    /* ESTIMATE: planning must not overwrite the caller's data, and a
+     * MEASURE plan of a 4096² grid costs more than many executions. */
+    fftw_plan p = fftw_plan_dft_r2c_2d(ny, nx, in, out, FFTW_ESTIMATE);
+    pthread_mutex_unlock(&planner_lock);
     return p;
 }
 
 fftw_plan srf_plan_c2r(int nx, int ny, fftw_complex *in, double *out, int threads)
 {
-    fftw_plan p;
-#pragma omp critical(srf_fftw_planner)
-    {
-        plan_setup(threads);
-        p = fftw_plan_dft_c2r_2d(ny, nx, in, out, FFTW_ESTIMATE);
-    }
+    pthread_mutex_lock(&planner_lock);
+    plan_setup(threads);
+    fftw_plan p = fftw_plan_dft_c2r_2d(ny, nx, in, out, FFTW_ESTIMATE);
+    pthread_mutex_unlock(&planner_lock);
     return p;
 }
 
 void srf_plan_destroy(fftw_plan p)
 {
-#pragma omp critical(srf_fftw_planner)
+    pthread_mutex_lock(&planner_lock);
     fftw_destroy_plan(p);
+    pthread_mutex_unlock(&planner_lock);
 }
 
 /* Profile moments averaged over directions θ (header convention, Nayak 1971):

@@ -7,8 +7,8 @@
 #include "stiction/surface.h"
 
 /* FFTW's planner and its thread set-up are global state: every planner call
- * in the library goes through these, serialised by one OpenMP critical
- * section (FFTW: only fftw_execute* is thread-safe). */
+ * in the library goes through these, serialised by one lock (spectrum.c;
+ * FFTW: only fftw_execute* is thread-safe). */
 fftw_plan srf_plan_r2c(int nx, int ny, double *in, fftw_complex *out, int threads);
 fftw_plan srf_plan_c2r(int nx, int ny, fftw_complex *in, double *out, int threads);
 void srf_plan_destroy(fftw_plan p);

@@ -18,6 +18,7 @@
 #ifndef STICTION_ASPERITY_H
 #define STICTION_ASPERITY_H
 
+#include "stiction/export.h"
 #include "stiction/params.h"
 #include "stiction/status.h"
 
@@ -130,7 +131,7 @@ typedef struct asp_options {
                                 default 0 */
 } asp_options;
 
-void asp_options_default(asp_options *o);
+STC_API void asp_options_default(asp_options *o);
 
 /* Mesh and problem size. */
 typedef struct asp_info {
@@ -181,17 +182,17 @@ typedef struct asp_yield {
 /* Create a solver for the parameters `p` (copied) and options `o` (copied,
  * NULL = defaults), meshed for interferences up to delta_max (mm).
  * Returns new in *out. */
-stc_status asp_solver_create(const stc_params *p, const asp_options *o, double delta_max,
-                             asp_solver **out);
-void asp_solver_destroy(asp_solver **s); /* sets *s = NULL */
+STC_API stc_status asp_solver_create(const stc_params *p, const asp_options *o, double delta_max,
+                                     asp_solver **out);
+STC_API void asp_solver_destroy(asp_solver **s); /* sets *s = NULL */
 
 /* Advance the flat to interference `delta` (mm, >= the current one, <= the
  * delta_max of create) and fill `out` (nullable).  On failure the solver stays
  * at the last converged state and the message gives the reason
  * (STC_ENOCONV: Newton / active set / cut-back limit; STC_ESOLVER: CHOLMOD). */
-stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out);
+STC_API stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out);
 
-void asp_solver_info(const asp_solver *s, asp_info *info);
+STC_API void asp_solver_info(const asp_solver *s, asp_info *info);
 
 /* Load at interference `delta` (mm) with the node-entry sawtooth removed:
  * past first yield P(δ) of a node-to-flat contact jumps each time a surface
@@ -205,7 +206,7 @@ void asp_solver_info(const asp_solver *s, asp_info *info);
  * the mesh-converged slip curve to 60 ωc, docs/design.md §3.2).
  * Writes *P (N; NaN if not enough increments) and returns the number of
  * increments used (0: no estimate). */
-int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
+STC_API int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
 
 /* Load on past the meshed maximum δ_max (same mesh), to 1.5 δ_max (at most
  * the small-strain limit 0.01 R), so that asp_solver_P_smooth at the last
@@ -214,15 +215,15 @@ int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
  * it after the last point's results and fields are taken: the state is then
  * past the curve.  A failure is returned like asp_solver_load's; the
  * increments that converged before it stay in the estimate. */
-stc_status asp_solver_load_tail(asp_solver *s, asp_point *out);
+STC_API stc_status asp_solver_load_tail(asp_solver *s, asp_point *out);
 
 /* First yield of layer 0 (substrate) or 1 (coating). */
-void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);
+STC_API void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y);
 
 /* Write the current fields (displacement, stress, von Mises, equivalent
  * plastic strain, layer id) to `prefix`.h5 and an XDMF index `prefix`.xmf
  * (ParaView).  `prefix` is borrowed. */
-stc_status asp_solver_write_fields(const asp_solver *s, const char *prefix);
+STC_API stc_status asp_solver_write_fields(const asp_solver *s, const char *prefix);
 
 /* ---- tangential step: shear to sliding inception -------------------------
  * After the normal step (asp_solver_load or asp_solver_load_to_P) the flat
@@ -272,7 +273,7 @@ typedef struct asp_shear_options {
                             more growth than the elastic reference) */
 } asp_shear_options;
 
-void asp_shear_options_default(asp_shear_options *o);
+STC_API void asp_shear_options_default(asp_shear_options *o);
 
 /* One accepted point of the ramp (full model: the half model's sums x 2). */
 typedef struct asp_shear_point {
@@ -331,8 +332,8 @@ typedef int (*asp_shear_fn)(void *ctx, const asp_shear_point *pt);
  * limit (res holds what was reached; Q_max is then not an answer);
  * STC_EINVAL for bad options or an axisymmetric solver.  After a failure
  * the solver is not reusable for another ramp. */
-stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear_fn cb,
-                            void *ctx, asp_shear_result *res);
+STC_API stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear_fn cb,
+                                    void *ctx, asp_shear_result *res);
 
 /* After asp_solver_shear with keep_fields: write the fields at Q = 0
  * (which = 0), at the kept point nearest 0.8 Q_max (1) and at inception (2)
@@ -340,15 +341,15 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
  * Q_over_Q_max, tau_c_MPa.  Q_max here is the largest Q of the ramp (the
  * stiffness criterion: the last point).  *Q_over_Qmax (nullable) gets the
  * point's Q / Q_max.  STC_EINVAL if that snapshot was not kept. */
-stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *prefix,
-                                         double *Q_over_Qmax);
+STC_API stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *prefix,
+                                                 double *Q_over_Qmax);
 
 /* Load control: advance the flat to the δ at which P = P_target (N, within
  * rel_tol, e.g. 1e-3) by the log-log secant of asp_find_delta, restoring a
  * checkpoint when a step must go back.  Fills `out` like asp_solver_load.
  * STC_ERANGE if P(delta_max of create) < P_target. */
-stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
-                                asp_point *out);
+STC_API stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
+                                        asp_point *out);
 
 /* Hertz interference (mm) of an elastic sphere of radius R (mm), modulus E
  * (MPa) and Poisson ratio nu pressed on a rigid flat by the load P (N):
@@ -357,7 +358,7 @@ stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol,
  * below Hertz), so a multiple of this sizes the mesh (asp_solver_create's
  * delta_max) for asp_solver_load_to_P, and it is that solve's first guess.
  * Pure, thread-safe. */
-double asp_hertz_delta_guess(double P, double E, double nu, double R);
+STC_API double asp_hertz_delta_guess(double P, double E, double nu, double R);
 
 /* Node-placement ensemble (docs/design.md §4.5).  One mesh reads the
  * junction growth in whole node closures, so a single μs depends on where the
@@ -391,9 +392,9 @@ typedef struct asp_placement_result {
     asp_placement_member m[ASP_PLACEMENTS_MAX];
 } asp_placement_result;
 
-stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
-                                const asp_shear_options *so, double delta, int k,
-                                asp_placement_result *out);
+STC_API stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
+                                        const asp_shear_options *so, double delta, int k,
+                                        asp_placement_result *out);
 
 #ifdef __cplusplus
 }

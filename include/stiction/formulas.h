@@ -7,6 +7,7 @@
 #ifndef STICTION_FORMULAS_H
 #define STICTION_FORMULAS_H
 
+#include "stiction/export.h"
 #include "stiction/params.h"
 #include "stiction/status.h"
 
@@ -27,7 +28,7 @@ enum {
 
 /* Describe the flags in words ("Eco/Esu outside the fit's range; ...").
  * Writes at most n bytes into buf (NUL-terminated); returns buf. */
-const char *stc_fit_describe(unsigned flags, char *buf, int n);
+STC_API const char *stc_fit_describe(unsigned flags, char *buf, int n);
 
 /* Which family of fits a flag word belongs to: the same bit means a
  * different range for each family (e.g. Eco/Esu <= 4.5 for the slip fits). */
@@ -42,11 +43,11 @@ typedef enum stc_fit_family {
 
 /* One sentence naming the range (and its source) that flag `bit` of
  * family `fam` violates.  Returns a static string; thread-safe. */
-const char *stc_fit_flag_text(stc_fit_family fam, unsigned bit);
+STC_API const char *stc_fit_flag_text(stc_fit_family fam, unsigned bit);
 
 /* stc_fit_describe with the family's wording: the set bits' sentences
  * joined by "; " into buf (at most n bytes, NUL-terminated); returns buf. */
-const char *stc_fit_describe_family(stc_fit_family fam, unsigned flags, char *buf, int n);
+STC_API const char *stc_fit_describe_family(stc_fit_family fam, unsigned flags, char *buf, int n);
 
 /* --- Hertz: elastic sphere on a rigid flat (docs/design.md §6.1) --- */
 typedef struct stc_hertz {
@@ -56,7 +57,7 @@ typedef struct stc_hertz {
     double p0;     /* peak pressure, MPa */
     double A;      /* contact area π a², mm² */
 } stc_hertz;
-stc_status stc_hertz_eval(const stc_material *m, double R, double delta, stc_hertz *out);
+STC_API stc_status stc_hertz_eval(const stc_material *m, double R, double delta, stc_hertz *out);
 
 /* --- Yield inception of a homogeneous sphere (docs/design.md §6.1–§6.2) --- */
 typedef struct stc_critical {
@@ -71,12 +72,12 @@ typedef struct stc_critical {
     double A_c_stick;       /* π δc R, mm² */
     unsigned flags;         /* STC_FITS_STICK_HOMOG: STC_FIT_NU */
 } stc_critical;
-stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out);
+STC_API stc_status stc_critical_eval(const stc_material *m, double R, stc_critical *out);
 
 /* Brizmer et al. 2006 stick ratios δc/ωc and Lc/Pc alone; NAN where the fit
  * is not positive (ν below about 0.07 and 0.12 respectively). */
-double stc_brizmer_delta_ratio(double nu);
-double stc_brizmer_load_ratio(double nu);
+STC_API double stc_brizmer_delta_ratio(double nu);
+STC_API double stc_brizmer_load_ratio(double nu);
 
 /* --- Coated sphere fits (docs/design.md §6.3) --- */
 typedef struct stc_coated {
@@ -102,25 +103,29 @@ typedef struct stc_coated {
  * raised to negative powers): otherwise returns STC_EUNSUPPORTED with a
  * message saying why the coated fits do not apply (callers report "not
  * applicable", not an error).  STC_EINVAL for invalid parameters. */
-stc_status stc_coated_eval(const stc_params *p, stc_coated *out);
+STC_API stc_status stc_coated_eval(const stc_params *p, stc_coated *out);
 
 /* The pieces of stc_coated_eval usable without a coating thickness (e.g. to
  * choose one).  Materials are not checked here; pass validated ones. */
-double stc_pc_ratio(const stc_material *su, const stc_material *co); /* Pc_co/Pc_su, corrected */
-double stc_tR_p(const stc_material *su, const stc_material *co);     /* Goltsberg 2011, eq. 3.5 */
-double stc_tR_p_same_nu(const stc_material *su, const stc_material *co); /* Chen 2016, eq. 3.7 */
-double stc_tR_p_st(const stc_material *su, const stc_material *co, double nu); /* Ronen 2017 */
+/* Pc_co/Pc_su, corrected */
+STC_API double stc_pc_ratio(const stc_material *su, const stc_material *co);
+/* Goltsberg 2011, eq. 3.5 */
+STC_API double stc_tR_p(const stc_material *su, const stc_material *co);
+/* Chen 2016, eq. 3.7 */
+STC_API double stc_tR_p_same_nu(const stc_material *su, const stc_material *co);
+/* Ronen 2017 */
+STC_API double stc_tR_p_st(const stc_material *su, const stc_material *co, double nu);
 
 /* Elastic–plastic stick relations for δc1 < δ < δc2 (Ronen et al. 2017):
  * L/Lc2 = (δ/δc2)^1.25, A/Ac2 = δ/δc2.  flags gets STC_FIT_DELTA when δ is
  * outside (δc1, δc2). */
-stc_status stc_coated_ep(const stc_coated *c, double delta_mm, double *L_N, double *A_mm2,
-                         unsigned *flags);
+STC_API stc_status stc_coated_ep(const stc_coated *c, double delta_mm, double *L_N, double *A_mm2,
+                                 unsigned *flags);
 
 /* --- Wu, Shi & Polycarpou 2012: μs = 0.3 coth(0.57 (ω/ωc)^0.41) ---
  * Returns NAN (and STC_FIT_DELTA) for ω/ωc <= 0 or not finite; flags
  * (nullable) gets STC_FIT_DELTA outside the preloads 0.5–72 of the paper. */
-double stc_wsp_mu(double omega_over_omega_c, unsigned *flags);
+STC_API double stc_wsp_mu(double omega_over_omega_c, unsigned *flags);
 
 #ifdef __cplusplus
 }

@@ -30,6 +30,7 @@
 #ifndef STICTION_GW_H
 #define STICTION_GW_H
 
+#include "stiction/export.h"
 #include "stiction/model.h"
 #include "stiction/status.h"
 #include "stiction/surface.h"
@@ -44,7 +45,7 @@ typedef enum srf_gw_mode {
     SRF_GW_KDE = 1,
     SRF_GW_DETERMINISTIC = 2
 } srf_gw_mode;
-const char *srf_gw_mode_name(srf_gw_mode m); /* "gaussian", "kde", "deterministic" */
+STC_API const char *srf_gw_mode_name(srf_gw_mode m); /* "gaussian", "kde", "deterministic" */
 
 /* Numerical controls. */
 typedef struct srf_gw_params {
@@ -56,28 +57,28 @@ typedef struct srf_gw_params {
                                  fraction of the load is carried; default 0.999 */
     int kde_grid;             /* KDE: density grid points; default 4096 */
 } srf_gw_params;
-void srf_gw_params_default(srf_gw_params *p);
+STC_API void srf_gw_params_default(srf_gw_params *p);
 
 typedef struct srf_gw srf_gw;
 
 /* Gaussian summit heights.  model borrowed (must outlive the handle);
  * p may be NULL (defaults).  Returns new in *out. */
-stc_status srf_gw_create_gaussian(const asp_model *model, double eta_per_mm2, double R_mm,
-                                  double sigma_s_mm, const srf_gw_params *p, srf_gw **out);
+STC_API stc_status srf_gw_create_gaussian(const asp_model *model, double eta_per_mm2, double R_mm,
+                                          double sigma_s_mm, const srf_gw_params *p, srf_gw **out);
 
 /* Measured summits: heights z[n] (mm, any datum), radii R[n] (mm) on a
  * nominal area (mm²).  Arrays copied.  mode KDE uses the mean radius 1/<κ>
  * over valid summits; DETERMINISTIC each summit's own. */
-stc_status srf_gw_create_summits(const asp_model *model, srf_gw_mode mode, const double *z,
-                                 const double *R, int n, double area_mm2,
-                                 const srf_gw_params *p, srf_gw **out);
+STC_API stc_status srf_gw_create_summits(const asp_model *model, srf_gw_mode mode, const double *z,
+                                         const double *R, int n, double area_mm2,
+                                         const srf_gw_params *p, srf_gw **out);
 
 /* Convenience over srf_summits (borrowed). */
-stc_status srf_gw_create_from_summits(const asp_model *model, srf_gw_mode mode,
-                                      const srf_summits *s, const srf_gw_params *p,
-                                      srf_gw **out);
+STC_API stc_status srf_gw_create_from_summits(const asp_model *model, srf_gw_mode mode,
+                                              const srf_summits *s, const srf_gw_params *p,
+                                              srf_gw **out);
 
-void srf_gw_destroy(srf_gw **g);
+STC_API void srf_gw_destroy(srf_gw **g);
 
 /* Population summary. */
 typedef struct srf_gw_info {
@@ -94,7 +95,7 @@ typedef struct srf_gw_info {
     double plasticity_index; /* ψ = (E* / H) sqrt(σs/R) (Greenwood & Williamson 1966) */
     double bandwidth_mm;     /* KDE bandwidth (NaN otherwise) */
 } srf_gw_info;
-void srf_gw_get_info(const srf_gw *g, srf_gw_info *out);
+STC_API void srf_gw_get_info(const srf_gw *g, srf_gw_info *out);
 
 /* One load point.  Sums per unit nominal area. */
 typedef struct srf_gw_point {
@@ -114,13 +115,13 @@ typedef struct srf_gw_point {
 } srf_gw_point;
 
 /* Sums at separation h = d/σs. */
-stc_status srf_gw_at_separation(srf_gw *g, double h, srf_gw_point *out);
+STC_API stc_status srf_gw_at_separation(srf_gw *g, double h, srf_gw_point *out);
 
 /* Solve P(h)/An = pressure_MPa (> 0) for h by Brent's method (GSL) and
  * return the sums there.  Fails with STC_ENOCONV (reason in the message) if
  * the iteration does not converge, STC_ERANGE if the pressure cannot be
  * bracketed (e.g. above what the summits can carry). */
-stc_status srf_gw_at_pressure(srf_gw *g, double pressure_MPa, srf_gw_point *out);
+STC_API stc_status srf_gw_at_pressure(srf_gw *g, double pressure_MPa, srf_gw_point *out);
 
 /* The points of the FE friction table t that a prediction at these loads
  * reads, if g's model gives the contact state (a guide: the closed-form
@@ -130,8 +131,9 @@ stc_status srf_gw_at_pressure(srf_gw *g, double pressure_MPa, srf_gw_point *out)
  * quantile when statistical) and t/R range, at Eco/Esu = E_ratio, marked in
  * need[tbl_points(t)] by tbl_mark_needed.  *pending: how many of the newly
  * marked points are pending. */
-stc_status srf_gw_table_needs(srf_gw *g, const tbl_table *t, double E_ratio, int by_pressure,
-                              const double *loads, int n, unsigned char *need, int *pending);
+STC_API stc_status srf_gw_table_needs(srf_gw *g, const tbl_table *t, double E_ratio,
+                                      int by_pressure, const double *loads, int n,
+                                      unsigned char *need, int *pending);
 
 #ifdef __cplusplus
 }

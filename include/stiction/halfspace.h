@@ -25,6 +25,7 @@
 #ifndef STICTION_HALFSPACE_H
 #define STICTION_HALFSPACE_H
 
+#include "stiction/export.h"
 #include "stiction/status.h"
 
 #ifdef __cplusplus
@@ -34,11 +35,12 @@ extern "C" {
 typedef struct srf_halfspace srf_halfspace;
 
 /* n in [8, 4096], h > 0, E > 0, ν in (−1, 0.5]. */
-stc_status srf_halfspace_create(srf_halfspace **out, int n, double h, double E, double nu);
-void srf_halfspace_destroy(srf_halfspace **hs);
+STC_API stc_status srf_halfspace_create(srf_halfspace **out, int n, double h, double E, double nu);
+STC_API void srf_halfspace_destroy(srf_halfspace **hs);
 
 /* w[n*n] (row i = x index) from p and qx (either may be NULL = zero). */
-stc_status srf_halfspace_disp(srf_halfspace *hs, const double *p, const double *qx, double *w);
+STC_API stc_status srf_halfspace_disp(srf_halfspace *hs, const double *p, const double *qx,
+                                      double *w);
 
 /* Contact with a rigid body at fixed approach: find p with gap
  * g = h0 + Kq * qx + Kp * p >= 0, p >= 0, p g = 0, except on cells with
@@ -49,9 +51,9 @@ stc_status srf_halfspace_disp(srf_halfspace *hs, const double *p, const double *
  * with the load step dropped (the approach is given).  Converged when the RMS
  * gap over the contact is below tol · max|h0| with no overlap left; otherwise
  * STC_ENOCONV after maxit iterations. */
-stc_status srf_halfspace_contact(srf_halfspace *hs, const double *h0, const double *qx,
-                                 const unsigned char *bond, double tol, int maxit, double *p,
-                                 int *iterations);
+STC_API stc_status srf_halfspace_contact(srf_halfspace *hs, const double *h0, const double *qx,
+                                         const unsigned char *bond, double tol, int maxit,
+                                         double *p, int *iterations);
 
 /* Sphere (radius R) pressed by a rigid flat to δ without friction, then the
  * flat slides along +x: the tangential traction on the solid rises as
@@ -70,8 +72,9 @@ typedef struct srf_slide_result {
 
 /* R, δ, E > 0; ν in (−1, 0.5]; τc >= 0; n in [16, 4096]; span in [1.05, 4];
  * steps in [1, 1000]. */
-stc_status srf_halfspace_sphere_slide(double R, double delta, double E, double nu, double tau_c,
-                                      int n, double span, int steps, srf_slide_result *out);
+STC_API stc_status srf_halfspace_sphere_slide(double R, double delta, double E, double nu,
+                                              double tau_c, int n, double span, int steps,
+                                              srf_slide_result *out);
 
 #ifdef __cplusplus
 }

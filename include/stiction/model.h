@@ -29,6 +29,7 @@
 #ifndef STICTION_MODEL_H
 #define STICTION_MODEL_H
 
+#include "stiction/export.h"
 #include "stiction/params.h"
 #include "stiction/status.h"
 
@@ -70,10 +71,10 @@ typedef struct asp_model_range {
 /* --- closed-form models --------------------------------------------------
  * p: materials (borrowed, copied; p->R and p->t_over_R are NOT used: R comes
  * per summit and t is t_mm).  t_mm >= 0.  Returns new in *out. */
-stc_status asp_model_create_hertz(const stc_params *p, double t_mm, asp_layer layer,
-                                  asp_model **out);
-stc_status asp_model_create_wsp(const stc_params *p, double t_mm, asp_layer layer,
-                                asp_model **out);
+STC_API stc_status asp_model_create_hertz(const stc_params *p, double t_mm, asp_layer layer,
+                                          asp_model **out);
+STC_API stc_status asp_model_create_wsp(const stc_params *p, double t_mm, asp_layer layer,
+                                        asp_model **out);
 
 /* --- tabulated models (the FE-table path) --------------------------------
  * Data on a grid of n_w values w[] (strictly increasing, > 0) times n_tR
@@ -97,7 +98,7 @@ typedef struct asp_model_data {
     const double *Q_Pc;     /* [n_tR][n_w] or NULL */
     int coating_aware;
 } asp_model_data;
-stc_status asp_model_create_data(const asp_model_data *d, asp_model **out);
+STC_API stc_status asp_model_create_data(const asp_model_data *d, asp_model **out);
 
 /* Sampling grid for asp_model_create_sampled. */
 typedef struct asp_sample_params {
@@ -107,46 +108,47 @@ typedef struct asp_sample_params {
     double tR_lo, tR_hi; /* t/R range (coating-aware bases only); default 0.002 .. 0.05 */
     int n_tR;          /* default 7 (1 for bases that ignore the coating) */
 } asp_sample_params;
-void asp_sample_params_default(asp_sample_params *sp);
+STC_API void asp_sample_params_default(asp_sample_params *sp);
 
 /* Sample `base` (borrowed, may be destroyed afterwards) on the grid sp (NULL
  * = defaults) and return an interpolating data model (new in *out).  A jump
  * of the base (wsp at w = 1, 6, 110) is smeared over two grid intervals
  * each side (Steffen's node slopes use both neighbours).  The table-ready path: the same code reads FE tables. */
-stc_status asp_model_create_sampled(const asp_model *base, const asp_sample_params *sp,
-                                    asp_model **out);
+STC_API stc_status asp_model_create_sampled(const asp_model *base, const asp_sample_params *sp,
+                                            asp_model **out);
 
-void asp_model_destroy(asp_model **m);
+STC_API void asp_model_destroy(asp_model **m);
 
 /* --- evaluation ----------------------------------------------------------
  * Response of a summit of radius R (mm, > 0, finite) at interference δ (mm).
  * δ <= 0: zero P, A, Qmax (Qmax NaN for frictionless models), w <= 0. */
-void asp_model_eval(const asp_model *m, double R, double delta, asp_response *out);
+STC_API void asp_model_eval(const asp_model *m, double R, double delta, asp_response *out);
 
 /* The normal load P (N) alone, equal to asp_model_eval's P (cheaper: no area,
  * no friction law).  0 for δ <= 0. */
-double asp_model_load(const asp_model *m, double R, double delta);
+STC_API double asp_model_load(const asp_model *m, double R, double delta);
 /* P/Pc alone at w = δ/ωc (0 for w <= 0). */
-double asp_model_load_norm(const asp_model *m, double w, double t_over_R);
+STC_API double asp_model_load_norm(const asp_model *m, double w, double t_over_R);
 
 /* Normalised response at w = δ/ωc and t/R (P/Pc, A/Ac, Q/Pc); returns flags. */
-unsigned asp_model_eval_norm(const asp_model *m, double w, double t_over_R, double *P_Pc,
-                             double *A_Ac, double *Q_Pc);
+STC_API unsigned asp_model_eval_norm(const asp_model *m, double w, double t_over_R, double *P_Pc,
+                                     double *A_Ac, double *Q_Pc);
 
 /* --- queries -------------------------------------------------------------- */
-const char *asp_model_name(const asp_model *m);      /* "hertz", "wsp", ... */
-const char *asp_model_layer_name(const asp_model *m); /* "substrate", "coating" or "reference" */
-void asp_model_get_range(const asp_model *m, asp_model_range *out);
-double asp_model_t(const asp_model *m);              /* coating thickness, mm */
-const stc_material *asp_model_ref(const asp_model *m); /* reference layer (borrowed) */
-double asp_model_omega_c(const asp_model *m, double R); /* mm, docs/design.md §6.1 */
-double asp_model_P_c(const asp_model *m, double R);     /* N */
-double asp_model_A_c(const asp_model *m, double R);     /* mm² */
-double asp_model_E_star(const asp_model *m);            /* E/(1-ν²) of the reference, MPa */
+STC_API const char *asp_model_name(const asp_model *m);       /* "hertz", "wsp", ... */
+/* "substrate", "coating" or "reference" */
+STC_API const char *asp_model_layer_name(const asp_model *m);
+STC_API void asp_model_get_range(const asp_model *m, asp_model_range *out);
+STC_API double asp_model_t(const asp_model *m);               /* coating thickness, mm */
+STC_API const stc_material *asp_model_ref(const asp_model *m); /* reference layer (borrowed) */
+STC_API double asp_model_omega_c(const asp_model *m, double R); /* mm, docs/design.md §6.1 */
+STC_API double asp_model_P_c(const asp_model *m, double R);     /* N */
+STC_API double asp_model_A_c(const asp_model *m, double R);     /* mm² */
+STC_API double asp_model_E_star(const asp_model *m); /* E/(1-ν²) of the reference, MPa */
 
 /* Values of w where the response has a kink or jump (for quadrature
  * breakpoints), ascending; returns their count and a borrowed array. */
-int asp_model_breaks(const asp_model *m, const double **w);
+STC_API int asp_model_breaks(const asp_model *m, const double **w);
 
 #ifdef __cplusplus
 }

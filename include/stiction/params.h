@@ -5,6 +5,7 @@
 #define STICTION_PARAMS_H
 
 #include <stdio.h>
+#include "stiction/export.h"
 #include "stiction/parse.h" /* the option parsers every subcommand uses */
 #include "stiction/status.h"
 
@@ -40,21 +41,21 @@ typedef struct stc_params {
 } stc_params;
 
 /* Fill `p` with the defaults listed above. */
-void stc_params_default(stc_params *p);
+STC_API void stc_params_default(stc_params *p);
 
 /* Set one common option from text, e.g. key "t-over-R", value "0.025".
  * Keys: R, t-over-R, t-mm, E-su, E-ratio, E-over-Y, Y-su, Y-co, nu, nu-co
  * (a leading "--" is accepted; '_' and '-' are interchangeable).
  * Returns STC_OK, STC_EINVAL with a message naming key, value and the valid
  * range, or STC_EUNSUPPORTED (no message) when the key is not a common one. */
-stc_status stc_params_set(stc_params *p, const char *key, const char *value);
+STC_API stc_status stc_params_set(stc_params *p, const char *key, const char *value);
 
 /* Name of the i-th common key (i = 0, 1, ...), NULL past the last: for
  * listings and for suggesting the closest key to a mistyped one. */
-const char *stc_params_key(int i);
+STC_API const char *stc_params_key(int i);
 
 /* Check the whole set for consistency (ranges that involve several keys). */
-stc_status stc_params_validate(const stc_params *p);
+STC_API stc_status stc_params_validate(const stc_params *p);
 
 /* Finish a set given through stc_params_set, once every key is in: a
  * thickness given as t-mm becomes t_over_R = t_mm / R with the final R
@@ -63,13 +64,13 @@ stc_status stc_params_validate(const stc_params *p);
  * layers (t > 0, E-ratio != 1, nu-co or Y-co given), since the other would
  * come from E-over-Y unasked; then stc_params_validate.  STC_OK or
  * STC_EINVAL naming the keys. */
-stc_status stc_params_resolve(stc_params *p);
+STC_API stc_status stc_params_resolve(stc_params *p);
 
 /* Resolved layer materials (substrate, coating).  Either pointer may be NULL. */
-void stc_params_materials(const stc_params *p, stc_material *su, stc_material *co);
+STC_API void stc_params_materials(const stc_params *p, stc_material *su, stc_material *co);
 
 /* Coating thickness t in mm. */
-double stc_params_t(const stc_params *p);
+STC_API double stc_params_t(const stc_params *p);
 
 #ifdef __cplusplus
 }

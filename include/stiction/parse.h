@@ -4,6 +4,7 @@
 #ifndef STICTION_PARSE_H
 #define STICTION_PARSE_H
 
+#include "stiction/export.h"
 #include "stiction/status.h"
 
 #ifdef __cplusplus
@@ -12,16 +13,16 @@ extern "C" {
 
 /* Parse a number from text strictly: whole string, finite.  Messages name
  * `key`.  Helpers for every option parser in the project. */
-stc_status stc_parse_double(const char *key, const char *value, double *out);
-stc_status stc_parse_long(const char *key, const char *value, long *out);
+STC_API stc_status stc_parse_double(const char *key, const char *value, double *out);
+STC_API stc_status stc_parse_long(const char *key, const char *value, long *out);
 
 /* Range checks producing the project's standard message
  * "<key> = <value>: must be <what>". lo/hi inclusive flags. */
-stc_status stc_check_range(const char *key, double v, double lo, int lo_incl,
-                           double hi, int hi_incl);
+STC_API stc_status stc_check_range(const char *key, double v, double lo, int lo_incl,
+                                   double hi, int hi_incl);
 
 /* Normalise an option key in place: strip leading "--", map '_' to '-'. */
-const char *stc_key_normalise(const char *key, char *buf, int bufsize);
+STC_API const char *stc_key_normalise(const char *key, char *buf, int bufsize);
 
 /* INI files (parsed by libinih): calls handler(user, section, key, value) for
  * every entry; stops at the first handler failure.  Section names are passed
@@ -30,7 +31,7 @@ const char *stc_key_normalise(const char *key, char *buf, int bufsize);
  * number for a syntax error, or the handler's status. */
 typedef stc_status (*stc_ini_handler)(void *user, const char *section,
                                       const char *key, const char *value);
-stc_status stc_ini_load(const char *path, stc_ini_handler handler, void *user);
+STC_API stc_status stc_ini_load(const char *path, stc_ini_handler handler, void *user);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,8 @@
 #ifndef STICTION_STATUS_H
 #define STICTION_STATUS_H
 
+#include "stiction/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -26,23 +28,23 @@ typedef enum stc_status {
 } stc_status;
 
 /* Short name of a status code.  Returns a static string; thread-safe. */
-const char *stc_strerror(stc_status s);
+STC_API const char *stc_strerror(stc_status s);
 
 /* Message recorded by the last failing call in this thread ("" if none).
  * Returns a pointer to thread-local storage, valid until the next failure. */
-const char *stc_errmsg(void);
+STC_API const char *stc_errmsg(void);
 
 /* Record a failure: formats the message into thread-local storage and
  * returns `s` so callers can write `return stc_error(...)`. */
-stc_status stc_error(stc_status s, const char *file, int line,
-                     const char *fmt, ...)
+STC_API stc_status stc_error(stc_status s, const char *file, int line,
+                             const char *fmt, ...)
 #ifdef __GNUC__
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
 
 /* Clear the thread's message. */
-void stc_error_clear(void);
+STC_API void stc_error_clear(void);
 
 #ifdef __cplusplus
 }

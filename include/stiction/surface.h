@@ -30,6 +30,7 @@
 #ifndef STICTION_SURFACE_H
 #define STICTION_SURFACE_H
 
+#include "stiction/export.h"
 #include "stiction/status.h"
 
 #ifdef __cplusplus
@@ -75,14 +76,14 @@ typedef struct srf_synth_params {
     int threads;            /* FFTW/OpenMP threads; 0 = omp_get_max_threads() (default) */
 } srf_synth_params;
 
-void srf_synth_params_default(srf_synth_params *p);
-stc_status srf_synth_params_validate(const srf_synth_params *p);
-const char *srf_spectrum_name(srf_spectrum s); /* "exponential", "self-affine", "user" */
+STC_API void srf_synth_params_default(srf_synth_params *p);
+STC_API stc_status srf_synth_params_validate(const srf_synth_params *p);
+STC_API const char *srf_spectrum_name(srf_spectrum s); /* "exponential", "self-affine", "user" */
 
 /* The continuous PSDs the synthesizer samples (exposed for tests and callers).
  * Exponential ACF R(τ) = σ² exp(-ln10 · sqrt((τx/βx*)² + (τy/βy*)²)) has the
  * 2-D spectrum C(q) = σ² ℓx ℓy / (2π) · (1 + qx²ℓx² + qy²ℓy²)^(-3/2), ℓ = β* / ln10. */
-double srf_psd_eval(const srf_synth_params *p, double qx, double qy);
+STC_API double srf_psd_eval(const srf_synth_params *p, double qx, double qy);
 
 /* ---------------------------------------------------------------- maps */
 
@@ -106,21 +107,21 @@ typedef struct srf_map {
 } srf_map;
 
 /* Returns a new zeroed map (takes nothing; caller owns *out). */
-stc_status srf_map_create(int nx, int ny, double lx, double ly, srf_map **out);
-void srf_map_destroy(srf_map **m);
+STC_API stc_status srf_map_create(int nx, int ny, double lx, double ly, srf_map **out);
+STC_API void srf_map_destroy(srf_map **m);
 
 /* Read a map written by srf_map_write_h5 (dataset "/height" + attributes).
  * Returns new in *out.  Here and in the imports below, a path that is
  * missing, unreadable or a directory is STC_EIO ("path: is a directory"). */
-stc_status srf_map_read(const char *path, srf_map **out);
+STC_API stc_status srf_map_read(const char *path, srf_map **out);
 
 /* Write heights [ny][nx] as dataset "/height" with every parameter as an
  * attribute.  Writes to a temporary file beside `path` and renames it on
  * success, so a failed write leaves no file. */
-stc_status srf_map_write_h5(const srf_map *m, const char *path);
+STC_API stc_status srf_map_write_h5(const srf_map *m, const char *path);
 
 /* Write a grey-scale PNG (black = lowest, white = highest), temp + rename. */
-stc_status srf_map_write_png(const srf_map *m, const char *path);
+STC_API stc_status srf_map_write_png(const srf_map *m, const char *path);
 
 /* Import measured heights with pixel size dx × dy (mm) and remove the
  * least-squares plane.  Text: whitespace-separated numbers, one grid row per
@@ -128,13 +129,13 @@ stc_status srf_map_write_png(const srf_map *m, const char *path);
  * a 2-D numeric dataset `dataset` ([ny][nx]).  `zscale` multiplies the raw
  * heights (e.g. 1e-3 for µm data); 1 = already mm.  Malformed input →
  * STC_EFORMAT naming line and column.  Returns new in *out. */
-stc_status srf_map_import_text(const char *path, double dx, double dy, double zscale,
-                               srf_map **out);
-stc_status srf_map_import_h5(const char *path, const char *dataset, double dx, double dy,
-                             double zscale, srf_map **out);
+STC_API stc_status srf_map_import_text(const char *path, double dx, double dy, double zscale,
+                                       srf_map **out);
+STC_API stc_status srf_map_import_h5(const char *path, const char *dataset, double dx, double dy,
+                                     double zscale, srf_map **out);
 
 /* Remove the least-squares plane z = a x + b y + c; stores a, b, c in the map. */
-void srf_map_detrend(srf_map *m);
+STC_API void srf_map_detrend(srf_map *m);
 
 /* ---------------------------------------------------------------- synthesis */
 
@@ -142,18 +143,18 @@ void srf_map_detrend(srf_map *m);
  * create/destroy are not thread-safe (FFTW planner); run on distinct
  * synthesizers may proceed concurrently. */
 typedef struct srf_synth srf_synth;
-stc_status srf_synth_create(const srf_synth_params *p, srf_synth **out); /* copies p */
-void srf_synth_destroy(srf_synth **s);
+STC_API stc_status srf_synth_create(const srf_synth_params *p, srf_synth **out); /* copies p */
+STC_API void srf_synth_destroy(srf_synth **s);
 
 /* Fill `map` (borrowed; must be p->nx × p->ny) with one realisation for
  * `seed`.  Random numbers: GSL mt19937, one stream per spectrum row seeded
  * with a SplitMix64 hash of (seed, row), so the modes do not depend on the
  * thread count; same seed + params + thread count → bit-identical map
  * (OpenMP reductions may change the last bit across thread counts). */
-stc_status srf_synth_run(srf_synth *s, unsigned long seed, srf_map *map);
+STC_API stc_status srf_synth_run(srf_synth *s, unsigned long seed, srf_map *map);
 
 /* Convenience: create, run once, destroy.  Returns a new map. */
-stc_status srf_synthesize(const srf_synth_params *p, unsigned long seed, srf_map **out);
+STC_API stc_status srf_synthesize(const srf_synth_params *p, unsigned long seed, srf_map **out);
 
 /* Spectral moments of the synthesizer's discrete target spectrum, scaled to
  * σ² = rms² (the Gaussian map, exact-amplitude mode, reproduces them). */
@@ -163,11 +164,11 @@ typedef struct srf_moments {
     double m20, m02;  /* x- and y-profile slope variances */
     double m40, m04, m22;
 } srf_moments;
-stc_status srf_synth_target_moments(const srf_synth *s, srf_moments *out);
+STC_API stc_status srf_synth_target_moments(const srf_synth *s, srf_moments *out);
 
 /* Spectral moments of a map: FFT when m->periodic, else finite differences
  * (header convention).  The mean is excluded. */
-stc_status srf_map_moments(const srf_map *m, srf_moments *out);
+STC_API stc_status srf_map_moments(const srf_map *m, srf_moments *out);
 
 /* Johnson (1949) translator fitted to skewness/kurtosis by moment matching.
  * family: 'N' (Gaussian), 'U' (SU, unbounded) or 'B' (SB, bounded).
@@ -178,8 +179,8 @@ typedef struct srf_johnson {
     double gamma, delta;
     double mean, sd; /* of the untranslated variable, for standardisation */
 } srf_johnson;
-stc_status srf_johnson_fit(double skewness, double kurtosis, srf_johnson *out);
-double srf_johnson_apply(const srf_johnson *j, double u); /* standardised result */
+STC_API stc_status srf_johnson_fit(double skewness, double kurtosis, srf_johnson *out);
+STC_API double srf_johnson_apply(const srf_johnson *j, double u); /* standardised result */
 
 /* ---------------------------------------------------------------- summits */
 
@@ -196,8 +197,8 @@ typedef struct srf_summits {
 } srf_summits;
 
 /* Find summits of `m` (borrowed).  Returns new in *out, ordered by (y, x). */
-stc_status srf_summits_find(const srf_map *m, int rule, srf_summits **out);
-void srf_summits_destroy(srf_summits **s);
+STC_API stc_status srf_summits_find(const srf_map *m, int rule, srf_summits **out);
+STC_API void srf_summits_destroy(srf_summits **s);
 
 /* ---------------------------------------------------------------- statistics */
 
@@ -225,7 +226,7 @@ typedef struct srf_stats {
 } srf_stats;
 
 /* Statistics of map `m` and its summits `s` (both borrowed). */
-stc_status srf_stats_compute(const srf_map *m, const srf_summits *s, srf_stats *out);
+STC_API stc_status srf_stats_compute(const srf_map *m, const srf_summits *s, srf_stats *out);
 
 #ifdef __cplusplus
 }

@@ -21,6 +21,7 @@
 #ifndef STICTION_TABLE_H
 #define STICTION_TABLE_H
 
+#include "stiction/export.h"
 #include "stiction/asperity.h"
 #include "stiction/model.h"
 #include "stiction/params.h"
@@ -45,11 +46,11 @@ typedef struct tbl_family {
 } tbl_family;
 
 /* The family of Patel's thesis grid (its Table 4.1; docs/table-format.md). */
-void tbl_family_default(tbl_family *f);
+STC_API void tbl_family_default(tbl_family *f);
 /* Ranges of every field; STC_EINVAL naming the field. */
-stc_status tbl_family_validate(const tbl_family *f);
+STC_API stc_status tbl_family_validate(const tbl_family *f);
 /* One line naming every field, e.g. for messages. */
-void tbl_family_describe(const tbl_family *f, char *buf, int n);
+STC_API void tbl_family_describe(const tbl_family *f, char *buf, int n);
 
 /* How each point is computed (written into the file with the results). */
 typedef struct tbl_numerics {
@@ -65,8 +66,8 @@ typedef struct tbl_numerics {
     double err_single; /* relative μs error of a point with one member (the single-mesh
                           node-placement scatter); default 0.06 */
 } tbl_numerics;
-void tbl_numerics_default(tbl_numerics *n);
-stc_status tbl_numerics_validate(const tbl_numerics *n);
+STC_API void tbl_numerics_default(tbl_numerics *n);
+STC_API stc_status tbl_numerics_validate(const tbl_numerics *n);
 
 /* ---- points --------------------------------------------------------------- */
 
@@ -75,7 +76,7 @@ typedef enum tbl_state {
     TBL_DONE = 1,    /* computed: the numbers are an answer */
     TBL_FAILED = 2   /* computed and failed: reason says why, no numbers */
 } tbl_state;
-const char *tbl_state_name(tbl_state s); /* "pending", "done", "failed" */
+STC_API const char *tbl_state_name(tbl_state s); /* "pending", "done", "failed" */
 
 enum { TBL_REASON_MAX = 192 };
 
@@ -104,8 +105,8 @@ typedef struct tbl_point {
  * thread.  Never fails for a point that does not converge: out->state is
  * TBL_FAILED and out->reason says why; returns STC_EINVAL for bad arguments
  * only (then *out is untouched). */
-stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
-                             double t_over_R, double E_ratio, tbl_point *out);
+STC_API stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
+                                     double t_over_R, double E_ratio, tbl_point *out);
 
 /* ---- the table ------------------------------------------------------------- */
 
@@ -113,39 +114,39 @@ typedef struct tbl_table tbl_table;
 
 /* Axes: strictly increasing, > 0 (w and t/R), >= 1 (E_ratio is not checked
  * beyond > 0); copied.  Every point starts pending.  Returns new in *out. */
-stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double *w, int n_w,
-                      const double *t_over_R, int n_tR, const double *E_ratio, int n_E,
-                      tbl_table **out);
-void tbl_destroy(tbl_table **t); /* sets *t = NULL */
+STC_API stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double *w,
+                              int n_w, const double *t_over_R, int n_tR, const double *E_ratio,
+                              int n_E, tbl_table **out);
+STC_API void tbl_destroy(tbl_table **t); /* sets *t = NULL */
 
-void tbl_get_family(const tbl_table *t, tbl_family *f);
-void tbl_get_numerics(const tbl_table *t, tbl_numerics *n);
-int tbl_points(const tbl_table *t); /* n_E n_tR n_w */
+STC_API void tbl_get_family(const tbl_table *t, tbl_family *f);
+STC_API void tbl_get_numerics(const tbl_table *t, tbl_numerics *n);
+STC_API int tbl_points(const tbl_table *t); /* n_E n_tR n_w */
 /* Axis 0 (w), 1 (t/R) or 2 (E_ratio): its length, and a borrowed array. */
-int tbl_axis(const tbl_table *t, int axis, const double **values);
+STC_API int tbl_axis(const tbl_table *t, int axis, const double **values);
 /* Coordinates of point i. */
-void tbl_coords(const tbl_table *t, int i, double *w, double *t_over_R, double *E_ratio);
-const tbl_point *tbl_point_get(const tbl_table *t, int i); /* borrowed */
+STC_API void tbl_coords(const tbl_table *t, int i, double *w, double *t_over_R, double *E_ratio);
+STC_API const tbl_point *tbl_point_get(const tbl_table *t, int i); /* borrowed */
 /* Store a computed point (copied); invalidates the fit. */
-stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p);
+STC_API stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p);
 /* Counts by state; any pointer nullable. */
-void tbl_count(const tbl_table *t, int *done, int *failed, int *pending);
+STC_API void tbl_count(const tbl_table *t, int *done, int *failed, int *pending);
 
 /* Same family, numerics and axes (bitwise on the numbers): a journal or a
  * shard belongs to the build. */
-int tbl_same_build(const tbl_table *a, const tbl_table *b);
+STC_API int tbl_same_build(const tbl_table *a, const tbl_table *b);
 
 /* Provenance written into the file (borrowed strings, copied). */
-void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s);
-const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
+STC_API void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s);
+STC_API const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
 
 /* ---- files (docs/table-format.md) ------------------------------------------ */
 
 /* Write atomically: a temporary file beside `path`, synced, renamed over it;
  * a failure leaves no file. */
-stc_status tbl_write(const tbl_table *t, const char *path);
+STC_API stc_status tbl_write(const tbl_table *t, const char *path);
 /* Read a table; STC_EFORMAT naming what is wrong for a file that is not one. */
-stc_status tbl_read(const char *path, tbl_table **out);
+STC_API stc_status tbl_read(const char *path, tbl_table **out);
 
 /* ---- building -------------------------------------------------------------- */
 
@@ -173,7 +174,7 @@ typedef struct tbl_build_opts {
     tbl_progress_fn progress; /* nullable */
     void *ctx;
 } tbl_build_opts;
-void tbl_build_opts_default(tbl_build_opts *o);
+STC_API void tbl_build_opts_default(tbl_build_opts *o);
 
 typedef struct tbl_build_summary {
     int computed, resumed, failed, share; /* points of this run, from before, failed, in shard */
@@ -190,13 +191,13 @@ typedef struct tbl_build_summary {
  * pending stay as they are.  A journal or `path` of another build is refused
  * (STC_EINVAL, naming the difference).  Returns STC_OK when every point of the
  * share is done or failed (failed points are counted in the summary). */
-stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opts *o,
-                     tbl_build_summary *sum);
+STC_API stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opts *o,
+                             tbl_build_summary *sum);
 
 /* Join tables of one build (shards of it, or partial runs): each point is
  * taken from the table that has it done or failed; new in *out.  Refused
  * (STC_EINVAL) when the tables are of different builds. */
-stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out);
+STC_API stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out);
 
 /* ---- interpolation ----------------------------------------------------------- */
 
@@ -214,7 +215,7 @@ enum {
  * ln t/R, ln Eco/Esu) on ln μs less the Wu–Shi–Polycarpou trend, each point
  * weighted by its own error estimate (asperity/table_fit.h).  STC_ERANGE with
  * fewer than 3 done points. */
-stc_status tbl_fit(tbl_table *t);
+STC_API stc_status tbl_fit(tbl_table *t);
 
 typedef struct tbl_fit_info {
     int n;                /* done points fitted */
@@ -223,7 +224,7 @@ typedef struct tbl_fit_info {
     double loo_rms, loo_max; /* leave-one-out relative μs errors, rms and largest */
     double loo_cover2;    /* share of points within 2 LOO standard deviations */
 } tbl_fit_info;
-stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out);
+STC_API stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out);
 
 /* Interpolated response with one-standard-error bars. */
 typedef struct tbl_value {
@@ -235,8 +236,8 @@ typedef struct tbl_value {
     double Q_max_Pc, Q_max_Pc_err; /* mu_s P_slide_Pc */
     unsigned flags;
 } tbl_value;
-stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
-                     tbl_value *out);
+STC_API stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
+                             tbl_value *out);
 
 /* Mark (need[i] = 1; other entries left as they are) the grid points that
  * queries with δ/ωc in [w_lo, w_hi], t/R in [tR_lo, tR_hi] and Eco/Esu =
@@ -246,13 +247,13 @@ stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_rat
  * tbl_points entries.  Returns how many of the points it newly marked are
  * pending (so over calls sharing one need[], the pending points needed), or
  * -1 with bad arguments. */
-int tbl_mark_needed(const tbl_table *t, double w_lo, double w_hi, double tR_lo, double tR_hi,
-                    double E_ratio, unsigned char *need);
+STC_API int tbl_mark_needed(const tbl_table *t, double w_lo, double w_hi, double tR_lo,
+                            double tR_hi, double E_ratio, unsigned char *need);
 
 /* Nonzero when the table is of one material: the same E/Y and ν in both
  * layers and an Eco/Esu axis of the one value 1.  Its t/R axis then has one
  * value that stands for every t/R (no t/R range flag). */
-int tbl_is_homogeneous(const tbl_table *t);
+STC_API int tbl_is_homogeneous(const tbl_table *t);
 
 /* ---- the surface prediction's asperity model --------------------------------- */
 
@@ -266,7 +267,7 @@ typedef enum tbl_model_kind {
 /* STC_OK when the materials p (E/Y and ν of both layers, Eco/Esu) can use the
  * table: STC_EINVAL when p is not of the table's family (the message names
  * both), STC_ERANGE when Eco/Esu is outside the table's axis. */
-stc_status tbl_check_params(const tbl_table *t, const stc_params *p);
+STC_API stc_status tbl_check_params(const tbl_table *t, const stc_params *p);
 
 /* The table's response for the materials `p` (E_su, E_ratio, Y and ν of both
  * layers; R and t/R unused) with a coating of t_mm, resampled on a dense
@@ -276,12 +277,12 @@ stc_status tbl_check_params(const tbl_table *t, const stc_params *p);
  * t/R columns with 2 or more done points at that Eco/Esu, and the δ nodes
  * done in all of them; the model's range (and flags) is that part.
  * STC_ERANGE when there is none.  Returns new in *out. */
-stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
-                            tbl_model_kind kind, asp_model **out);
+STC_API stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
+                                    tbl_model_kind kind, asp_model **out);
 
 /* The family of the materials p (E/Y and ν of each layer from p; the rest
  * from `like`): to compare with a table's. */
-void tbl_family_of_params(const stc_params *p, const tbl_family *like, tbl_family *out);
+STC_API void tbl_family_of_params(const stc_params *p, const tbl_family *like, tbl_family *out);
 
 #ifdef __cplusplus
 }

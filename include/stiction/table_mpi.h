@@ -11,6 +11,8 @@
 #ifndef STICTION_TABLE_MPI_H
 #define STICTION_TABLE_MPI_H
 
+#include "stiction/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -20,7 +22,7 @@ extern "C" {
  * and returns the summary of the whole build) and the number of ranks; 0 and
  * 1 when builds in this process are not distributed.  Does not initialise
  * MPI.  Call it from the main thread. */
-void tbl_build_rank(int *rank, int *size);
+STC_API void tbl_build_rank(int *rank, int *size);
 
 #ifdef __cplusplus
 }
