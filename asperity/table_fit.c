@@ -652,7 +652,11 @@ stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const do
 {
     STC_CALL(check_args(n, dim, x, y, sy, out));
     stc_status st = STC_OK;
-    gsl_error_handler_t *old = gsl_set_error_handler_off(); /* statuses are checked */
+    /* GSL's error handler is process-wide, so it is left alone: no GSL call
+     * of the fit can reach it but an allocation failure.  Nelder-Mead
+     * reports only non-finite objective values (objective returns PENALTY
+     * for those) and size mismatches (every vector has c.np elements); the
+     * size test only a negative tolerance (NM_TOL > 0). */
     fit_ctx c = {0};
     gsl_vector *t = NULL;
     tbl_gp *g = alloc_handle(n, dim);
@@ -693,7 +697,6 @@ stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const do
     *out = g;
     g = NULL;
 done:
-    gsl_set_error_handler(old);
     gsl_vector_free(t);
     free(c.a);
     free(c.b);

@@ -3,10 +3,19 @@
  *   N/An = η ∫_d^∞ φ(z) dz,   P/An = η ∫_d^∞ P_asp(z − d) φ(z) dz,
  *   A/An, Q/An likewise;      μs = Q/P                (GW 1966; docs/design.md §5.4)
  *
- * Statistical modes integrate in standard units s = z/σs (h = d/σs) with
- * GSL QAGS between the asperity model's breakpoints and QAGIU for the tail;
- * the deterministic mode sums over the summits sorted by height, so a
- * separation costs only the summits in contact.
+ * Statistical modes integrate in standard units s = z/σs (h = d/σs) by
+ * adaptive Gauss–Kronrod (srf_quad.h) between the asperity model's
+ * breakpoints and over the tail; the deterministic mode sums over the
+ * summits sorted by height, so a separation costs only the summits in
+ * contact.
+ *
+ * GSL's error handler: process-wide, so this file never sets it; instead no
+ * GSL call here can reach it once a handle is created.  The quadrature
+ * reports by status (srf_quad.h); the KDE interpolant is evaluated inside
+ * its knots only (density, contacts_stat); the root function is finite
+ * (root_fn) and the bracket straddles the root (bracket), the only failures
+ * Brent's solver reports; its tolerances are checked (params_check).  Left
+ * to the handler: out of memory inside GSL's allocators, at creation.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -19,6 +28,7 @@
 
 #include "stiction/gw.h"
 #include "stiction/parse.h"
+#include "srf_quad.h"
 #include "stc_check.h"
 
 #define TABOR_H_OVER_Y 2.8 /* Tabor (1951): H = 2.8 Y; GW 1966 plasticity index */
@@ -28,7 +38,7 @@
 #define QUANTILE_PIECES 256 /* load quantile: cumulative on this many pieces ... */
 #define QUANTILE_GL 8       /* ... each by 8-point Gauss-Legendre */
 #define GAUSS_TOP 9.0       /* Gaussian heights: nothing above s = max(h,0) + 9 (phi ~ 1e-18) */
-#define QUAD_ACCEPT 1e-6   /* accept a GSL warning (e.g. roundoff) if abserr <= this × |result| */
+#define QUAD_ACCEPT 1e-6   /* accept a warning (e.g. roundoff) if abserr <= this × |result| */
 
 enum { Q_P, Q_A, Q_Q }; /* which quantity an integrand returns */
 
@@ -37,7 +47,8 @@ struct srf_gw {
     srf_gw_params par;
     srf_gw_info info;
     asp_model_range range;
-    gsl_integration_workspace *ws;
+    srf_quad *ws;        /* quadrature workspace, par.limit subintervals */
+    gsl_root_fsolver *root; /* Brent, for the pressure solve */
     double tR;           /* statistical: t/R of the single radius */
     double h_hint;       /* last solved separation (NaN: none), starts the next bracket */
     gsl_integration_glfixed_table *gl; /* fixed rule of the load quantile */
@@ -105,11 +116,11 @@ static stc_status gw_alloc(const asp_model *model, srf_gw_mode mode, const srf_g
         return st;
     }
     g->h_hint = NAN;
-    g->ws = gsl_integration_workspace_alloc((size_t)g->par.limit);
+    g->ws = srf_quad_alloc(g->par.limit);
     g->gl = gsl_integration_glfixed_table_alloc(QUANTILE_GL);
-    if (!g->ws || !g->gl) {
-        if (g->ws) gsl_integration_workspace_free(g->ws);
-        free(g);
+    g->root = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!g->ws || !g->gl || !g->root) {
+        srf_gw_destroy(&g);
         return STC_FAIL(STC_ENOMEM, "srf_gw: out of memory");
     }
     asp_model_get_range(model, &g->range);
@@ -307,8 +318,9 @@ void srf_gw_destroy(srf_gw **pg)
 {
     if (!pg || !*pg) return;
     srf_gw *g = *pg;
-    if (g->ws) gsl_integration_workspace_free(g->ws);
+    srf_quad_free(g->ws);
     if (g->gl) gsl_integration_glfixed_table_free(g->gl);
+    if (g->root) gsl_root_fsolver_free(g->root);
     if (g->kip) gsl_interp_free(g->kip);
     free(g->ks);
     free(g->kf);
@@ -329,7 +341,7 @@ void srf_gw_get_info(const srf_gw *g, srf_gw_info *out) { *out = g->info; }
 static double density(const srf_gw *g, double s)
 {
     if (g->info.mode == SRF_GW_GAUSSIAN) return INV_SQRT_2PI * exp(-0.5 * s * s);
-    if (s <= g->ks[0] || s >= g->ks[g->kn - 1]) return 0.0;
+    if (!(s > g->ks[0] && s < g->ks[g->kn - 1])) return 0.0; /* outside the knots, or NaN */
     double f = gsl_interp_eval(g->kip, g->ks, g->kf, s, NULL);
     return f > 0 ? f : 0.0;
 }
@@ -354,21 +366,17 @@ static double s_of_w(const srf_gw *g, double h, double w)
     return h + w * asp_model_omega_c(g->m, g->info.R_mm) / g->info.sigma_s_mm;
 }
 
-/* Run one GSL rule and accept its result when the bound is still tight. */
+/* Integrate one piece and accept its result when the bound is still tight.
+ * Plain adaptive 21-point Gauss–Kronrod (QAG) on every piece: for the KDE's
+ * piecewise-cubic density QAGS's extrapolation misjudged the error. */
 static stc_status quad_piece(srf_gw *g, gsl_function *f, double a, double b, double *sum,
                              double *err)
 {
-    double r = 0, e = 0, tol = g->par.epsrel;
-    size_t lim = g->ws->limit;
-    int s;
-    if (isinf(b)) s = gsl_integration_qagiu(f, a, 0.0, tol, lim, g->ws, &r, &e);
-    else if (g->info.mode == SRF_GW_KDE) /* piecewise-cubic density: QAGS's extrapolation
-                                            misjudges it, plain adaptive 21-point GK does not */
-        s = gsl_integration_qag(f, a, b, 0.0, tol, lim, GSL_INTEG_GAUSS21, g->ws, &r, &e);
-    else s = gsl_integration_qags(f, a, b, 0.0, tol, lim, g->ws, &r, &e);
-    STC_CHECK(s == GSL_SUCCESS || e <= QUAD_ACCEPT * fabs(r), STC_ENOCONV,
+    double r = 0, e = 0;
+    srf_quad_status s = srf_quad_integrate(g->ws, f, a, b, g->par.epsrel, &r, &e);
+    STC_CHECK(s == SRF_QUAD_OK || e <= QUAD_ACCEPT * fabs(r), STC_ENOCONV,
               "GW quadrature on [%g, %g] (units of sigma_s): %s, result %g, abserr %g",
-              a, b, gsl_strerror(s), r, e);
+              a, b, srf_quad_strerror(s), r, e);
     *sum += r;
     *err += e;
     return STC_OK;
@@ -559,23 +567,24 @@ stc_status srf_gw_at_separation(srf_gw *g, double h, srf_gw_point *out)
 {
     STC_CHECK(g && out, STC_EINVAL, "srf_gw_at_separation: NULL argument");
     STC_CHECK(isfinite(h), STC_EINVAL, "separation = %g: must be finite (units of sigma_s)", h);
-    gsl_error_handler_t *old = gsl_set_error_handler_off(); /* statuses are checked */
-    stc_status st = point(g, h, out);
-    gsl_set_error_handler(old);
-    return st;
+    return point(g, h, out);
 }
 
 typedef struct { srf_gw *g; double target; stc_status st; double last_f; } root_ctx;
 #define ROOT_LOGP_TOL 1e-12 /* |log P/target| that ends the solve early */
 
-/* log(P(h)/target): well scaled over decades of load; -inf-safe clamp. */
+/* log(P(h)/target): well scaled over decades of load; -inf-safe clamp.
+ * Always finite (a non-finite value is what Brent's solver reports through
+ * GSL's handler): an infinite load fails the solve instead. */
 static double root_fn(double h, void *u)
 {
     root_ctx *c = u;
     double p = 0;
     stc_status st = pressure(c->g, h, &p);
+    if (st == STC_OK && !(p < INFINITY))
+        st = STC_FAIL(STC_ERANGE, "pressure at separation %g sigma_s: not finite", h);
     if (st != STC_OK) c->st = st;
-    c->last_f = p > 0 ? log(p / c->target) : -745.0;
+    c->last_f = p > 0 && p < INFINITY ? log(p / c->target) : -745.0;
     return c->last_f;
 }
 
@@ -629,8 +638,7 @@ static stc_status solve(srf_gw *g, double p, double *h, int *iters)
     double lo = 0, hi = 0;
     STC_CALL(bracket(g, &c, &lo, &hi));
     gsl_function f = {root_fn, &c};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    STC_CHECK(s, STC_ENOMEM, "srf_gw: out of memory");
+    gsl_root_fsolver *s = g->root;
     gsl_root_fsolver_set(s, &f, lo, hi);
     int status = GSL_CONTINUE, it = 0;
     while (status == GSL_CONTINUE && it < g->par.max_iter && c.st == STC_OK) {
@@ -642,7 +650,6 @@ static stc_status solve(srf_gw *g, double p, double *h, int *iters)
         if (fabs(c.last_f) < ROOT_LOGP_TOL) status = GSL_SUCCESS; /* P within 1e-12 */
     }
     *h = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
     *iters = it;
     STC_CALL(c.st);
     STC_CHECK(status == GSL_SUCCESS, STC_ENOCONV,
@@ -655,13 +662,11 @@ stc_status srf_gw_at_pressure(srf_gw *g, double pressure_MPa, srf_gw_point *out)
 {
     STC_CHECK(g && out, STC_EINVAL, "srf_gw_at_pressure: NULL argument");
     STC_CALL(stc_check_range("pressure", pressure_MPa, 0.0, 0, INFINITY, 0));
-    gsl_error_handler_t *old = gsl_set_error_handler_off(); /* statuses are checked */
     double h = 0;
     int it = 0;
     stc_status st = solve(g, pressure_MPa, &h, &it);
     if (st == STC_OK) g->h_hint = h;
     if (st == STC_OK) st = point(g, h, out);
     if (st == STC_OK) out->iterations = it;
-    gsl_set_error_handler(old);
     return st;
 }

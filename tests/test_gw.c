@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_errno.h>
 
 #include "stiction/gw.h"
 
@@ -86,6 +87,26 @@ static void test_hertz_vs_Fn(void **state)
     assert_true(w < 1e-6);
     srf_gw_destroy(&g);
     assert_null(g);
+    asp_model_destroy(&m);
+}
+
+/* The tightest tolerance the parameters accept (epsrel 1e-14, below what
+ * GSL's drivers take: they returned 0 with an error, and every sum was 0)
+ * still integrates: the closed forms, within the stated bounds. */
+static void test_tolerance_floor(void **state)
+{
+    (void)state;
+    asp_model *m = NULL;
+    srf_gw *g = NULL;
+    srf_gw_params par;
+    srf_gw_params_default(&par);
+    par.epsrel = 1e-14;
+    make_model(0, &m);
+    assert_int_equal(srf_gw_create_gaussian(m, ETA, RADIUS, SIGMA_S, &par, &g), STC_OK);
+    double w = worst_vs_Fn(g, m, 1);
+    printf("elastic GW at epsrel 1e-14: worst rel error %.2e\n", w);
+    assert_true(w < 1e-6);
+    srf_gw_destroy(&g);
     asp_model_destroy(&m);
 }
 
@@ -354,10 +375,77 @@ static void test_invalid(void **state)
     asp_model_destroy(&m);
 }
 
+/* Separate handles may run concurrently (gw.h), and GSL's error handler is
+ * process-wide: the sums must neither depend on it nor change it.  Two
+ * threads, each with its own handle, sum over and over where GSL's
+ * integrators would report through the handler (a tolerance out of reach in
+ * 10 subintervals).  The caller's handler (here one that counts) must never
+ * be called and must still be in place afterwards, and every call must return
+ * what it returns on one thread.  Turning the handler off around each call
+ * and restoring it raced: a thread restored the caller's handler (by default
+ * one that aborts) while the other was inside a GSL call, or restored "off"
+ * last and so dropped the caller's handler for good. */
+#define RACE_CALLS 1000 /* per thread and round */
+#define RACE_ROUNDS 4
+static int gsl_handler_calls;
+static void counting_handler(const char *reason, const char *file, int line, int gsl_errno)
+{
+    (void)reason, (void)file, (void)line, (void)gsl_errno;
+#pragma omp atomic
+    gsl_handler_calls++;
+}
+
+static void test_threads_leave_gsl_handler_alone(void **state)
+{
+    (void)state;
+    srf_gw_params par;
+    srf_gw_params_default(&par);
+    par.epsrel = 1e-12;
+    par.limit = 10;
+    asp_model *m = NULL;
+    srf_gw *g = NULL;
+    make_model(1, &m);
+    assert_int_equal(srf_gw_create_gaussian(m, ETA, RADIUS, SIGMA_S, &par, &g), STC_OK);
+    srf_gw_point ref[NH];
+    stc_status ref_s[NH];
+    for (int i = 0; i < NH; i++) ref_s[i] = srf_gw_at_separation(g, H[i], &ref[i]);
+    srf_gw_destroy(&g);
+    /* a round misses the race when the threads hardly overlap (a loaded
+     * machine): several rounds */
+    int bad = 0, calls = 0, replaced = 0;
+    for (int round = 0; round < RACE_ROUNDS; round++) {
+        gsl_error_handler_t *caller = gsl_set_error_handler(counting_handler);
+#pragma omp parallel num_threads(2) reduction(+ : bad, calls)
+        {
+            srf_gw *gt = NULL;
+            if (srf_gw_create_gaussian(m, ETA, RADIUS, SIGMA_S, &par, &gt) != STC_OK) bad++;
+            for (int k = 0; gt && k < RACE_CALLS; k++) {
+                int i = k % NH;
+                srf_gw_point o;
+                stc_status s = srf_gw_at_separation(gt, H[i], &o);
+                calls++;
+                bad += s != ref_s[i] ||
+                       (s == STC_OK && (o.pressure_MPa != ref[i].pressure_MPa ||
+                                        o.area_fraction != ref[i].area_fraction));
+            }
+            srf_gw_destroy(&gt);
+        }
+        replaced += gsl_set_error_handler(caller) != counting_handler;
+    }
+    printf("%d sums on 2 threads: %d differ from one thread's; GSL's handler called %d "
+           "times, replaced in %d of %d rounds\n", calls, bad, gsl_handler_calls, replaced,
+           RACE_ROUNDS);
+    assert_int_equal(bad, 0);
+    assert_int_equal(gsl_handler_calls, 0);
+    assert_int_equal(replaced, 0);
+    asp_model_destroy(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_vs_Fn),
+        cmocka_unit_test(test_tolerance_floor),
         cmocka_unit_test(test_sampled_hertz_vs_Fn),
         cmocka_unit_test(test_deterministic_converges),
         cmocka_unit_test(test_kde_is_smoothed_gaussian),
@@ -365,6 +453,7 @@ int main(void)
         cmocka_unit_test(test_pressure_roundtrip),
         cmocka_unit_test(test_plasticity_and_coverage),
         cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_threads_leave_gsl_handler_alone),
     };
     return cmocka_run_group_tests_name("gw", tests, NULL, NULL);
 }

@@ -8,15 +8,16 @@
  *
  * Three summit-height populations:
  *  - SRF_GW_GAUSSIAN: φ Gaussian with σs, one summit radius R, density η.
- *    Quadrature (GSL QAGS on the pieces between the model's breakpoints, QAGIU
- *    for the tail) with the summed GSL abserr as the stated error bound.  The
+ *    Quadrature (adaptive 21-point Gauss–Kronrod, QUADPACK's QAG, on the
+ *    pieces between the model's breakpoints; the tail mapped onto (0, 1],
+ *    15-point rule) with the summed abserr as the stated error bound.  The
  *    contact count is exact: η ½ erfc(h/√2).
  *  - SRF_GW_KDE: φ is a Gaussian kernel density estimate of the measured
  *    summit heights (Silverman's rule bandwidth, tabulated on a fine grid and
  *    interpolated by Steffen cubics), one radius R (the mean summit radius
- *    1/<κ>), η = n/An.  Same pieces, integrated by GSL QAG (21-point
- *    Gauss–Kronrod); the abserr bound covers the quadrature of the tabulated
- *    density only, not the KDE's sampling error.
+ *    1/<κ>), η = n/An.  Same pieces and quadrature; the abserr bound covers
+ *    the quadrature of the tabulated density only, not the KDE's sampling
+ *    error.
  *  - SRF_GW_DETERMINISTIC: the sums over the actual summits, each with its
  *    own height and radius (hence its own t/R).  Summits with R <= 0 or
  *    R = inf (curvature <= 0) are excluded and counted.  Exact sums (no
@@ -24,8 +25,9 @@
  *
  * μs = ΣQmax/ΣP — a ratio of sums, never an average of asperity μs.
  *
- * Thread safety: a srf_gw holds a GSL workspace; calls on one handle must
- * not run concurrently (separate handles may).
+ * Thread safety: a srf_gw holds its quadrature and root-solver workspaces;
+ * calls on one handle must not run concurrently (separate handles may).
+ * The sums neither use nor change GSL's process-wide error handler.
  */
 #ifndef STICTION_GW_H
 #define STICTION_GW_H
