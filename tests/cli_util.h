@@ -59,6 +59,25 @@ static inline int cli_capture(const char *cmd, int which, char *out, size_t n)
     return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
 }
 
+/* The number after the n-th (0: first) "key": in a JSON text; NaN for
+ * null.  Fails the test when the key is missing. */
+static inline double cli_jnum_at(const char *text, const char *key, int n)
+{
+    char pat[96];
+    snprintf(pat, sizeof pat, "\"%s\": ", key);
+    const char *p = text;
+    for (int k = 0; p && k <= n; k++)
+        if ((p = strstr(p, pat))) p += strlen(pat);
+    if (!p) fail_msg("key '%s' (occurrence %d) missing", key, n);
+    if (!strncmp(p, "null", 4)) return NAN;
+    return strtod(p, NULL);
+}
+
+static inline double cli_jnum(const char *text, const char *key)
+{
+    return cli_jnum_at(text, key, 0);
+}
+
 static inline const char *ws(const char *s)
 {
     while (*s == ' ' || *s == '\n' || *s == '\t' || *s == '\r') s++;

@@ -261,17 +261,6 @@ static void test_output_file(void **state)
 
 
 /* Value of a top-level-style "key": number (first occurrence). */
-static double jnum(const char *text, const char *key)
-{
-    char pat[96];
-    snprintf(pat, sizeof pat, "\"%s\": ", key);
-    const char *p = strstr(text, pat);
-    if (!p) fail_msg("key '%s' missing", key);
-    p += strlen(pat);
-    if (!strncmp(p, "null", 4)) return NAN;
-    return strtod(p, NULL);
-}
-
 static char out[1 << 16];
 
 static void test_json_coated(void **state)
@@ -285,10 +274,10 @@ static void test_json_coated(void **state)
                           "delta_c2_over_omega_c_su", "L_c2_over_P_c_co", "A_c2_st_over_A_c_co",
                           "mu_s_wsp", "hertz_P_N", "R_mm", "E_ratio"};
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
-        assert_true(isfinite(jnum(out, keys[i])));
-    assert_true(fabs(jnum(out, "omega_c_mm") - 5.320e-5) < 0.5e-8);
-    assert_true(fabs(jnum(out, "delta_c2_over_omega_c_su") - 17.60) < 0.005); /* Table 4.2 */
-    assert_true(fabs(jnum(out, "mu_s_wsp") - 0.3 / tanh(0.57 * pow(10, 0.41))) < 1e-9);
+        assert_true(isfinite(cli_jnum(out, keys[i])));
+    assert_true(fabs(cli_jnum(out, "omega_c_mm") - 5.320e-5) < 0.5e-8);
+    assert_true(fabs(cli_jnum(out, "delta_c2_over_omega_c_su") - 17.60) < 0.005); /* Table 4.2 */
+    assert_true(fabs(cli_jnum(out, "mu_s_wsp") - 0.3 / tanh(0.57 * pow(10, 0.41))) < 1e-9);
     assert_null(strstr(out, "nan"));
     assert_non_null(strstr(out, "\"coated_applicable\": true"));
 }
@@ -298,7 +287,7 @@ static void test_json_uncoated(void **state)
     (void)state;
     assert_int_equal(run("formulas --json --delta 1,3", 1, out, sizeof out), 0);
     assert_json(out);
-    assert_true(isnan(jnum(out, "delta_c1_over_omega_c_su"))); /* null, not NaN */
+    assert_true(isnan(cli_jnum(out, "delta_c1_over_omega_c_su"))); /* null, not NaN */
     assert_non_null(strstr(out, "\"coated_note\": \"coated-sphere fits not applicable: t-over-R = 0"));
     assert_non_null(strstr(out, "\"mu_s_wsp\": [")); /* an array for a list */
     assert_null(strstr(out, "nan"));
@@ -329,10 +318,12 @@ static void test_curve_3d_graded(void **state)
     assert_non_null(strstr(out, "4 elements across every a in ["));
     snprintf(args, sizeof args, "%s --json", base);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
-    double eg = jnum(out, "P_N") / ref - 1, eg3 = jnum(strstr(out, "}"), "P_N") / ref3 - 1;
+    double eg = cli_jnum(out, "P_N") / ref - 1;
+    double eg3 = cli_jnum(strstr(out, "}"), "P_N") / ref3 - 1;
     snprintf(args, sizeof args, "%s --grade-3d=no --json", base);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
-    double eu = jnum(out, "P_N") / ref - 1, eu3 = jnum(strstr(out, "}"), "P_N") / ref3 - 1;
+    double eu = cli_jnum(out, "P_N") / ref - 1;
+    double eu3 = cli_jnum(strstr(out, "}"), "P_N") / ref3 - 1;
     printf("  3D curve 1, 3 wc: P vs axisymmetric level 3: graded %+.2f / %+.2f %%, uniform "
            "%+.2f / %+.2f %%\n", 100 * eg, 100 * eg3, 100 * eu, 100 * eu3);
     assert_true(fabs(eg) < 0.005);
@@ -351,9 +342,9 @@ static void test_config_override(void **state)
     snprintf(args, sizeof args, "formulas --config %s --E-ratio 2 --json", ini);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
     assert_json(out);
-    assert_true(jnum(out, "t_over_R") == 0.05 && jnum(out, "E_ratio") == 2.0);
-    assert_true(jnum(out, "delta_over_omega_c_su") == 2.0);
-    assert_true(fabs(jnum(out, "delta_c2_over_omega_c_su") - 39.61) < 0.005);
+    assert_true(cli_jnum(out, "t_over_R") == 0.05 && cli_jnum(out, "E_ratio") == 2.0);
+    assert_true(cli_jnum(out, "delta_over_omega_c_su") == 2.0);
+    assert_true(fabs(cli_jnum(out, "delta_c2_over_omega_c_su") - 39.61) < 0.005);
 }
 
 /* The coating thickness in mm: --t-mm MM is t/R = MM / R of the run's R,
@@ -375,26 +366,28 @@ static void test_thickness_mm(void **state)
             run(args, 2, out, sizeof out);
             fail_msg("'%s' exited %d: %s", args, rc, out);
         }
-        printf("  %s: t/R %.17g, t %.17g mm, delta_c2 %.6g\n", cases[k][1], jnum(out, "t_over_R"),
-               jnum(out, "t_mm"), jnum(out, "delta_c2_over_omega_c_su"));
-        assert_true(jnum(out, "t_over_R") == 0.025);
-        assert_true(jnum(out, "t_over_R") == jnum(ref, "t_over_R"));
-        assert_true(jnum(out, "mu_s_wsp") == jnum(ref, "mu_s_wsp"));
-        assert_true(jnum(out, "delta_c2_over_omega_c_su") == jnum(ref, "delta_c2_over_omega_c_su"));
+        printf("  %s: t/R %.17g, t %.17g mm, delta_c2 %.6g\n", cases[k][1],
+               cli_jnum(out, "t_over_R"), cli_jnum(out, "t_mm"),
+               cli_jnum(out, "delta_c2_over_omega_c_su"));
+        assert_true(cli_jnum(out, "t_over_R") == 0.025);
+        assert_true(cli_jnum(out, "t_over_R") == cli_jnum(ref, "t_over_R"));
+        assert_true(cli_jnum(out, "mu_s_wsp") == cli_jnum(ref, "mu_s_wsp"));
+        assert_true(cli_jnum(out, "delta_c2_over_omega_c_su") ==
+                    cli_jnum(ref, "delta_c2_over_omega_c_su"));
     }
     /* the FE asperity (coarsest mesh, elastic, 0.1 s): the same load */
     assert_int_equal(run("asperity --mesh 0 --delta 1 --E-ratio 2 --t-over-R 0.025 --json", 1, ref,
                          sizeof ref), 0);
     assert_int_equal(run("asperity --mesh 0 --delta 1 --E-ratio 2 --t-mm 0.25 --json", 1, out,
                          sizeof out), 0);
-    printf("  asperity --t-mm 0.25: P %.10g N (--t-over-R 0.025: %.10g N)\n", jnum(out, "P_N"),
-           jnum(ref, "P_N"));
-    assert_true(jnum(out, "P_N") == jnum(ref, "P_N"));
+    printf("  asperity --t-mm 0.25: P %.10g N (--t-over-R 0.025: %.10g N)\n", cli_jnum(out, "P_N"),
+           cli_jnum(ref, "P_N"));
+    assert_true(cli_jnum(out, "P_N") == cli_jnum(ref, "P_N"));
     /* from a --config file too */
     write_ini("t-mm = 0.25\nE-ratio = 2\n");
     snprintf(args, sizeof args, "formulas --config %s --delta 10 --json", ini);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
-    assert_true(jnum(out, "t_over_R") == 0.025);
+    assert_true(cli_jnum(out, "t_over_R") == 0.025);
     /* both forms of the thickness: refused naming both, wherever each came from */
     expect_fail("formulas --t-mm 0.25 --t-over-R 0.025", "t-mm = 0.25", "t-over-R = 0.025");
     expect_fail("asperity --delta 1 --t-over-R 0.025 --t-mm 0.25", "t-mm = 0.25",
@@ -444,12 +437,12 @@ static void test_yield_pair(void **state)
     /* both, from the file and the command line; neither; or no coating */
     snprintf(args, sizeof args, "formulas --config %s --Y-co 7000 --json", ini);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
-    assert_true(jnum(out, "Y_su_MPa") == 1500 && jnum(out, "Y_co_MPa") == 7000);
+    assert_true(cli_jnum(out, "Y_su_MPa") == 1500 && cli_jnum(out, "Y_co_MPa") == 7000);
     assert_int_equal(run("formulas --t-over-R 0.01 --E-ratio 2 --E-over-Y 500 --json", 1, out,
                          sizeof out), 0);
-    assert_true(jnum(out, "Y_su_MPa") == 400 && jnum(out, "Y_co_MPa") == 800);
+    assert_true(cli_jnum(out, "Y_su_MPa") == 400 && cli_jnum(out, "Y_co_MPa") == 800);
     assert_int_equal(run("formulas --Y-su 325 --json", 1, out, sizeof out), 0);
-    assert_true(jnum(out, "Y_su_MPa") == 325);
+    assert_true(cli_jnum(out, "Y_su_MPa") == 325);
 }
 
 static void test_csv(void **state)
@@ -489,11 +482,11 @@ static void test_halfspace(void **state)
     snprintf(args, sizeof args, "%s --delta 0.5 --cells 64 --json", w);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
     assert_json(out);
-    assert_true(fabs(jnum(out, "P0_N") / jnum(out, "P_hertz_N") - 1) < 1e-3);
-    assert_true(jnum(out, "area_growth") > 0.02 && jnum(out, "area_growth") < 0.08);
-    assert_true(jnum(out, "a_trail_over_a0") > jnum(out, "a_lead_over_a0"));
-    assert_true(fabs(jnum(out, "tau_c_MPa") - 325 / sqrt(3.0)) < 1e-6);
-    assert_true(jnum(out, "mu_s") > jnum(out, "mu_s_no_growth"));
+    assert_true(fabs(cli_jnum(out, "P0_N") / cli_jnum(out, "P_hertz_N") - 1) < 1e-3);
+    assert_true(cli_jnum(out, "area_growth") > 0.02 && cli_jnum(out, "area_growth") < 0.08);
+    assert_true(cli_jnum(out, "a_trail_over_a0") > cli_jnum(out, "a_lead_over_a0"));
+    assert_true(fabs(cli_jnum(out, "tau_c_MPa") - 325 / sqrt(3.0)) < 1e-6);
+    assert_true(cli_jnum(out, "mu_s") > cli_jnum(out, "mu_s_no_growth"));
 }
 
 int main(void)

@@ -120,15 +120,16 @@ typedef struct asp_options {
                                 within 0.50 % of the converged curve at every
                                 point in 13.7 s (uniform core: -33 % at 1 ωc,
                                 -6.2 % at 6.4 ωc in 6.5 s; docs/design.md §2.4);
-                                default 0 (the CLI sets it for a 3D load curve) */
+                                default 0 (asp_options_for_curve sets it for a 3D load
+                                curve) */
     int sample_elastic;      /* slip: 1 = while all is elastic, step through the
                                 surface node entries from δ/2 on (δ the target of
                                 asp_solver_load), steps_per_node per entry, so that
                                 asp_solver_P_smooth at an elastic or just-yielded
                                 point averages over both sides of it instead of
                                 fitting across the yield bend; 0 = jump to the
-                                predicted yield.  The CLI sets it for load curves;
-                                default 0 */
+                                predicted yield.  asp_options_for_curve sets it
+                                for load curves; default 0 */
 } asp_options;
 
 STC_API void asp_options_default(asp_options *o);
@@ -395,6 +396,64 @@ typedef struct asp_placement_result {
 STC_API stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
                                         const asp_shear_options *so, double delta, int k,
                                         asp_placement_result *out);
+
+/* ---- runs as `stiction asperity` makes them (asperity/policy.c) ----------
+ * The solver settings the CLI chooses for what is asked, here so that a C
+ * caller gets the numbers the CLI prints.  Set the model, contact, mesh and
+ * any expert option on asp_options first, then call these. */
+
+/* Normal loading to n interferences (n > 1: a load curve, one solver run;
+ * docs/design.md §2.4, §3.3): an axisymmetric (or auto) curve steps through
+ * the elastic node entries (sample_elastic), a 3D curve gets the graded core
+ * (grade_3d; to keep the uniform core clear it after this call).  n = 1
+ * changes nothing. */
+void asp_options_for_curve(asp_options *o, int n);
+
+/* The tangential step needs the 3D half model: ASP_GEOM_AUTO becomes
+ * ASP_GEOM_3D, ASP_GEOM_AXISYM fails (STC_EINVAL). */
+stc_status asp_options_for_shear(asp_options *o);
+
+/* One point of a curve run by asp_curve_run. */
+typedef struct asp_curve_point {
+    asp_point pt;          /* the response (delta in mm) */
+    double P_smooth;       /* N, NaN without an estimate (asp_solver_P_smooth after the
+                              whole curve and its tail) */
+    asp_yield yield[2];    /* first yield of substrate [0] and coating [1] up to here */
+    double time_assembly_s, time_factorize_s, time_pcg_s; /* cumulative since create */
+    stc_status status;     /* STC_OK, or why the point failed (the curve stops there) */
+    char reason[256];
+} asp_curve_point;
+
+typedef struct asp_curve_result {
+    int n;                 /* points filled: the converged ones, then a failed one */
+    asp_info info;         /* the mesh, after create */
+    stc_status tail;       /* loading on past the last point (axisymmetric curve): STC_OK,
+                              or why it stopped (P_smooth near the end then one-sided) */
+    char tail_reason[256];
+} asp_curve_result;
+
+/* Called after each converged point with the solver there (borrowed: e.g.
+ * asp_solver_write_fields). */
+typedef void (*asp_curve_fn)(void *ctx, const asp_solver *s, int i);
+
+/* Normal loading to delta[0..n-1] (mm, increasing) in one solver meshed for
+ * delta[n-1] with o (NULL = defaults; asp_options_for_curve for the CLI's
+ * settings); an axisymmetric curve of n > 1 points is then loaded on past
+ * its end (asp_solver_load_tail) and P_smooth read at every point.  pts[n]
+ * and res are written; cb is nullable.  Returns STC_OK, the failure of
+ * create (res->n = 0) or of the first point that failed (its status). */
+stc_status asp_curve_run(const stc_params *p, const asp_options *o, const double *delta, int n,
+                         asp_curve_fn cb, void *ctx, asp_curve_point *pts,
+                         asp_curve_result *res);
+
+/* The solver of a shear run at its preload: meshed for delta (mm) and
+ * loaded to it; or, with P > 0 (N; delta 0), meshed for twice the Hertz
+ * interference of P (plasticity puts P(δ) below Hertz; at most 0.01 R) and
+ * brought to P within 1e-3 (asp_solver_load_to_P).  o: after
+ * asp_options_for_shear.  Returns new in *out (NULL on failure) and the
+ * preload in *pt; then asp_solver_shear. */
+stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double delta, double P,
+                             asp_solver **out, asp_point *pt);
 
 #ifdef __cplusplus
 }

@@ -70,7 +70,7 @@ static const cli_opt opts[] = {
 typedef struct {
     double *delta;
     int ndelta, in_mm, json;
-    int grade_set; /* --grade-3d given (else on for a 3D load curve) */
+    int grade; /* --grade-3d: 0 or 1; -1 not given (asp_options_for_curve decides) */
     char *out;
     asp_options o;
     cli_shear_args sh; /* --shear and its options (cli_asperity_shear.c) */
@@ -125,8 +125,7 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         int f;
         stc_status st = cli_parse_flag(key, value, &f);
         if (st) return st;
-        a->o.grade_3d = f;
-        a->grade_set = 1;
+        a->o.grade_3d = a->grade = f;
     } else if (!strcmp(key, "shell-coarsen")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 2)
@@ -174,27 +173,17 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
     return STC_OK;
 }
 
-/* One converged point with the yields known at that point. */
-typedef struct {
-    asp_point pt;
-    double P_smooth; /* N, NaN if no estimate (asp_solver_P_smooth) */
-    asp_yield y[2];
-    double t_split[3]; /* cumulative s: element loops, factorizations, PCG */
-    stc_status st;
-    char reason[256];
-} arow;
-
-static const asp_yield *first_yield(const arow *r, int *layer)
+static const asp_yield *first_yield(const asp_curve_point *r, int *layer)
 {
-    const asp_yield *a = &r->y[0], *b = &r->y[1];
+    const asp_yield *a = &r->yield[0], *b = &r->yield[1];
     *layer = -1;
     if (a->reached && (!b->reached || a->delta <= b->delta)) return *layer = 0, a;
     if (b->reached) return *layer = 1, b;
     return NULL;
 }
 
-static void json_row(cli_json *j, const arow *r, const stc_critical *c, const asp_info *in,
-                     int coated)
+static void json_row(cli_json *j, const asp_curve_point *r, const stc_critical *c,
+                     const asp_info *in, int coated)
 {
     int layer;
     const asp_yield *fy = first_yield(r, &layer);
@@ -232,12 +221,14 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
         cj_null(j, "first_yield_r_mm");
         cj_null(j, "first_yield_z_mm");
     }
-    if (r->y[1].reached) cj_num(j, "delta_c1_over_omega_c_su", r->y[1].delta / c->omega_c);
+    if (r->yield[1].reached)
+        cj_num(j, "delta_c1_over_omega_c_su", r->yield[1].delta / c->omega_c);
     else cj_null(j, "delta_c1_over_omega_c_su");
-    if (r->y[0].reached) cj_num(j, "delta_c2_over_omega_c_su", r->y[0].delta / c->omega_c);
+    if (r->yield[0].reached)
+        cj_num(j, "delta_c2_over_omega_c_su", r->yield[0].delta / c->omega_c);
     else cj_null(j, "delta_c2_over_omega_c_su");
-    cj_bool(j, "converged", r->st == STC_OK);
-    cj_str(j, "reason", r->st == STC_OK ? "converged" : r->reason);
+    cj_bool(j, "converged", r->status == STC_OK);
+    cj_str(j, "reason", r->status == STC_OK ? "converged" : r->reason);
     cj_int(j, "dofs", in->dofs);
     cj_int(j, "elements", in->elements);
     cj_num(j, "mesh_quality", in->mesh_quality);
@@ -248,13 +239,14 @@ static void json_row(cli_json *j, const arow *r, const stc_critical *c, const as
     cj_int(j, "assemblies", r->pt.assemblies);
     cj_int(j, "active_set_passes", r->pt.active_set_passes);
     cj_num(j, "wall_s", r->pt.wall_s);
-    cj_num(j, "time_assembly_s", r->t_split[0]);
-    cj_num(j, "time_factorize_s", r->t_split[1]);
-    cj_num(j, "time_pcg_s", r->t_split[2]);
+    cj_num(j, "time_assembly_s", r->time_assembly_s);
+    cj_num(j, "time_factorize_s", r->time_factorize_s);
+    cj_num(j, "time_pcg_s", r->time_pcg_s);
     cj_end_obj(j);
 }
 
-static void print_table(const arow *rows, int n, const stc_critical *c, const asp_info *in)
+static void print_table(const asp_curve_point *rows, int n, const stc_critical *c,
+                        const asp_info *in)
 {
     printf("mesh: %d elements, %d DOFs, worst scaled Jacobian %.3f, h = %.3g mm at the "
            "contact (sized for a <= %.4g mm",
@@ -276,13 +268,13 @@ static void print_table(const arow *rows, int n, const stc_critical *c, const as
                cli_num(sm, sizeof sm, "%.5g", rows[i].P_smooth / c->P_c, "n/a"), p->a,
                p->A / c->A_c,
                p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->increments, p->wall_s,
-               rows[i].st == STC_OK ? "" : "  NOT CONVERGED");
+               rows[i].status == STC_OK ? "" : "  NOT CONVERGED");
     }
     if (n == 0) return;
-    const arow *r = &rows[n - 1];
+    const asp_curve_point *r = &rows[n - 1];
     const char *name[2] = {"substrate (delta_c2)", "coating (delta_c1)"};
     for (int k = 1; k >= 0; k--) {
-        const asp_yield *y = &r->y[k];
+        const asp_yield *y = &r->yield[k];
         if (y->reached)
             printf("first yield in the %s: delta/wc = %.4g, P/Pc = %.4g at r = %.4g mm, "
                    "z = %.6g mm\n",
@@ -290,7 +282,7 @@ static void print_table(const arow *rows, int n, const stc_critical *c, const as
     }
 }
 
-static int write_csv(const char *dir, const arow *rows, int n, const stc_critical *c)
+static int write_csv(const char *dir, const asp_curve_point *rows, int n, const stc_critical *c)
 {
     cli_out o;
     FILE *f = cli_out_open(&o, dir, "curve.csv");
@@ -309,6 +301,21 @@ static int write_csv(const char *dir, const arow *rows, int n, const stc_critica
     return cli_out_close(&o);
 }
 
+/* --out: the fields at each converged point of the curve. */
+typedef struct {
+    const char *cmd, *dir;
+    int failed;
+} fields_ctx;
+
+static void write_point_fields(void *ctx, const asp_solver *sv, int i)
+{
+    fields_ctx *f = ctx;
+    char prefix[4096];
+    snprintf(prefix, sizeof prefix, "%s/fields_%03d", f->dir, i);
+    stc_status s = asp_solver_write_fields(sv, prefix);
+    if (s != STC_OK) cli_fail(f->cmd, s), f->failed = 1;
+}
+
 static int run(const char *cmd, const stc_params *p, aopts *a)
 {
     stc_material su;
@@ -322,81 +329,48 @@ static int run(const char *cmd, const stc_params *p, aopts *a)
                 cmd, a->delta[a->ndelta - 1] * scale, 0.01 * p->R);
         return CLI_EXIT_USAGE;
     }
-    int rc_out = a->out ? cli_out_dir(cmd, a->out, NULL) : CLI_EXIT_OK;
-    if (rc_out != CLI_EXIT_OK) return rc_out;
-    /* an axisymmetric curve samples the elastic node entries before its
-     * points too, so P_smooth at a point near first yield is not a fit
-     * across the bend (3D: 35 -> 24 increments on the level-0 curve, +12 %
-     * run time, the 1 wc point unchanged: one contact node there) */
-    if (a->ndelta > 1 && a->o.geom != ASP_GEOM_3D) a->o.sample_elastic = 1;
-    /* a 3D load curve is meshed for all its contacts, not for its largest
-     * (asp_options.grade_3d): the uniform core had 1-2 elements across the
-     * small-δ contacts (-33 % at 1 ωc, -6 % at 6.4 ωc on 1:60:12) */
-    if (a->ndelta > 1 && a->o.geom == ASP_GEOM_3D && !a->grade_set) a->o.grade_3d = 1;
-    asp_solver *sv;
-    s = asp_solver_create(p, &a->o, a->delta[a->ndelta - 1] * scale, &sv);
-    if (s) return cli_fail(cmd, s);
-    asp_info in;
-    asp_solver_info(sv, &in);
-    arow *rows = calloc((size_t)a->ndelta, sizeof *rows);
-    if (!rows) return asp_solver_destroy(&sv), cli_fail(cmd, STC_ENOMEM);
-    int n = 0, rc = CLI_EXIT_OK;
-    for (; n < a->ndelta; n++) {
-        arow *r = &rows[n];
-        r->st = asp_solver_load(sv, a->delta[n] * scale, &r->pt);
-        if (r->st) snprintf(r->reason, sizeof r->reason, "%s", stc_errmsg());
-        for (int k = 0; k < 2; k++) asp_solver_yield(sv, k, &r->y[k]);
-        asp_info now;
-        asp_solver_info(sv, &now);
-        r->t_split[0] = now.time_assembly_s;
-        r->t_split[1] = now.time_factorize_s;
-        r->t_split[2] = now.time_pcg_s;
-        if (r->st) {
-            fprintf(stderr, "stiction %s: %s\n", cmd, r->reason);
-            rc = CLI_EXIT_FAIL;
-            n++;
-            break;
-        }
-        if (a->out) {
-            char prefix[4096];
-            snprintf(prefix, sizeof prefix, "%s/fields_%03d", a->out, n);
-            if ((s = asp_solver_write_fields(sv, prefix)) != STC_OK) {
-                cli_fail(cmd, s);
-                rc = CLI_EXIT_FAIL;
-            }
-        }
-    }
-    /* after the whole curve, loaded on past its end (axisymmetric: +5 % of
-     * the run; the 3D curve's tail costs +48 %, so it keeps the one-sided
-     * end): the estimate uses increments on both sides of every point */
-    if (rc == CLI_EXIT_OK && a->ndelta > 1 && in.dim == 2
-        && asp_solver_load_tail(sv, NULL) != STC_OK)
+    int rc = a->out ? cli_out_dir(cmd, a->out, NULL) : CLI_EXIT_OK;
+    if (rc != CLI_EXIT_OK) return rc;
+    asp_options_for_curve(&a->o, a->ndelta);
+    if (a->grade >= 0) a->o.grade_3d = a->grade; /* --grade-3d given */
+    double *dmm = malloc((size_t)a->ndelta * sizeof *dmm);
+    asp_curve_point *rows = calloc((size_t)a->ndelta, sizeof *rows);
+    if (!dmm || !rows) return free(dmm), free(rows), cli_fail(cmd, STC_ENOMEM);
+    for (int i = 0; i < a->ndelta; i++) dmm[i] = a->delta[i] * scale;
+    fields_ctx fc = {cmd, a->out, 0};
+    asp_curve_result res;
+    s = asp_curve_run(p, &a->o, dmm, a->ndelta, a->out ? write_point_fields : NULL, &fc, rows,
+                      &res);
+    free(dmm);
+    if (s != STC_OK && res.n == 0) return free(rows), cli_fail(cmd, s);
+    if (s != STC_OK) fprintf(stderr, "stiction %s: %s\n", cmd, rows[res.n - 1].reason);
+    if (res.tail != STC_OK)
         fprintf(stderr, "stiction %s: note: loading past the last point for P_smooth stopped: "
-                        "%s; P_smooth near the end uses one side\n", cmd, stc_errmsg());
-    for (int i = 0; i < n; i++) asp_solver_P_smooth(sv, rows[i].pt.delta, &rows[i].P_smooth);
+                        "%s; P_smooth near the end uses one side\n", cmd, res.tail_reason);
+    rc = s != STC_OK || fc.failed ? CLI_EXIT_FAIL : CLI_EXIT_OK;
+    int n = res.n;
     if (a->json) {
         cli_json j;
         cj_init(&j, stdout);
         if (a->ndelta > 1) cj_arr(&j, NULL);
-        for (int i = 0; i < n; i++) json_row(&j, &rows[i], &c, &in, p->t_over_R > 0.0);
+        for (int i = 0; i < n; i++) json_row(&j, &rows[i], &c, &res.info, p->t_over_R > 0.0);
         if (a->ndelta > 1) cj_end_arr(&j);
         cj_done(&j);
     } else {
-        print_table(rows, n, &c, &in);
+        print_table(rows, n, &c, &res.info);
     }
     if (a->out && rc == CLI_EXIT_OK && write_csv(a->out, rows, n, &c) != 0) {
         fprintf(stderr, "stiction %s: cannot write %s/curve.csv\n", cmd, a->out);
         rc = CLI_EXIT_FAIL;
     }
     free(rows);
-    asp_solver_destroy(&sv);
     return rc;
 }
 
 int cli_asperity(const cli_cmd *cmd, int argc, char **argv)
 {
     stc_params p;
-    aopts a = {0};
+    aopts a = {.grade = -1};
     int done;
     stc_params_default(&p);
     asp_options_default(&a.o);

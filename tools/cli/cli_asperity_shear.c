@@ -376,12 +376,8 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
 static int check_args(const char *cmd, const stc_params *p, asp_options *o,
                       const cli_shear_args *sa, int ndelta, double delta_mm)
 {
-    if (o->geom == ASP_GEOM_AXISYM) {
-        fprintf(stderr, "stiction %s: model = 'axisym': the tangential step (--shear, "
-                        "--criterion, --tau-c, --load) needs --model 3d (or auto)\n", cmd);
-        return CLI_EXIT_USAGE;
-    }
-    o->geom = ASP_GEOM_3D;
+    stc_status s = asp_options_for_shear(o);
+    if (s != STC_OK) return cli_fail(cmd, s);
     if (sa->alpha_set && sa->so.criterion != ASP_SHEAR_CRIT_STIFFNESS) {
         fprintf(stderr, "stiction %s: alpha = %g: only used by --criterion stiffness\n", cmd,
                 sa->so.alpha);
@@ -422,26 +418,13 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     double dmm = ndelta > 0 ? delta[0] * (in_mm ? 1.0 : c.omega_c) : 0.0;
     int rc = check_args(cmd, p, o, sa, ndelta, dmm);
     if (rc) return rc;
-    double Pt = sa->load * c.P_c, dmax = dmm;
-    if (sa->load > 0.0) {
-        /* elastic-plastic P(δ) lies below Hertz, so δ(P) above its guess:
-         * mesh for twice the guess (capped at the small-strain limit) */
-        dmax = fmin(2.0 * asp_hertz_delta_guess(Pt, su.E, su.nu, p->R), 0.01 * p->R);
-    }
     int rc_out = out ? cli_out_dir(cmd, out, NULL) : CLI_EXIT_OK;
     if (rc_out != CLI_EXIT_OK) return rc_out;
     if (sa->placements > 1) return run_placements(cmd, p, o, sa, &c, dmm, json, out);
     asp_solver *sv;
-    if ((s = asp_solver_create(p, o, dmax, &sv))) return cli_fail(cmd, s);
-    asp_info in;
-    asp_solver_info(sv, &in);
     asp_point pt;
-    s = sa->load > 0.0 ? asp_solver_load_to_P(sv, Pt, 1e-3, &pt) : asp_solver_load(sv, dmm, &pt);
-    if (s) {
-        rc = cli_fail(cmd, s);
-        asp_solver_destroy(&sv);
-        return rc;
-    }
+    if ((s = asp_shear_preload(p, o, dmm, sa->load * c.P_c, &sv, &pt))) return cli_fail(cmd, s);
+    asp_info in;
     asp_shear_options so = sa->so;
     so.keep_fields = out != NULL;
     asp_shear_result r;

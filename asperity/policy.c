@@ -1,0 +1,109 @@
+/* Runs as `stiction asperity` makes them (include/stiction/asperity.h):
+ * the solver settings chosen for what is asked (a single point, a load
+ * curve, a shear run at an interference or under a load), kept in the
+ * library so that a C caller gets the numbers the CLI prints.  Only the
+ * public solver interface is used here; the numbers behind each choice are
+ * in docs/design.md (§2.4 the graded 3D core, §3.3 the elastic node entries
+ * and the tail, §4.7 load control). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "stc_check.h"
+#include "stiction/asperity.h"
+#include "tangential.h"
+
+void asp_options_for_curve(asp_options *o, int n)
+{
+    if (n < 2) return;
+    /* an axisymmetric curve samples the elastic node entries before its
+     * points too, so P_smooth at a point near first yield is not a fit
+     * across the bend (3D: 35 -> 24 increments on the level-0 curve, +12 %
+     * run time, the 1 wc point unchanged: one contact node there) */
+    if (o->geom != ASP_GEOM_3D) o->sample_elastic = 1;
+    /* a 3D load curve is meshed for all its contacts, not for its largest:
+     * the uniform core had 1-2 elements across the small-δ contacts (-33 %
+     * at 1 ωc, -6 % at 6.4 ωc on 1:60:12) */
+    else o->grade_3d = 1;
+}
+
+stc_status asp_options_for_shear(asp_options *o)
+{
+    STC_CHECK(o->geom != ASP_GEOM_AXISYM, STC_EINVAL,
+              "model = 'axisym': the tangential step (shear) needs the 3D model (3d or auto)");
+    o->geom = ASP_GEOM_3D;
+    return STC_OK;
+}
+
+/* Load to one point of the curve and record what is known there. */
+static void curve_point(asp_solver *s, double delta, asp_curve_point *c)
+{
+    c->status = asp_solver_load(s, delta, &c->pt);
+    if (c->status != STC_OK) snprintf(c->reason, sizeof c->reason, "%s", stc_errmsg());
+    else snprintf(c->reason, sizeof c->reason, "converged");
+    for (int k = 0; k < 2; k++) asp_solver_yield(s, k, &c->yield[k]);
+    asp_info now;
+    asp_solver_info(s, &now);
+    c->time_assembly_s = now.time_assembly_s;
+    c->time_factorize_s = now.time_factorize_s;
+    c->time_pcg_s = now.time_pcg_s;
+}
+
+stc_status asp_curve_run(const stc_params *p, const asp_options *o, const double *delta, int n,
+                         asp_curve_fn cb, void *ctx, asp_curve_point *pts,
+                         asp_curve_result *res)
+{
+    STC_CHECK(p && delta && pts && res && n >= 1, STC_EINVAL,
+              "asp_curve_run: parameters, %d interferences and outputs required", n);
+    memset(res, 0, sizeof *res);
+    memset(pts, 0, (size_t)n * sizeof *pts);
+    asp_solver *s = NULL;
+    STC_CALL(asp_solver_create(p, o, delta[n - 1], &s));
+    asp_solver_info(s, &res->info);
+    stc_status st = STC_OK;
+    while (res->n < n && st == STC_OK) {
+        asp_curve_point *c = &pts[res->n];
+        curve_point(s, delta[res->n], c);
+        st = c->status;
+        if (st == STC_OK && cb) cb(ctx, s, res->n);
+        res->n++;
+    }
+    /* after the whole curve, loaded on past its end (axisymmetric: +5 % of
+     * the run; the 3D curve's tail costs +48 %, so it keeps the one-sided
+     * end): the estimate uses increments on both sides of every point */
+    if (st == STC_OK && n > 1 && res->info.dim == 2) {
+        res->tail = asp_solver_load_tail(s, NULL);
+        if (res->tail != STC_OK)
+            snprintf(res->tail_reason, sizeof res->tail_reason, "%s", stc_errmsg());
+    }
+    for (int i = 0; i < res->n; i++) asp_solver_P_smooth(s, pts[i].pt.delta, &pts[i].P_smooth);
+    asp_solver_destroy(&s);
+    if (st != STC_OK) return STC_FAIL(st, "%s", pts[res->n - 1].reason);
+    return STC_OK;
+}
+
+stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double delta, double P,
+                             asp_solver **out, asp_point *pt)
+{
+    STC_CHECK(out && pt, STC_EINVAL, "asp_shear_preload: outputs required");
+    *out = NULL;
+    STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
+              "preload: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
+    double dmax = delta;
+    if (P > 0.0) {
+        /* elastic-plastic P(δ) lies below Hertz, so δ(P) above its guess:
+         * mesh for twice the guess (capped at the small-strain limit) */
+        stc_material su;
+        stc_params_materials(p, &su, NULL);
+        dmax = fmin(2.0 * asp_hertz_delta_guess(P, su.E, su.nu, p->R), 0.01 * p->R);
+    }
+    asp_solver *s = NULL;
+    STC_CALL(asp_solver_create(p, o, dmax, &s));
+    stc_status st = P > 0.0 ? asp_solver_load_to_P(s, P, 1e-3, pt) : asp_solver_load(s, delta, pt);
+    if (st != STC_OK) {
+        asp_solver_destroy(&s);
+        return st;
+    }
+    *out = s;
+    return STC_OK;
+}
