@@ -408,6 +408,54 @@ static void test_thickness_mm(void **state)
     }
 }
 
+/* --help puts first what a user chooses: the physics (sphere, coating,
+ * materials, loading, contact and friction), then one accuracy choice with
+ * what it costs and buys, then the common options, and the numerics knobs
+ * last under "Expert numerics" (no switch called experimental).  The
+ * top-level help says asperity also shears to sliding. */
+static void test_help_layout(void **state)
+{
+    (void)state;
+    static char help[1 << 15];
+    assert_int_equal(run("asperity --help", 1, help, sizeof help), 0);
+    const char *order[] = {"Sphere and coating", "--t-mm MM", "Materials:", "Loading:",
+                           "--shear", "Contact and friction:", "--criterion", "Accuracy:",
+                           "--mesh LEVEL", "--placements K", "Common options:", "--json",
+                           "Expert numerics", "--elements-per-contact", "--foot-rows",
+                           "--ramp-refine", "--threads"};
+    const char *at = help;
+    for (size_t i = 0; i < sizeof order / sizeof *order; i++) {
+        const char *next = strstr(at, order[i]);
+        if (!next) fail_msg("asperity --help: '%s' missing or out of order", order[i]);
+        at = next;
+    }
+    assert_null(strstr(help, "xperimental"));
+    const char *expert[] = {"--surface-layers", "--shell-coarsen", "--grade-3d",
+                            "--newton-reuse", "--krylov", "--krylov-max", "--steps-per-node",
+                            "--return-map", "--ramp-return-map", "--junction"};
+    const char *sect = strstr(help, "Expert numerics");
+    for (size_t i = 0; i < sizeof expert / sizeof *expert; i++)
+        if (!strstr(sect, expert[i])) fail_msg("'%s' is not under Expert numerics", expert[i]);
+    /* every command: physics or input first, the common options after it */
+    const char *cmds[] = {"formulas", "halfspace", "surface synth", "surface stats",
+                          "surface predict", "table build", "table info", "table query",
+                          "table merge"};
+    char args[64];
+    for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
+        snprintf(args, sizeof args, "%s --help", cmds[i]);
+        assert_int_equal(run(args, 1, help, sizeof help), 0);
+        const char *common = strstr(help, "--config FILE");
+        if (!common || !strstr(help, "--help ")) fail_msg("'%s' lacks --config/--help", args);
+        const char *x = strstr(help, "Expert numerics");
+        if (x && x < common) fail_msg("'%s': Expert numerics before the common options", args);
+    }
+    assert_int_equal(run("--help", 1, help, sizeof help), 0);
+    const char *a = strstr(help, "asperity ");
+    assert_non_null(a);
+    if (!strstr(a, "--shear") || strstr(a, "--shear") > strchr(a, '\n'))
+        fail_msg("stiction --help does not say asperity shears (--shear): %.200s", a);
+}
+
 /* Yield strengths: a run with a coating (t > 0, E-ratio != 1 or nu-co)
  * that gives one of Y-su, Y-co would take the other from the default
  * E-over-Y (Y-su 1500 left the coating at E_co/1000 = 200 MPa): both or
@@ -500,7 +548,7 @@ int main(void)
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),
-        cmocka_unit_test(test_curve_3d_graded),
+        cmocka_unit_test(test_curve_3d_graded), cmocka_unit_test(test_help_layout),
     };
     return cmocka_run_group_tests_name("cli", tests, find_cli, cleanup);
 }

@@ -11,12 +11,39 @@
 enum { CLI_EXIT_OK = 0, CLI_EXIT_FAIL = 1, CLI_EXIT_USAGE = 2 };
 
 /* A subcommand-specific option.  arg == NULL: a flag taking no value (the
- * setter receives "1"). */
+ * setter receives "1").  The table is also the layout of --help: options
+ * print in table order, under CLI_HEADING entries; the common keys
+ * (stc_params) a command documents are listed in its table too (their
+ * setter returns STC_EUNSUPPORTED, so they reach stc_params_set). */
 typedef struct cli_opt {
-    const char *name; /* without leading "--" */
+    const char *name; /* without leading "--"; "" for a layout entry */
     const char *arg;  /* metavariable shown in help, or NULL for a flag */
     const char *help;
 } cli_opt;
+
+/* Layout entries of an option table: a heading, and the place of the
+ * --config FILE and --help lines (printed last when a table has none). */
+#define CLI_HEADING(title) {"", NULL, (title)}
+#define CLI_CONFIG_HELP {"", "", NULL}
+
+/* The common keys as the help documents them: the sphere and its coating
+ * (asperity, formulas), then the materials of the two layers. */
+#define CLI_SPHERE_OPTS                                                                       \
+    {"R", "MM", "radius R of the substrate sphere, mm (default 10)"},                          \
+        {"t-over-R", "X", "coating thickness over R (the --R above), 0 = uncoated (default 0)"}, \
+        {"t-mm", "MM", "coating thickness in mm, instead of --t-over-R: t/R = t-mm / R with "    \
+                       "this run's --R"}
+#define CLI_SUBSTRATE_OPTS                                                                    \
+    {"E-su", "MPA", "Young's modulus of the substrate (default 200000)"},                      \
+        {"E-over-Y", "X", "E/Y of both layers (default 1000)"},                                \
+        {"Y-su", "MPA", "yield strength of the substrate (overrides E-over-Y)"},               \
+        {"nu", "X", "Poisson's ratio (default 0.32)"}
+#define CLI_COATING_MATERIAL_OPTS                                                             \
+    {"E-ratio", "X", "Eco/Esu, the coating's Young's modulus over the substrate's (default 1)"}, \
+        {"Y-co", "MPA", "yield strength of the coating (overrides E-over-Y); with a coating "    \
+                        "(t > 0, E-ratio != 1 or --nu-co) give both --Y-su and --Y-co or "     \
+                        "neither"},                                                            \
+        {"nu-co", "X", "Poisson's ratio of the coating (default: --nu)"}
 
 /* Setter for subcommand options; return STC_EUNSUPPORTED for unknown keys. */
 typedef stc_status (*cli_set_fn)(void *ctx, const char *key, const char *value);
@@ -75,9 +102,6 @@ int cli_out_dir(const char *cmd, const char *dir, int *made);
  * group's usage (--help: stdout, exit 0; missing or unknown: stderr, exit 2). */
 int cli_dispatch(const char *group, const cli_cmd *cmds, int argc, char **argv);
 
-/* Print the common options' help. */
-void cli_common_help(FILE *f);
-
 /* v printed with `fmt` (one double conversion) into buf[n], or `none` when v
  * is not finite: text and CSV output never show nan or inf ("n/a" in a
  * table, "" in a CSV field).  Returns buf. */
@@ -131,31 +155,6 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
 int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
                        const cli_shear_args *sa, const double *delta, int ndelta, int in_mm,
                        int json, const char *out);
-#define CLI_SHEAR_OPTS                                                                        \
-    {"shear", NULL, "after the normal step, shear to sliding inception (3D model)"},        \
-        {"criterion", "shear|stiffness",                                                      \
-         "sliding inception: whole contact at tau_c and Q flat (default), or KT/KT1 <= alpha"}, \
-        {"alpha", "A", "stiffness criterion ratio KT_i/KT_1 in (0, 1) (default 0.1)"},         \
-        {"tau-c", "MPa", "critical shear stress (default Y/sqrt(3) of the coating, or of the " \
-                         "sphere if uncoated)"},                                               \
-        {"load", "X", "load control: normal load P = X Pc_su instead of --delta, then shear"}, \
-        {"junction", "footprint|nodes",                                                        \
-         "contact growth under shear: edge advance from the gaps (default) or F_z/p_m of "   \
-         "the nodes that touch; the two bracket the mesh-converged answer"},                 \
-        {"ramp-return-map", "radial|midpoint|exact",                                           \
-         "plastic integration during the ramp (default radial: the midpoint rule, used in "   \
-         "the normal step, can be far off over the ramp's long increments)"},                \
-        {"ramp-refine", "K",                                                                   \
-         "divide the ramp increment targets by K in [1, 64] (increment-convergence studies; " \
-         "default 1)"},                                                                       \
-        {"placements", "K",                                                                    \
-         "run K meshes with the surface nodes shifted by 1/K of a node spacing at the "        \
-         "contact edge and average their mu_s (node-placement ensemble, K in [1, 8]; members " \
-         "run concurrently, one thread each; default 1)"},                                      \
-        {"foot-rows", "F",                                                                     \
-         "experimental junction footprint: read the edge advance on every node row within "  \
-         "F a0 of the axis and average them (default 0: the three axis lines only)"}
-
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;
 int cli_surface(const cli_cmd *cmd, int argc, char **argv); /* synth|stats|predict */

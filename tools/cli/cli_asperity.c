@@ -9,36 +9,72 @@
 #include "stiction/formulas.h"
 
 static const char usage[] =
-    "[common options] --delta LIST | --delta-mm LIST [options]\n"
+    "(--delta LIST | --delta-mm LIST | --load X) [--shear]\n"
+    "       [sphere, coating, materials] [--contact slip|stick] [--mesh coarse|default|fine]\n"
+    "       [--placements K] [--json] [--out DIR]\n"
     "\n"
-    "Finite-element model of one coated sphere pressed by a rigid flat: load P,\n"
-    "contact radius a and area A, first yield of coating (delta_c1) and substrate\n"
-    "(delta_c2).  LIST is a,b,c or start:stop:count, increasing; several values\n"
-    "give a load curve (one solver run).  --delta is in units of omega_c_su.\n"
-    "P_smooth is the load with the node-entry sawtooth averaged out; an\n"
-    "axisymmetric curve steps through the elastic node entries before its\n"
-    "points and is loaded on to 1.5x its last delta (not reported), so that\n"
-    "every point is averaged on both sides.\n"
-    "Small-strain model: delta <= 0.01 R.\n"
-    "--shear (implied by --criterion, --alpha, --tau-c, --load, --junction): after\n"
-    "the normal step to one --delta (or to the load --load X = P/Pc_su) the flat\n"
-    "moves along x until the asperity slides: Q_max, mu_s = Q_max/P (3D model).";
+    "One coated sphere pressed by a rigid flat, by finite elements (the normal step):\n"
+    "load P, contact radius a and area A, first yield of the coating (delta_c1) and of\n"
+    "the substrate (delta_c2).  With --shear the flat then moves along x, the\n"
+    "interference held, until the asperity slides (sliding inception; 3D model):\n"
+    "Q_max and the static friction coefficient mu_s = Q_max / P.\n"
+    "LIST is a,b,c or start:stop:count, increasing; several values give a load curve\n"
+    "in one solver run (normal step only).  P_smooth is the load with the mesh's\n"
+    "node-entry sawtooth averaged out.  Small-strain model: delta <= 0.01 R.";
 
 static const cli_opt opts[] = {
-    {"delta", "LIST", "interference(s) / omega_c_su (> 0, increasing)"},
+    CLI_HEADING("Sphere and coating (units mm, N, MPa)"),
+    CLI_SPHERE_OPTS,
+    CLI_HEADING("Materials"),
+    CLI_SUBSTRATE_OPTS,
+    CLI_COATING_MATERIAL_OPTS,
+    CLI_HEADING("Loading"),
+    {"delta", "LIST", "interference(s) / omega_c_su, the substrate's critical interference "
+                      "(> 0, increasing)"},
     {"delta-mm", "LIST", "interference(s) in mm (> 0, increasing)"},
-    {"contact", "slip|stick", "contact condition of the normal step (default slip)"},
-    {"model", "axisym|3d|auto", "geometry (default auto = axisymmetric)"},
+    {"load", "X", "load control: the normal load P = X Pc_su instead of --delta, then shear "
+                  "(implies --shear)"},
+    {"shear", NULL, "after the normal step to one interference, shear to sliding inception "
+                    "(3D model; implied by --load, --criterion, --alpha, --tau-c)"},
+    CLI_HEADING("Contact and friction"),
+    {"contact", "slip|stick", "contact condition of the normal step: frictionless, or a node "
+                              "that touches stops moving tangentially (default slip)"},
+    {"no-separation", NULL, "a node in contact never opens"},
+    {"criterion", "shear|stiffness",
+     "sliding inception: the whole contact at tau_c and Q flat (default; Wu, Shi & "
+     "Polycarpou 2012), or the tangential stiffness KT/KT1 <= alpha (Brizmer et al. 2007)"},
+    {"alpha", "A", "stiffness criterion ratio KT_i/KT_1 in (0, 1) (default 0.1)"},
+    {"tau-c", "MPa", "critical shear stress of the interface (default Y/sqrt(3) of the "
+                     "coating, or of the sphere if uncoated)"},
+    CLI_HEADING("Accuracy"),
     {"mesh", "LEVEL",
-     "coarse (0)|default|fine or a level 0..6; default = level 1 axisymmetric, 0 in 3D; "
-     "fine = one level finer (default: default)"},
+     "coarse (level 0), default, fine (one level finer than the default) or a level 0..6.  "
+     "Axisymmetric normal step: default = level 1; a slip curve to 60 omega_c is within "
+     "0.29 / 0.24 / 0.07 % of the converged load at level 0 / 1 / 2, in 0.6 / 3 / 19 s.  "
+     "3D (--shear, --model 3d): default = level 0; each level costs 5-10x the one below (a "
+     "level-1 shear point 12-36 min) and moved mu_s by up to 3 %, less than node placement "
+     "does (docs/design.md §2.3, §2.6)"},
+    {"placements", "K",
+     "--shear: average K meshes whose surface nodes are shifted by 1/K of a node spacing at "
+     "the contact edge (node-placement ensemble), K in [1, 8] (default 1).  One level-0 "
+     "mesh's mu_s moves by up to +-10 % with where its nodes fall; the mean of K = 4 by "
+     "about +-1.5 %, and the members' spread is reported.  Costs K times the CPU time; the "
+     "members run concurrently, one thread each (docs/design.md §4.5)"},
+    CLI_HEADING("Common options"),
+    {"model", "axisym|3d|auto", "geometry of the model (default auto: axisymmetric for the "
+                                "normal step, 3D half model with --shear)"},
+    {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR (--shear: "
+                   "shear.csv and fields_Q0, fields_Q080, fields_Qmax)"},
+    {"json", NULL, "print JSON (one object, or an array for a curve)"},
+    CLI_CONFIG_HELP,
+    CLI_HEADING("Expert numerics (defaults: the measured choices of docs/design.md)"),
+    {"elements-per-contact", "N",
+     "elements across the largest contact radius, overrides --mesh (6 2^level; 4 2^level "
+     "across every contact on the graded 3D core); values between levels, e.g. 8 (in "
+     "[3, 384]; 3D: the shells follow the level log2(N/6))"},
     {"surface-layers", "N",
      "axisymmetric: split the top element row into N+1 rows halving towards the surface "
      "(N in [0, 6]; default auto = 3 under stick, 0 under slip)"},
-    {"elements-per-contact", "N",
-     "elements across the largest contact radius, overrides --mesh (6 2^level; 4 2^level "
-     "across every contact on the graded 3D core); "
-     "values between levels, e.g. 8 (in [3, 384]; 3D: the shells follow the level log2(N/6))"},
     {"shell-coarsen", "N",
      "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
      "(default 1: from 6 a_max on)"},
@@ -46,11 +82,6 @@ static const cli_opt opts[] = {
      "3D: core sized to the smallest contact a curve resolves, shells growing with the "
      "distance (4 2^level elements across every contact, no shell coarsening); the default "
      "for a 3D load curve, --grade-3d=no keeps the uniform core sized to the largest"},
-    {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
-    {"krylov", "off|auto|on",
-     "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
-     "factorization costs many PCG iterations, i.e. 3D; default auto)"},
-    {"krylov-max", "N", "PCG iterations before refactorizing (default 50)"},
     {"steps-per-node", "X",
      "load increments per surface node entering the contact past yield, in [0.5, 16] "
      "(default auto: 4 slip, 2 slip 3D, 1 stick)"},
@@ -58,12 +89,32 @@ static const cli_opt opts[] = {
      "plastic integration over an increment: midpoint rule (second order), radial return "
      "(backward Euler, first order) or exact along the increment's strain path "
      "(default midpoint)"},
-    {"no-separation", NULL, "a node in contact never opens"},
+    {"junction", "footprint|nodes",
+     "--shear: reading of the contact's growth: the edge advance from the gaps ahead of it "
+     "(footprint, default) or F_z/p_m of the nodes that touch (nodes); the two bracket the "
+     "mesh-converged answer (docs/design.md §4.2)"},
+    {"foot-rows", "F",
+     "--shear, footprint reading: read the edge advance on every row of surface nodes "
+     "within F a0 of the axis and average them, F in [0, 0.9] (default 0: the three axis "
+     "lines).  At F = 0.6 the node-placement spread of mu_s fell from +-7.6 to +-2.1 % (WSP "
+     "sphere, 3 omega_c), so --placements 2 --foot-rows 0.6 gives a mean within about "
+     "1.3 %; against the elastic half-space it reads 0.7-1.4 points more junction growth, "
+     "the axis lines 1.9-2.3 points less (docs/design.md §4.2, §4.5)"},
+    {"ramp-return-map", "radial|midpoint|exact",
+     "--shear: plastic integration during the ramp (default radial: the midpoint rule, "
+     "used in the normal step, can be far off over the ramp's long increments)"},
+    {"ramp-refine", "K",
+     "--shear: divide the ramp's increment targets by K in [1, 64] (default 1), to check "
+     "the ramp's increment convergence: K = 2 moves mu_s by <= 0.2 % in ordinary cases; "
+     "more where Q still rises past inception (KT_over_KT1_after_slide; docs/design.md "
+     "§4.3, §4.4)"},
+    {"newton-reuse", "K", "reuse a factorization for up to K Newton iterations (default 1)"},
+    {"krylov", "off|auto|on",
+     "solve Newton steps by PCG preconditioned with the last factorization (auto: where a "
+     "factorization costs many PCG iterations, i.e. 3D; default auto)"},
+    {"krylov-max", "N", "PCG iterations before refactorizing (default 50)"},
     {"threads", "N",
      "OpenMP threads for the element loop and the Krylov solves (default: runtime)"},
-    {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR"},
-    {"json", NULL, "print JSON (one object, or an array for a curve)"},
-    CLI_SHEAR_OPTS,
     {NULL, NULL, NULL},
 };
 

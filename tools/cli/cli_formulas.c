@@ -11,24 +11,34 @@
 #include "stiction/formulas.h"
 
 static const char usage[] =
-    "[common options] [--delta LIST] [--json | --csv] [--output FILE]\n"
+    "[--delta LIST] [sphere, coating, materials] [--json | --csv] [--output FILE]\n"
     "\n"
-    "Yield inception of the homogeneous sphere (slip and stick), the hard-coating\n"
-    "fits (slip: Goltsberg 2011, Chen 2016; stick: Ronen 2017), and at each\n"
-    "--delta (in units of omega_c_su) Hertz, the stick elastic-plastic L and A and\n"
-    "the WSP friction coefficient.  LIST is a,b,c or start:stop:count.\n"
+    "Closed-form contact models of one sphere on a rigid flat: yield inception of the\n"
+    "homogeneous sphere (slip and stick), the hard-coating fits (slip: Goltsberg 2011,\n"
+    "Chen 2016; stick: Ronen 2017), and at each --delta Hertz, the stick\n"
+    "elastic-plastic load L and area A and the WSP friction coefficient.  LIST is\n"
+    "a,b,c or start:stop:count.\n"
     "--json: one object; mu_s_wsp and delta_over_omega_c_su are numbers for one\n"
     "--delta and arrays for several (per-delta detail in \"points\").\n"
     "--csv: one row of coated-sphere values per (t/R, Eco/Esu) of the sweep lists\n"
     "(default: the common --t-over-R and --E-ratio).";
 
 static const cli_opt opts[] = {
-    {"delta", "LIST", "interference(s) in units of omega_c_su (> 0)"},
+    CLI_HEADING("Sphere and coating (units mm, N, MPa)"),
+    CLI_SPHERE_OPTS,
+    CLI_HEADING("Materials"),
+    CLI_SUBSTRATE_OPTS,
+    CLI_COATING_MATERIAL_OPTS,
+    CLI_HEADING("Loading"),
+    {"delta", "LIST", "interference(s) in units of omega_c_su, the substrate's critical "
+                      "interference (> 0)"},
+    CLI_HEADING("Common options"),
     {"json", NULL, "print one JSON object instead of the report"},
     {"csv", NULL, "print a CSV table of the coated fits over the sweep lists"},
     {"sweep-t-over-R", "LIST", "t/R values of the --csv sweep (each in (0, 1))"},
     {"sweep-E-ratio", "LIST", "Eco/Esu values of the --csv sweep (each > 1)"},
     {"output", "FILE", "write to FILE (atomically: temp file + rename) instead of stdout"},
+    CLI_CONFIG_HELP,
     {NULL, NULL, NULL},
 };
 

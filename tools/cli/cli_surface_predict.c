@@ -30,14 +30,24 @@ typedef struct {
 } predict_opts;
 
 static const cli_opt opts[] = {
+    CLI_HEADING("Surface (a map, or its summit statistics; units mm, N, MPa)"),
     {"surface", "FILE", "surface HDF5 (from `surface synth`): summits found, stats measured"},
     {"rule", "8|4", "summit rule for --surface (default 8)"},
     CLI_SURFACE_IMPORT_OPTS,
     {"summit-density", "ETA", "statistical run without a map: summits per mm²"},
     {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},
     {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"},
+    CLI_HEADING("Coating and materials"),
+    {"t-mm", "MM", "coating thickness in mm, the same on every summit: each summit's t/R = "
+                   "t-mm / R with its own radius R (default 0: uncoated)"},
     {"t-over-R", "X", "refused: every summit has its own radius; give the coating thickness as "
-                      "--t-mm MM (a common option)"},
+                      "--t-mm MM"},
+    CLI_SUBSTRATE_OPTS,
+    CLI_COATING_MATERIAL_OPTS,
+    CLI_HEADING("Loading"),
+    {"pressures", "LIST", "nominal pressures P/An, MPa: a,b,c or start:stop:count"},
+    {"separations", "LIST", "separations d/sigma_s from the MEAN SUMMIT HEIGHT (GW)"},
+    CLI_HEADING("Asperity model"),
     {"table", "FILE", "asperity response from an FE friction table (`stiction table build`): "
                       "the coating counts, each summit with its own t/R; mu_s with an error band"},
     {"fill", NULL, "with --table: first compute the table's missing points that these loads "
@@ -47,17 +57,20 @@ static const cli_opt opts[] = {
                            "law)"},
     {"layer", "substrate|coating", "layer whose properties the closed-form model uses "
                                    "(default substrate)"},
-    {"sampled", NULL, "evaluate the model through the table path (sampled + interpolated)"},
+    CLI_HEADING("Summation"),
     {"mode", "statistical|deterministic", "quadrature over a height density, or the sums "
                                           "over the map's summits (default statistical)"},
     {"density", "gaussian|kde", "statistical height density for --surface (default gaussian)"},
-    {"pressures", "LIST", "nominal pressures P/An, MPa: a,b,c or start:stop:count"},
-    {"separations", "LIST", "separations d/sigma_s from the MEAN SUMMIT HEIGHT (GW)"},
+    CLI_HEADING("Common options"),
     {"out", "DIR", "write DIR/gw.csv, DIR/gw.json, DIR/gw.png"},
     {"csv", "FILE", "write the CSV here"},
     {"png", "FILE", "write the PNG (mu_s and A/An vs nominal pressure) here"},
     {"json", NULL, "print a JSON array, one object per load point"},
     {"timing", NULL, "print set-up and per-load-point wall times to stderr"},
+    CLI_CONFIG_HELP,
+    CLI_HEADING("Expert numerics"),
+    {"sampled", NULL, "evaluate the closed-form model through the table path (sampled + "
+                      "interpolated)"},
     {NULL, NULL, NULL},
 };
 
@@ -673,15 +686,15 @@ static void report_timing(const srf_gw *g, int n, double setup, double points)
 static const char *USAGE =
     "(--surface FILE | --summit-density ETA --summit-radius MM --sigma-s MM)\n"
     "       (--pressures LIST | --separations LIST) [--table FILE [--fill] | --model hertz|wsp]\n"
-    "       [--t-mm MM] [--mode statistical|deterministic] [--out DIR] [--csv F] [--png F]\n"
-    "       [--json]\n\n"
+    "       [--t-mm MM] [materials] [--mode statistical|deterministic] [--out DIR] [--json]\n\n"
     "Greenwood-Williamson summation: N, P, A, Qmax summed over the summits; mu_s = sum Qmax /\n"
     "sum P (never a mean of asperity mu_s).  Separations are measured from the MEAN SUMMIT\n"
     "HEIGHT in units of sigma_s.  The asperity response: an FE friction table (--table; the\n"
     "coating counts, mu_s comes with an error band), or a closed-form model with ONE layer's\n"
     "properties (the coating then enters only through t/R).  The coating is --t-mm MM thick\n"
     "on every summit, each summit with its own radius and so its own t/R (--t-over-R is\n"
-    "refused).";
+    "refused).  The share of the load from summits outside the model's range is\n"
+    "printed (\"outside\"; JSON: in_range) and warned about on stderr above 5 %.";
 
 int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
 {

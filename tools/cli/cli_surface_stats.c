@@ -15,10 +15,13 @@ typedef struct {
 } stats_opts;
 
 static const cli_opt opts[] = {
+    CLI_HEADING("Surface"),
     {"in", "FILE", "surface file (HDF5 from `surface synth`; or a leading FILE argument)"},
     {"rule", "8|4", "summit rule: 8 or 4 neighbours, periodic edges (default 8)"},
     CLI_SURFACE_IMPORT_OPTS,
+    CLI_HEADING("Common options"),
     {"json", NULL, "print JSON"},
+    CLI_CONFIG_HELP,
     {NULL, NULL, NULL},
 };
 

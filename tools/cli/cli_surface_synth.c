@@ -19,8 +19,10 @@ typedef struct {
 } synth_opts;
 
 static const cli_opt opts[] = {
+    CLI_HEADING("Grid (units mm)"),
     {"size", "N[,M]", "grid points in x[,y] (default 256)"},
     {"length", "L[,Ly]", "periodic lengths, mm (default 1)"},
+    CLI_HEADING("Heights and spectrum"),
     {"rms", "SIGMA", "RMS height, mm, exact after synthesis (default 0.001)"},
     {"spectrum", "KIND", "exponential | self-affine (default exponential)"},
     {"corr-length", "BX[,BY]", "exponential: ACF falls to 0.1 at BX, BY mm (default 0.05)"},
@@ -32,13 +34,16 @@ static const cli_opt opts[] = {
     {"kurtosis", "KU", "non-Gaussian heights: target kurtosis (Gaussian 3)"},
     {"amplitude", "MODE", "exact (random phase, default) | rayleigh (random amplitude)"},
     {"seed", "N", "GSL mt19937 seed, stored in the output (default 1)"},
-    {"threads", "N", "FFTW/OpenMP threads (default: all)"},
+    CLI_HEADING("A measured map instead"),
+    {"import", "FILE", "import a measured map instead of synthesizing (needs --pixel-size)"},
+    CLI_SURFACE_IMPORT_OPTS,
+    CLI_HEADING("Common options"),
     {"out", "FILE.h5", "output HDF5 file (required)"},
     {"png", "FILE", "PNG of the map (default: FILE.h5 with .png)"},
     {"no-png", NULL, "do not write a PNG"},
-    {"import", "FILE", "import a measured map instead of synthesizing (needs --pixel-size)"},
-    CLI_SURFACE_IMPORT_OPTS,
     {"json", NULL, "print the summary as JSON"},
+    {"threads", "N", "FFTW/OpenMP threads (default: all)"},
+    CLI_CONFIG_HELP,
     {NULL, NULL, NULL},
 };
 

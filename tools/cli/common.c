@@ -20,7 +20,7 @@ typedef struct {
 static const cli_opt *find_opt(const cli_opt *opts, const char *key)
 {
     for (; opts && opts->name; opts++)
-        if (strcmp(opts->name, key) == 0) return opts;
+        if (*opts->name && strcmp(opts->name, key) == 0) return opts;
     return NULL;
 }
 
@@ -136,43 +136,64 @@ static int is_common_key(const char *key)
     return stc_params_set(&scratch, key, "0.25") != STC_EUNSUPPORTED;
 }
 
-void cli_common_help(FILE *f)
+/* --help: an option's name in a column of HELP_LEFT characters, its text
+ * wrapped at HELP_WIDTH columns; a name too wide for the column gets a line
+ * of its own. */
+enum { HELP_LEFT = 25, HELP_WIDTH = 92 };
+
+/* A line may break at the space p[i], except before a unit ("3 %"). */
+static int help_break(const char *p, int i) { return p[i] == ' ' && p[i + 1] != '%'; }
+
+static void help_line(const char *left, const char *text)
 {
-    fputs("Common options (units mm, N, MPa):\n"
-          "  --R MM            substrate radius (default 10)\n"
-          "  --t-over-R X      coating thickness / R, 0 = uncoated (default 0; not in\n"
-          "                    surface predict, whose summits have their own radii)\n"
-          "  --t-mm MM         coating thickness in mm, instead of --t-over-R: t/R =\n"
-          "                    t-mm / R with the run's R (surface predict: on every summit)\n"
-          "  --E-su MPA        substrate Young's modulus (default 200000)\n"
-          "  --E-ratio X       Eco/Esu (default 1)\n"
-          "  --E-over-Y X      E/Y of both layers (default 1000)\n"
-          "  --Y-su MPA        substrate yield strength (overrides E-over-Y)\n"
-          "  --Y-co MPA        coating yield strength (overrides E-over-Y); with a coating\n"
-          "                    (t > 0, E-ratio != 1 or --nu-co) give both --Y-su and --Y-co\n"
-          "                    or neither\n"
-          "  --nu X            Poisson's ratio (default 0.32)\n"
-          "  --nu-co X         coating Poisson's ratio (default: --nu)\n"
-          "  --config FILE     INI file with the same keys (command line overrides)\n"
-          "  --help            this text\n",
-          f);
+    int col = printf("  %s", left);
+    if (col >= HELP_LEFT) printf("\n"), col = 0;
+    const int room = HELP_WIDTH - HELP_LEFT;
+    for (const char *p = text; *p;) {
+        int len = (int)strlen(p), cut = len;
+        if (len > room) { /* at the last space that fits, or after one long word */
+            for (cut = room; cut > 0 && !help_break(p, cut); cut--) {}
+            if (cut == 0)
+                for (cut = room; p[cut] && !help_break(p, cut); cut++) {}
+        }
+        printf("%*s%.*s\n", HELP_LEFT - col, "", cut, p);
+        col = 0;
+        for (p += cut; *p == ' '; p++) {}
+    }
 }
 
-static void print_help(const char *cmdname, const char *usage, const cli_opt *opts,
-                       int has_params)
+static void help_config(void)
 {
-    printf("usage: stiction %s %s\n\n", cmdname, usage);
-    if (opts && opts->name) {
-        printf("Options:\n");
-        for (const cli_opt *o = opts; o->name; o++) {
-            char left[64];
-            snprintf(left, sizeof left, "--%s%s%s", o->name, o->arg ? " " : "",
-                     o->arg ? o->arg : "");
-            printf("  %-22s %s\n", left, o->help);
+    help_line("--config FILE", "INI file with the same keys as the options (the command line "
+                               "overrides it)");
+    help_line("--help", "this text");
+}
+
+static void print_help(const char *cmdname, const char *usage, const cli_opt *opts)
+{
+    printf("usage: stiction %s %s\n", cmdname, usage);
+    int placed = 0, headed = 0;
+    for (const cli_opt *o = opts; o && o->name; o++) {
+        if (!*o->name && !o->arg) { /* a heading */
+            printf("\n%s:\n", o->help);
+            headed = 1;
+            continue;
         }
-        printf("\n");
+        if (!headed) printf("\nOptions:\n"), headed = 1;
+        if (!*o->name) {
+            help_config();
+            placed = 1;
+            continue;
+        }
+        char left[64];
+        snprintf(left, sizeof left, "--%s%s%s", o->name, o->arg ? " " : "",
+                 o->arg ? o->arg : "");
+        help_line(left, o->help);
     }
-    if (has_params) cli_common_help(stdout);
+    if (!placed) {
+        if (!headed) printf("\nOptions:\n");
+        help_config();
+    }
 }
 
 FILE *cli_out_open(cli_out *o, const char *dir, const char *name)
@@ -227,7 +248,7 @@ int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            print_help(cmdname, usage, opts, params != NULL);
+            print_help(cmdname, usage, opts);
             *done = 1;
             return CLI_EXIT_OK;
         }

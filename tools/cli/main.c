@@ -9,7 +9,8 @@ static const cli_cmd commands[] = {
     {"formulas", "closed-form contact models (Hertz, yield inception, coated fits, WSP)",
      cli_formulas},
     {"surface", "rough surfaces: synth, stats, predict (stiction surface --help)", cli_surface},
-    {"asperity", "FE model of one coated asperity under normal load (P, A, first yield)",
+    {"asperity", "FE model of one coated asperity: pressed (P, A, yield); --shear: sheared "
+                 "to sliding (mu_s)",
      cli_asperity},
     {"table", "FE friction tables: build, info, query, merge (stiction table --help)", cli_table},
     {"halfspace", "elastic half-space reference: sphere on a rigid flat, full-slip junction growth",
