@@ -408,6 +408,25 @@ static void test_thickness_mm(void **state)
     }
 }
 
+/* A closed-form fit used outside the range it was made for is flagged in
+ * the report and the JSON (before: only there) and warned about on stderr,
+ * one line per fit; inputs inside every range give no warning. */
+static void test_formulas_range_warnings(void **state)
+{
+    (void)state;
+    static char err[8192];
+    assert_int_equal(run("formulas --delta 100 --json", 2, err, sizeof err), 0);
+    printf("  formulas --delta 100: %s", err);
+    assert_non_null(strstr(err, "warning: WSP mu_s: omega/omega_c outside [0.5, 72]"));
+    assert_int_equal(run("formulas --t-over-R 0.001 --E-ratio 12 --delta 10", 2, err, sizeof err),
+                     0);
+    assert_non_null(strstr(err, "warning: coated slip fits: Eco/Esu > 4.5"));
+    assert_non_null(strstr(err, "warning: coated stick fits: Eco/Esu > 10"));
+    assert_non_null(strstr(err, "warning: WSP mu_s: coated input"));
+    assert_int_equal(run("formulas --delta 3", 2, err, sizeof err), 0);
+    assert_string_equal(err, "");
+}
+
 /* --help puts first what a user chooses: the physics (sphere, coating,
  * materials, loading, contact and friction), then one accuracy choice with
  * what it costs and buys, then the common options, and the numerics knobs
@@ -548,7 +567,7 @@ int main(void)
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),
-        cmocka_unit_test(test_curve_3d_graded), cmocka_unit_test(test_help_layout),
+        cmocka_unit_test(test_curve_3d_graded), cmocka_unit_test(test_formulas_range_warnings), cmocka_unit_test(test_help_layout),
     };
     return cmocka_run_group_tests_name("cli", tests, find_cli, cleanup);
 }

@@ -16,8 +16,9 @@ static const char usage[] =
     "Closed-form contact models of one sphere on a rigid flat: yield inception of the\n"
     "homogeneous sphere (slip and stick), the hard-coating fits (slip: Goltsberg 2011,\n"
     "Chen 2016; stick: Ronen 2017), and at each --delta Hertz, the stick\n"
-    "elastic-plastic load L and area A and the WSP friction coefficient.  LIST is\n"
-    "a,b,c or start:stop:count.\n"
+    "elastic-plastic load L and area A and the WSP friction coefficient.  A fit used\n"
+    "outside the range it was made for is flagged (report, JSON *_flags) and warned\n"
+    "about on stderr.  LIST is a,b,c or start:stop:count.\n"
     "--json: one object; mu_s_wsp and delta_over_omega_c_su are numbers for one\n"
     "--delta and arrays for several (per-delta detail in \"points\").\n"
     "--csv: one row of coated-sphere values per (t/R, Eco/Esu) of the sweep lists\n"
@@ -376,6 +377,34 @@ static void text_report(FILE *f, const model *m, const point *pts, int n)
     for (int i = 0; i < n; i++) text_point(f, m, &pts[i]);
 }
 
+/* ---- warnings ----------------------------------------------------------- */
+
+/* Every fit used outside the range it was made for, one line each on
+ * stderr (the flags are in the report and the JSON too).  A coating that
+ * yields after its substrate (STC_FIT_ORDER of the slip and stick fits) is a
+ * finding of the fits, not a range, and is not warned about. */
+static void warn_ranges(const char *name, const model *m, const point *pts, int n)
+{
+    struct {
+        const char *what;
+        stc_fit_family fam;
+        unsigned flags;
+    } f[] = {
+        {"stick yield inception (Brizmer 2006)", STC_FITS_STICK_HOMOG,
+         m->csu.flags | m->cco.flags},
+        {"coated slip fits", STC_FITS_SLIP, m->coated ? m->c.flags_slip & ~STC_FIT_ORDER : 0},
+        {"coated stick fits", STC_FITS_STICK, m->coated ? m->c.flags_stick & ~STC_FIT_ORDER : 0},
+        {"stick elastic-plastic L, A", STC_FITS_EP, 0},
+        {"WSP mu_s", STC_FITS_WSP, 0},
+    };
+    for (int i = 0; i < n; i++) f[3].flags |= pts[i].ep_flags, f[4].flags |= pts[i].wsp_flags;
+    for (size_t k = 0; k < sizeof f / sizeof *f; k++)
+        for (unsigned bit = 1; bit <= STC_FIT_ORDER; bit <<= 1)
+            if (f[k].flags & bit)
+                fprintf(stderr, "stiction %s: warning: %s: %s\n", name, f[k].what,
+                        stc_fit_flag_text(f[k].fam, bit));
+}
+
 /* ---- CSV sweep -------------------------------------------------------- */
 
 /* f == NULL: only check that every row can be evaluated. */
@@ -461,6 +490,7 @@ static int run(const char *name, const stc_params *p, const fopts *o)
     if (o->csv) s = csv_report(f, p, o);
     else if (o->json) json_report(f, &m, pts, o->ndelta);
     else text_report(f, &m, pts, o->ndelta);
+    if (!o->csv) warn_ranges(name, &m, pts, o->ndelta);
     free(pts);
     if (!out_close(f, o->output, tmp, s == STC_OK)) {
         if (s != STC_OK) return cli_fail(name, s);
