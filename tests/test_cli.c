@@ -408,6 +408,35 @@ static void test_thickness_mm(void **state)
     }
 }
 
+/* Coating and radius keys a command would ignore are refused by name:
+ * surface predict takes each summit's radius from the map or
+ * --summit-radius, not the common --R; the half-space reference is a
+ * homogeneous sphere, so a coating given as --t-mm, --E-ratio, Y-co or
+ * nu-co (before: silently ignored, or named as t-over-R) is refused. */
+static void test_ignored_keys(void **state)
+{
+    (void)state;
+    expect_fail("surface predict --summit-density 100 --summit-radius 0.05 --sigma-s 0.001 "
+                "--pressures 1 --R 5", "R = 5", "--summit-radius");
+    const char *h = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --delta 0.5 --cells 32";
+    char args[256];
+    snprintf(args, sizeof args, "%s --t-mm 0.1 --Y-co 325", h);
+    expect_fail(args, "t-mm = 0.1", "homogeneous");
+    snprintf(args, sizeof args, "%s --E-ratio 2 --Y-co 650", h);
+    expect_fail(args, "E-ratio = 2", "homogeneous");
+    snprintf(args, sizeof args, "%s --Y-co 300", h);
+    expect_fail(args, "Y-co = 300", "homogeneous");
+    snprintf(args, sizeof args, "%s --nu-co 0.3 --Y-co 325", h);
+    expect_fail(args, "nu-co = 0.3", "homogeneous");
+    /* the coating's own values equal to the substrate's describe no coating */
+    snprintf(args, sizeof args, "%s --Y-co 325 --nu-co 0.33 --json", h);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    /* the help says which R a thickness refers to */
+    assert_int_equal(run("surface predict --help", 1, out, sizeof out), 0);
+    assert_non_null(strstr(out, "t-mm / R with its own radius R"));
+    assert_non_null(strstr(out, "--R MM"));
+}
+
 /* A closed-form fit used outside the range it was made for is flagged in
  * the report and the JSON (before: only there) and warned about on stderr,
  * one line per fit; inputs inside every range give no warning. */
@@ -567,7 +596,8 @@ int main(void)
         cmocka_unit_test(test_output_file),       cmocka_unit_test(test_json_coated),
         cmocka_unit_test(test_json_uncoated),     cmocka_unit_test(test_config_override),
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),
-        cmocka_unit_test(test_curve_3d_graded), cmocka_unit_test(test_formulas_range_warnings), cmocka_unit_test(test_help_layout),
+        cmocka_unit_test(test_curve_3d_graded),  cmocka_unit_test(test_ignored_keys),
+        cmocka_unit_test(test_formulas_range_warnings), cmocka_unit_test(test_help_layout),
     };
     return cmocka_run_group_tests_name("cli", tests, find_cli, cleanup);
 }

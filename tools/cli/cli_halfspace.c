@@ -156,9 +156,19 @@ int cli_halfspace(const cli_cmd *cmd, int argc, char **argv)
         fprintf(stderr, "stiction %s: give one of --delta and --delta-mm\n", cmd->name);
         return CLI_EXIT_USAGE;
     }
-    if (p.t_over_R != 0.0) {
-        fprintf(stderr, "stiction %s: t-over-R = %g: the half-space reference is homogeneous "
-                "(t-over-R must be 0)\n", cmd->name, p.t_over_R);
+    /* a coating would be ignored: refused, naming the key that gives one */
+    stc_material su;
+    stc_params_materials(&p, &su, NULL);
+    char key[64] = "";
+    if (p.t_mm_set && p.t_mm != 0.0) snprintf(key, sizeof key, "t-mm = %g", p.t_mm);
+    else if (p.t_over_R != 0.0) snprintf(key, sizeof key, "t-over-R = %g", p.t_over_R);
+    else if (p.E_ratio != 1.0) snprintf(key, sizeof key, "E-ratio = %g", p.E_ratio);
+    else if (p.Y_co > 0.0 && p.Y_co != su.Y) snprintf(key, sizeof key, "Y-co = %g", p.Y_co);
+    else if (p.nu_co_set && p.nu_co != p.nu) snprintf(key, sizeof key, "nu-co = %g", p.nu_co);
+    if (*key) {
+        fprintf(stderr, "stiction %s: %s: the half-space reference is a homogeneous sphere "
+                "(no coating: t-over-R and t-mm 0, E-ratio 1, Y-co and nu-co those of the "
+                "substrate)\n", cmd->name, key);
         return CLI_EXIT_USAGE;
     }
     return run(cmd->name, &p, &o);

@@ -42,6 +42,7 @@ static const cli_opt opts[] = {
                    "t-mm / R with its own radius R (default 0: uncoated)"},
     {"t-over-R", "X", "refused: every summit has its own radius; give the coating thickness as "
                       "--t-mm MM"},
+    {"R", "MM", "refused: the summits' radii come from the map or --summit-radius"},
     CLI_SUBSTRATE_OPTS,
     CLI_COATING_MATERIAL_OPTS,
     CLI_HEADING("Loading"),
@@ -135,6 +136,10 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
     else if (strcmp(key, "summit-density") == 0) s = set_positive(key, v, &o->eta, 0);
     else if (strcmp(key, "summit-radius") == 0) s = set_positive(key, v, &o->R, 0);
     else if (strcmp(key, "sigma-s") == 0) s = set_positive(key, v, &o->sigma_s, 0);
+    else if (strcmp(key, "R") == 0)
+        /* the common R (10 mm) is not a summit's: it would change nothing */
+        s = stc_error(STC_EINVAL, __FILE__, __LINE__, "R = %s: the summits' radii come from "
+                      "the map (--surface) or --summit-radius; R is not used here", v);
     else if (strcmp(key, "t-over-R") == 0)
         /* the common t/R would be taken against the common R (10 mm) */
         s = stc_error(STC_EINVAL, __FILE__, __LINE__, "t-over-R = %s: every summit has its own "
