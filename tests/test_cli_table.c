@@ -289,6 +289,31 @@ static void test_bad_input(void **state)
                    "--model conflicts with --table", NULL);
 }
 
+/* The coating of a query in mm, as on the other commands: --t-mm MM with
+ * the sphere's radius --R MM gives the answer of --t-over-R t/R, and one
+ * without the other, or both forms, is refused by name. */
+static void test_query_t_mm(void **state)
+{
+    (void)state;
+    static char ref[8192], out[8192];
+    assert_int_equal(run("table query ref.h5 --delta 1,5 --t-over-R 0.01 --E-ratio 1.5 --json", 1,
+                         ref, sizeof ref), 0);
+    assert_int_equal(run("table query ref.h5 --delta 1,5 --t-mm 0.05 --R 5 --E-ratio 1.5 --json",
+                         1, out, sizeof out), 0);
+    assert_string_equal(out, ref);
+    printf("  --t-mm 0.05 --R 5 answers as --t-over-R 0.01\n");
+    expect_refusal("table query ref.h5 --delta 1 --t-mm 0.05 --E-ratio 1.5", 2,
+                   "t-mm = 0.05 given without R", NULL);
+    expect_refusal("table query ref.h5 --delta 1 --R 5 --E-ratio 1.5", 2,
+                   "R = 5 given without t-mm", NULL);
+    expect_refusal("table query ref.h5 --delta 1 --t-mm 0.05 --R 5 --t-over-R 0.01 "
+                   "--E-ratio 1.5", 2, "--t-mm conflicts with --t-over-R", NULL);
+    expect_refusal("table query ref.h5 --delta 1 --E-ratio 1.5", 2,
+                   "t-over-R (or --t-mm with --R): missing", NULL);
+    assert_int_equal(run("table query --help", 1, out, sizeof out), 0);
+    assert_non_null(strstr(out, "t/R = t-mm / R"));
+}
+
 /* surface predict --fill computes only the table points its loads touch,
  * adds them to the table file, and a second run finds nothing to do. */
 static void test_fill(void **state)
@@ -385,6 +410,7 @@ int main(void)
         cmocka_unit_test(test_killed_build_resumes),
         cmocka_unit_test(test_shards_merge),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_query_t_mm),
         cmocka_unit_test(test_fill),
         cmocka_unit_test(test_failed_points_warned),
     };

@@ -292,6 +292,7 @@ typedef struct {
     double *w;
     int nw;
     double tR, E;
+    double t_mm, R; /* --t-mm with --R: t/R = t_mm / R */
     char *out;
 } query_args;
 
@@ -312,6 +313,8 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
         return cli_parse_list(key, value, &q->w, &q->nw);
     }
     if (!strcmp(key, "t-over-R")) return set_num(key, value, 1e-9, 0.999, &q->tR);
+    if (!strcmp(key, "t-mm")) return set_num(key, value, 1e-12, 1e6, &q->t_mm);
+    if (!strcmp(key, "R")) return set_num(key, value, 1e-9, 1e6, &q->R);
     if (!strcmp(key, "E-ratio")) return set_num(key, value, 1e-3, 1e3, &q->E);
     if (!strcmp(key, "out")) return cli_set_string(key, value, &q->out);
     return STC_EUNSUPPORTED;
@@ -504,6 +507,8 @@ static const cli_opt query_opts[] = {
     CLI_HEADING("Point"),
     {"delta", "LIST", "delta/omega_c_su values"},
     {"t-over-R", "X", "coating thickness over the sphere's (summit's) radius R"},
+    {"t-mm", "MM", "coating thickness in mm, instead of --t-over-R: t/R = t-mm / R with --R"},
+    {"R", "MM", "with --t-mm: the sphere's (summit's) radius R, mm"},
     {"E-ratio", "X", "Eco/Esu"},
     CLI_HEADING("Common options"),
     {"json", NULL, "print a JSON array, one object per delta"},
@@ -511,13 +516,33 @@ static const cli_opt query_opts[] = {
     {NULL, NULL, NULL},
 };
 
+/* The coating as t/R: --t-over-R, or --t-mm over --R (the pair, not both
+ * forms); STC_OK with q->tR set, or STC_EINVAL naming the keys. */
+static stc_status query_t_over_R(query_args *q)
+{
+    if (q->t_mm > 0 && q->tR > 0)
+        return cli_conflict("t-mm", "t-over-R", "give the coating thickness one way");
+    if (q->t_mm > 0 && !(q->R > 0))
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "t-mm = %g given without R: t/R = "
+                         "t-mm / R needs the sphere's radius (--R MM)", q->t_mm);
+    if (q->R > 0 && !(q->t_mm > 0))
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "R = %g given without t-mm: R is the "
+                         "radius --t-mm MM refers to (a table is normalised by R)", q->R);
+    if (q->t_mm > 0) {
+        stc_status s = stc_check_range("t-mm / R", q->t_mm / q->R, 1e-9, 1, 0.999, 1);
+        if (s) return s;
+        q->tR = q->t_mm / q->R;
+    }
+    return STC_OK;
+}
+
 static int table_query(const cli_cmd *cmd, int argc, char **argv)
 {
     const char *path = NULL;
     cli_peel_positional(&argc, &argv, &path);
     query_args q = {0};
     int done;
-    int rc = cli_parse(cmd->name, "FILE --delta LIST --t-over-R X "
+    int rc = cli_parse(cmd->name, "FILE --delta LIST (--t-over-R X | --t-mm MM --R MM) "
                        "--E-ratio X [--json]\n\nInterpolated response with one-standard-error "
                        "bars; values outside the table are flagged\n(JSON: in_range, flags) and "
                        "warned about on stderr.",
@@ -525,7 +550,13 @@ static int table_query(const cli_cmd *cmd, int argc, char **argv)
     tbl_table *t = NULL;
     tbl_value *v = NULL;
     if (rc || done) goto out;
-    const char *miss = !q.w ? "delta" : !(q.tR > 0) ? "t-over-R" : !(q.E > 0) ? "E-ratio" : NULL;
+    stc_status st = query_t_over_R(&q);
+    if (st) {
+        rc = cli_fail(cmd->name, st);
+        goto out;
+    }
+    const char *miss = !q.w ? "delta" : !(q.tR > 0) ? "t-over-R (or --t-mm with --R)"
+                     : !(q.E > 0) ? "E-ratio" : NULL;
     if (miss) {
         fprintf(stderr, "stiction %s: %s: missing\n", cmd->name, miss);
         rc = CLI_EXIT_USAGE;
