@@ -63,11 +63,11 @@ static int keep(void *ctx, const asp_shear_point *pt)
 }
 
 /* elastic = 1: the same δ and τc (Y/√3 of the WSP sphere), but the sphere
- * stays elastic (Y just below E), for the half-space reference. */
-static int run_case_map(shared *r, asp_junction junction, int elastic, asp_return_map map)
+ * stays elastic (Y just below E), for the half-space reference.  so: the
+ * ramp's options (its τc is set here for the elastic case). */
+static int run_case_so(shared *r, asp_shear_options *so, int elastic)
 {
     asp_options o;
-    asp_shear_options so;
     asp_solver *s = NULL;
     wsp_params(&r->p);
     stc_params_materials(&r->p, &r->m, NULL);
@@ -75,23 +75,29 @@ static int run_case_map(shared *r, asp_junction junction, int elastic, asp_retur
     asp_options_default(&o);
     o.geom = ASP_GEOM_3D, o.mesh_level = 0;
     o.threads = 1; /* the test runner shares the machine */
-    asp_shear_options_default(&so);
-    so.junction = junction;
-    so.return_map = map;
     double delta = 0.5 * r->c.omega_c;
     if (elastic) {
-        so.tau_c = r->m.Y / sqrt(3.0);
+        so->tau_c = r->m.Y / sqrt(3.0);
         r->p.Y_su = r->p.Y_co = 0.95 * r->p.E_su;
     }
     if (asp_solver_create(&r->p, &o, delta, &s) != STC_OK) return -1;
     if (asp_solver_load(s, delta, &r->pt) != STC_OK) return asp_solver_destroy(&s), -1;
-    r->st = asp_solver_shear(s, &so, keep, r, &r->res);
+    r->st = asp_solver_shear(s, so, keep, r, &r->res);
     printf("# WSP 0.5 wc, level 0, junction %s: %d ramp points, %d Newton iterations, "
            "%d factorizations, %.1f s (%s)\n",
-           junction == ASP_JUNCTION_NODES ? "nodes" : "footprint", r->n, r->res.newton_iterations,
-           r->res.factorizations, r->res.wall_s, r->res.reason);
+           so->junction == ASP_JUNCTION_NODES ? "nodes" : "footprint", r->n,
+           r->res.newton_iterations, r->res.factorizations, r->res.wall_s, r->res.reason);
     asp_solver_destroy(&s);
     return 0;
+}
+
+static int run_case_map(shared *r, asp_junction junction, int elastic, asp_return_map map)
+{
+    asp_shear_options so;
+    asp_shear_options_default(&so);
+    so.junction = junction;
+    so.return_map = map;
+    return run_case_so(r, &so, elastic);
 }
 
 static int run_case_mat(shared *r, asp_junction junction, int elastic)
@@ -434,6 +440,61 @@ static void test_elastic_growth_bem(void **state)
     assert_true(l->a_lead - a0 < 0.2 * (l->a_trail - a0));
 }
 
+/* The rows reading of the junction footprint (asp_shear_options.foot_rows,
+ * --foot-rows; docs/design.md §4.2): the edge advance is read on every row
+ * of surface nodes within F a0 of the axis that crosses the edge, not on
+ * the three axis lines only.  On the elastic sphere of the test above it
+ * reads more of the half-space's growth than the axis lines: measured
+ * +5.58 % at F = 0.6 against +2.56 % (axis lines) and +4.89 % (half space,
+ * 512 cells); docs/design.md: +0.7 … +1.4 points over the reference at 6 to
+ * 12 elements per contact.  Checked: at least 1.5 points more growth than
+ * the axis lines, and within 2 points of the half-space. */
+static void test_foot_rows(void **state)
+{
+    (void)state;
+    static shared X;
+    if (RE.n == 0) assert_int_equal(run_case_mat(&RE, ASP_JUNCTION_FOOTPRINT, 1), 0);
+    asp_shear_options so;
+    asp_shear_options_default(&so);
+    so.foot_rows = 0.6;
+    assert_int_equal(run_case_so(&X, &so, 1), 0);
+    assert_int_equal(X.st, STC_OK);
+    assert_true(X.res.converged);
+    double tc = X.res.tau_c, a0 = X.res.a0, delta = 0.5 * X.c.omega_c;
+    assert_true(a0 == RE.res.a0 && tc == RE.res.tau_c); /* the same preload */
+    double rows = X.res.Q_max / (tc * M_PI * a0 * a0) - 1.0;
+    double axis = RE.res.Q_max / (tc * M_PI * a0 * a0) - 1.0;
+    srf_slide_result b;
+    assert_int_equal(srf_halfspace_sphere_slide(X.p.R, delta, X.m.E, X.m.nu, tc, 128, 1.3, 2, &b),
+                     STC_OK);
+    double bem = b.A / b.A0 - 1.0;
+    printf("# elastic growth read on rows (F = 0.6): %+.2f %%, on the axis lines %+.2f %%, "
+           "half-space %+.2f %%\n", 100 * rows, 100 * axis, 100 * bem);
+    assert_true(rows - axis > 0.015);
+    assert_true(fabs(rows - bem) < 0.02);
+}
+
+/* The ramp's increment targets divided by K (asp_shear_options.ramp_refine,
+ * --ramp-refine; docs/design.md §4.3): the shared run again at K = 2 takes
+ * more than 1.5 times its increments and its μs moves by less than 0.2 %
+ * (measured: 20 against 9 increments, +0.065 %): the ramp is
+ * increment-converged here. */
+static void test_ramp_refine(void **state)
+{
+    (void)state;
+    static shared X;
+    asp_shear_options so;
+    asp_shear_options_default(&so);
+    so.ramp_refine = 2.0;
+    assert_int_equal(run_case_so(&X, &so, 0), 0);
+    assert_int_equal(X.st, STC_OK);
+    double d = X.res.mu_s / R.res.mu_s - 1;
+    printf("# ramp refined 2x: %d increments (against %d), mu_s %.6f, %+.2e\n",
+           X.res.increments, R.res.increments, X.res.mu_s, d);
+    assert_true(X.res.increments > 1.5 * R.res.increments);
+    assert_true(fabs(d) < 2e-3);
+}
+
 /* The ramp's return map (asp_shear_options.return_map): at 0.5 ωc the
  * plastic zone under the contact is small, so the midpoint rule and the
  * exact integration give the radial return's μs.  Measured: +2.1e-4 for
@@ -554,6 +615,8 @@ int main(void)
         cmocka_unit_test(test_equilibrium),
         cmocka_unit_test(test_junction_bracket),
         cmocka_unit_test(test_elastic_growth_bem),
+        cmocka_unit_test(test_foot_rows),
+        cmocka_unit_test(test_ramp_refine),
         cmocka_unit_test(test_placements),
         cmocka_unit_test(test_ramp_return_maps),
     };

@@ -263,7 +263,7 @@ typedef struct asp_shear_options {
     double ramp_refine;  /* divides the ramp increment targets (bend, the largest
                             increment), for increment-convergence studies;
                             in [1, 64], default 1 */
-    double foot_rows;    /* junction footprint, experimental: > 0 reads the edge
+    double foot_rows;    /* junction footprint on node rows: > 0 reads the edge
                             advance on every row of surface nodes within
                             foot_rows a0 of the axis (each row crosses the edge
                             at its own place between nodes), each row at least
