@@ -72,6 +72,14 @@ static void expect_fail(const char *args, const char *n1, const char *n2)
         fail_msg("'%s': message '%s' lacks '%s' / '%s'", args, err, n1, n2 ? n2 : "");
 }
 
+/* expect_fail on "base extra". */
+static void expect_fail_on(const char *base, const char *extra, const char *n1, const char *n2)
+{
+    char args[512];
+    snprintf(args, sizeof args, "%s %s", base, extra);
+    expect_fail(args, n1, n2);
+}
+
 /* --placements: a whole number of meshes in [1, 8], and not with --load
  * (all refused while parsing, before any mesh is built) */
 static void test_bad_placements(void **state)
@@ -420,14 +428,10 @@ static void test_ignored_keys(void **state)
                 "--pressures 1 --R 5", "R = 5", "--summit-radius");
     const char *h = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --delta 0.5 --cells 32";
     char args[256];
-    snprintf(args, sizeof args, "%s --t-mm 0.1 --Y-co 325", h);
-    expect_fail(args, "t-mm = 0.1", "homogeneous");
-    snprintf(args, sizeof args, "%s --E-ratio 2 --Y-co 650", h);
-    expect_fail(args, "E-ratio = 2", "homogeneous");
-    snprintf(args, sizeof args, "%s --Y-co 300", h);
-    expect_fail(args, "Y-co = 300", "homogeneous");
-    snprintf(args, sizeof args, "%s --nu-co 0.3 --Y-co 325", h);
-    expect_fail(args, "nu-co = 0.3", "homogeneous");
+    expect_fail_on(h, "--t-mm 0.1 --Y-co 325", "t-mm = 0.1", "homogeneous");
+    expect_fail_on(h, "--E-ratio 2 --Y-co 650", "E-ratio = 2", "homogeneous");
+    expect_fail_on(h, "--Y-co 300", "Y-co = 300", "homogeneous");
+    expect_fail_on(h, "--nu-co 0.3 --Y-co 325", "nu-co = 0.3", "homogeneous");
     /* the coating's own values equal to the substrate's describe no coating */
     snprintf(args, sizeof args, "%s --Y-co 325 --nu-co 0.33 --json", h);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
@@ -560,21 +564,14 @@ static void test_halfspace(void **state)
     (void)state;
     const char *w = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325";
     char args[256];
-    snprintf(args, sizeof args, "%s --delta 0.5 --cells 8", w);
-    expect_fail(args, "cells = 8", "[16, 4096]");
-    snprintf(args, sizeof args, "%s --delta 0.5 --cells 64.5", w);
-    expect_fail(args, "cells = 64.5", "whole number");
-    snprintf(args, sizeof args, "%s --delta 0.5 --span 9", w);
-    expect_fail(args, "span = 9", "[1.05, 4]");
-    snprintf(args, sizeof args, "%s --delta -1", w);
-    expect_fail(args, "delta = -1", "> 0");
-    snprintf(args, sizeof args, "%s --delta 0.5 --delta-mm 0.001", w);
-    expect_fail(args, "one of --delta and --delta-mm", NULL);
+    expect_fail_on(w, "--delta 0.5 --cells 8", "cells = 8", "[16, 4096]");
+    expect_fail_on(w, "--delta 0.5 --cells 64.5", "cells = 64.5", "whole number");
+    expect_fail_on(w, "--delta 0.5 --span 9", "span = 9", "[1.05, 4]");
+    expect_fail_on(w, "--delta -1", "delta = -1", "> 0");
+    expect_fail_on(w, "--delta 0.5 --delta-mm 0.001", "one of --delta and --delta-mm", NULL);
     /* (with a coating, Y-su alone is refused first, by the common options) */
-    snprintf(args, sizeof args, "%s --Y-co 325 --delta 0.5 --t-over-R 0.01", w);
-    expect_fail(args, "t-over-R = 0.01", "homogeneous");
-    snprintf(args, sizeof args, "%s --delta 0.5 --t-over-R 0.01", w);
-    expect_fail(args, "Y-su = 325 given without Y-co", NULL);
+    expect_fail_on(w, "--Y-co 325 --delta 0.5 --t-over-R 0.01", "t-over-R = 0.01", "homogeneous");
+    expect_fail_on(w, "--delta 0.5 --t-over-R 0.01", "Y-su = 325 given without Y-co", NULL);
     snprintf(args, sizeof args, "%s --delta 0.5 --cells 64 --json", w);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
     assert_json(out);

@@ -45,6 +45,11 @@ typedef struct cli_opt {
                         "neither"},                                                            \
         {"nu-co", "X", "Poisson's ratio of the coating (default: --nu)"}
 
+/* The sections of a coated sphere's physics (asperity, formulas). */
+#define CLI_COATED_SPHERE_SECTIONS                                                            \
+    CLI_HEADING("Sphere and coating (units mm, N, MPa)"), CLI_SPHERE_OPTS,                     \
+        CLI_HEADING("Materials"), CLI_SUBSTRATE_OPTS, CLI_COATING_MATERIAL_OPTS
+
 /* Setter for subcommand options; return STC_EUNSUPPORTED for unknown keys. */
 typedef stc_status (*cli_set_fn)(void *ctx, const char *key, const char *value);
 

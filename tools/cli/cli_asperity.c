@@ -23,11 +23,7 @@ static const char usage[] =
     "node-entry sawtooth averaged out.  Small-strain model: delta <= 0.01 R.";
 
 static const cli_opt opts[] = {
-    CLI_HEADING("Sphere and coating (units mm, N, MPa)"),
-    CLI_SPHERE_OPTS,
-    CLI_HEADING("Materials"),
-    CLI_SUBSTRATE_OPTS,
-    CLI_COATING_MATERIAL_OPTS,
+    CLI_COATED_SPHERE_SECTIONS,
     CLI_HEADING("Loading"),
     {"delta", "LIST", "interference(s) / omega_c_su, the substrate's critical interference "
                       "(> 0, increasing)"},

@@ -25,11 +25,7 @@ static const char usage[] =
     "(default: the common --t-over-R and --E-ratio).";
 
 static const cli_opt opts[] = {
-    CLI_HEADING("Sphere and coating (units mm, N, MPa)"),
-    CLI_SPHERE_OPTS,
-    CLI_HEADING("Materials"),
-    CLI_SUBSTRATE_OPTS,
-    CLI_COATING_MATERIAL_OPTS,
+    CLI_COATED_SPHERE_SECTIONS,
     CLI_HEADING("Loading"),
     {"delta", "LIST", "interference(s) in units of omega_c_su, the substrate's critical "
                       "interference (> 0)"},
