@@ -1,7 +1,8 @@
 /* stiction asperity --shear: normal step (to δ, or to a load with --load)
- * then the tangential ramp to sliding inception.  A thin layer
- * over asp_solver_shear / asp_solver_load_to_P (include/stiction/asperity.h);
- * the option table and parser live here, cli_asperity.c dispatches. */
+ * then the tangential ramp to sliding inception.  A thin layer over
+ * asp_shear_preload / asp_solver_shear / asp_shear_placements
+ * (include/stiction/asperity.h); the parser of the shear options lives here,
+ * their help lines in cli_asperity.c's table, which dispatches. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
