@@ -11,7 +11,6 @@
 
 #include "stc_check.h"
 #include "stiction/asperity.h"
-#include "tangential.h"
 
 void asp_options_for_curve(asp_options *o, int n)
 {

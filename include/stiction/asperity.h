@@ -407,11 +407,11 @@ STC_API stc_status asp_shear_placements(const stc_params *p, const asp_options *
  * the elastic node entries (sample_elastic), a 3D curve gets the graded core
  * (grade_3d; to keep the uniform core clear it after this call).  n = 1
  * changes nothing. */
-void asp_options_for_curve(asp_options *o, int n);
+STC_API void asp_options_for_curve(asp_options *o, int n);
 
 /* The tangential step needs the 3D half model: ASP_GEOM_AUTO becomes
  * ASP_GEOM_3D, ASP_GEOM_AXISYM fails (STC_EINVAL). */
-stc_status asp_options_for_shear(asp_options *o);
+STC_API stc_status asp_options_for_shear(asp_options *o);
 
 /* One point of a curve run by asp_curve_run. */
 typedef struct asp_curve_point {
@@ -442,9 +442,9 @@ typedef void (*asp_curve_fn)(void *ctx, const asp_solver *s, int i);
  * its end (asp_solver_load_tail) and P_smooth read at every point.  pts[n]
  * and res are written; cb is nullable.  Returns STC_OK, the failure of
  * create (res->n = 0) or of the first point that failed (its status). */
-stc_status asp_curve_run(const stc_params *p, const asp_options *o, const double *delta, int n,
-                         asp_curve_fn cb, void *ctx, asp_curve_point *pts,
-                         asp_curve_result *res);
+STC_API stc_status asp_curve_run(const stc_params *p, const asp_options *o,
+                                 const double *delta, int n, asp_curve_fn cb, void *ctx,
+                                 asp_curve_point *pts, asp_curve_result *res);
 
 /* The solver of a shear run at its preload: meshed for delta (mm) and
  * loaded to it; or, with P > 0 (N; delta 0), meshed for twice the Hertz
@@ -452,8 +452,8 @@ stc_status asp_curve_run(const stc_params *p, const asp_options *o, const double
  * brought to P within 1e-3 (asp_solver_load_to_P).  o: after
  * asp_options_for_shear.  Returns new in *out (NULL on failure) and the
  * preload in *pt; then asp_solver_shear. */
-stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double delta, double P,
-                             asp_solver **out, asp_point *pt);
+STC_API stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double delta,
+                                     double P, asp_solver **out, asp_point *pt);
 
 #ifdef __cplusplus
 }
