@@ -70,6 +70,9 @@ void tbl_numerics_default(tbl_numerics *n)
     n->err_floor = 0.015;
     /* one mesh: ±4–8 % with where the nodes fall (WSP sphere, docs/design.md §4.5) */
     n->err_single = 0.06;
+    /* the axisymmetric default: a slip curve to 60 ωc within 0.29 % of the
+     * converged load (docs/design.md §2.3) */
+    n->normal_level = 1;
 }
 
 stc_status tbl_numerics_validate(const tbl_numerics *n)
@@ -84,6 +87,8 @@ stc_status tbl_numerics_validate(const tbl_numerics *n)
               "[2, 200]", n->elements_per_contact);
     STC_CALL(stc_check_range("err-floor", n->err_floor, 0.0, 1, 0.5, 1));
     STC_CALL(stc_check_range("err-single", n->err_single, 0.0, 0, 0.5, 1));
+    STC_CHECK(n->normal_level >= -1 && n->normal_level <= 3, STC_EINVAL,
+              "normal-level = %d: must be -1 (no normal grid) or in [0, 3]", n->normal_level);
     return STC_OK;
 }
 
@@ -257,9 +262,15 @@ stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double
         if (t->ax[k]) memcpy(t->ax[k], src[k], (size_t)n[k] * sizeof(double));
     }
     t->pt = calloc((size_t)np, sizeof *t->pt);
+    t->nrm.level = -1;
     if (!t->ax[0] || !t->ax[1] || !t->ax[2] || !t->pt) {
         tbl_destroy(&t);
         return STC_FAIL(STC_ENOMEM, "tbl_create: out of memory");
+    }
+    stc_status st = tbl_normal_init(t);
+    if (st != STC_OK) {
+        tbl_destroy(&t);
+        return st;
     }
     *out = t;
     return STC_OK;
@@ -272,6 +283,7 @@ void tbl_destroy(tbl_table **pt)
     for (int k = 0; k < 3; k++) free(t->ax[k]);
     free(t->pt);
     tbl_gp_destroy(&t->gp);
+    tbl_normal_free(&t->nrm);
     free(t);
     *pt = NULL;
 }
@@ -345,7 +357,8 @@ static unsigned long long fnv(unsigned long long h, const void *p, size_t n)
 static unsigned long long fnv_d(unsigned long long h, double v) { return fnv(h, &v, sizeof v); }
 static unsigned long long fnv_i(unsigned long long h, int v) { return fnv(h, &v, sizeof v); }
 
-unsigned long long tbl_build_hash(const tbl_table *t)
+/* The build's points: family, their numerics and the axes. */
+static unsigned long long points_hash(const tbl_table *t)
 {
     const tbl_family *f = &t->fam;
     const tbl_numerics *n = &t->num;
@@ -366,6 +379,23 @@ unsigned long long tbl_build_hash(const tbl_table *t)
     return h;
 }
 
+unsigned long long tbl_build_hash(const tbl_table *t)
+{
+    const tbl_normal *g = &t->nrm;
+    unsigned long long h = fnv_i(points_hash(t), g->level);
+    h = fnv_i(h, (int)sizeof(tbl_curve)); /* the journal stores curves as bytes too */
+    for (int k = 0; g->level >= 0 && k < 3; k++) {
+        h = fnv_i(h, g->n[k]);
+        for (int i = 0; i < g->n[k]; i++) h = fnv_d(h, g->ax[k][i]);
+    }
+    return h;
+}
+
+int tbl_same_points(const tbl_table *a, const tbl_table *b)
+{
+    return points_hash(a) == points_hash(b);
+}
+
 int tbl_same_build(const tbl_table *a, const tbl_table *b)
 {
     return tbl_build_hash(a) == tbl_build_hash(b);
@@ -384,11 +414,23 @@ stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)
     STC_CALL(tbl_create(&a->fam, &a->num, a->ax[0], a->n[0], a->ax[1], a->n[1], a->ax[2],
                         a->n[2], out));
     tbl_table *m = *out;
+    if (a->nrm.level >= 0) {
+        stc_status st = tbl_normal_init_axes(m, a->nrm.ax, a->nrm.n); /* the parts' grid */
+        if (st != STC_OK) {
+            tbl_destroy(out);
+            return st;
+        }
+    }
     double wall = 0.0;
     for (int j = 0; j < n; j++) {
         for (int i = 0; i < tbl_points(m); i++)
             if (m->pt[i].state == TBL_PENDING && parts[j]->pt[i].state != TBL_PENDING)
                 m->pt[i] = parts[j]->pt[i];
+        const tbl_normal *g = &parts[j]->nrm;
+        for (int c = 0; c < tbl_curves(m); c++)
+            if (m->nrm.c[c].state == TBL_PENDING && g->c[c].state != TBL_PENDING)
+                tbl_curve_set(m, c, &g->c[c], g->P + (size_t)c * g->n[0],
+                              g->A + (size_t)c * g->n[0]);
         wall = fmax(wall, parts[j]->build_wall_s); /* shards run side by side */
     }
     tbl_set_provenance(m, a->command, wall);

@@ -3,7 +3,8 @@
  * written atomically at the end (include/stiction/table.h, tbl_build).
  *
  * Journal: a header (8-byte magic, the build's hash) and then one record per
- * finished point: magic, index, the point's bytes, a checksum.  Each record
+ * finished point or normal curve: magic, index, the point's (or the curve's
+ * and its values') bytes, a checksum.  Each record
  * is written with one write() and flushed (fdatasync) before the next point
  * is reported, so a build killed at any moment leaves whole records plus at
  * most one torn one, which the checksum rejects; the file is cut back to its
@@ -33,21 +34,27 @@
 void openblas_set_num_threads(int num_threads);
 int openblas_get_num_threads(void);
 
-static const char JOURNAL_MAGIC[8] = {'S', 'T', 'C', 'T', 'B', 'L', 'J', '1'};
-#define RECORD_MAGIC 0x50544254u /* "TBTP" */
+static const char JOURNAL_MAGIC[8] = {'S', 'T', 'C', 'T', 'B', 'L', 'J', '2'};
+#define POINT_MAGIC 0x50544254u /* "TBTP" */
+#define CURVE_MAGIC 0x43544254u /* "TBTC" */
 
+/* A record: this head, the payload (a tbl_point, or a tbl_curve and the
+ * curve's P[n_w] and A[n_w]), a checksum of everything before it. */
 typedef struct {
     uint32_t magic;
     int32_t index;
-    tbl_point p;
-    uint64_t sum;
-} record;
+} record_head;
 
-static uint64_t record_sum(const record *r)
+static size_t payload_size(const tbl_table *t, uint32_t magic)
+{
+    return magic == POINT_MAGIC ? sizeof(tbl_point)
+                                : sizeof(tbl_curve) + 2 * (size_t)t->nrm.n[0] * sizeof(double);
+}
+
+static uint64_t fnv64(const unsigned char *b, size_t n)
 {
     uint64_t h = 14695981039346656037ULL;
-    const unsigned char *b = (const unsigned char *)r;
-    for (size_t i = 0; i < offsetof(record, sum); i++) h = (h ^ b[i]) * 1099511628211ULL;
+    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 1099511628211ULL;
     return h;
 }
 
@@ -78,12 +85,13 @@ static int write_all(int fd, const void *buf, size_t n)
 }
 
 /* Open the journal of t at jpath: take its whole records into t (pending
- * points only), cut off a torn tail, or start a new journal.  *fd open for
- * appending; *taken the points taken. */
-static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *taken)
+ * points and curves only), cut off a torn tail, or start a new journal.
+ * *fd open for appending; *taken, *taken_curves the points and curves taken. */
+static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *taken,
+                               int *taken_curves)
 {
     uint64_t hash = tbl_build_hash(t);
-    *taken = 0;
+    *taken = *taken_curves = 0;
     *fd = open(jpath, O_RDWR | O_CREAT, 0666);
     STC_CHECK(*fd >= 0, STC_EIO, "%s: cannot open the build journal: %s", jpath,
               strerror(errno));
@@ -99,14 +107,40 @@ static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *ta
                             jpath);
         }
         off_t good = (off_t)(sizeof magic + sizeof h);
-        record r;
-        while (read(*fd, &r, sizeof r) == (ssize_t)sizeof r && r.magic == RECORD_MAGIC &&
-               r.sum == record_sum(&r) && r.index >= 0 && r.index < tbl_points(t)) {
-            if (t->pt[r.index].state == TBL_PENDING && r.p.state != TBL_PENDING) {
-                if (tbl_point_set(t, r.index, &r.p) == STC_OK) (*taken)++;
+        size_t cap = payload_size(t, CURVE_MAGIC) > sizeof(tbl_point) ? payload_size(t, CURVE_MAGIC)
+                                                                      : sizeof(tbl_point);
+        unsigned char *buf = malloc(sizeof(record_head) + cap + sizeof(uint64_t));
+        STC_CHECK(buf, STC_ENOMEM, "tbl_build: out of memory");
+        for (;;) {
+            record_head rh;
+            if (read(*fd, &rh, sizeof rh) != (ssize_t)sizeof rh) break;
+            if (rh.magic != POINT_MAGIC && (rh.magic != CURVE_MAGIC || tbl_curves(t) == 0)) break;
+            size_t n = payload_size(t, rh.magic);
+            memcpy(buf, &rh, sizeof rh);
+            uint64_t sum;
+            if (read(*fd, buf + sizeof rh, n) != (ssize_t)n ||
+                read(*fd, &sum, sizeof sum) != (ssize_t)sizeof sum ||
+                sum != fnv64(buf, sizeof rh + n))
+                break;
+            if (rh.magic == POINT_MAGIC) {
+                if (rh.index < 0 || rh.index >= tbl_points(t)) break;
+                tbl_point p;
+                memcpy(&p, buf + sizeof rh, sizeof p);
+                if (t->pt[rh.index].state == TBL_PENDING && p.state != TBL_PENDING &&
+                    tbl_point_set(t, rh.index, &p) == STC_OK)
+                    (*taken)++;
+            } else {
+                if (rh.index < 0 || rh.index >= tbl_curves(t)) break;
+                tbl_curve c;
+                const double *v = (const double *)(buf + sizeof rh + sizeof c);
+                memcpy(&c, buf + sizeof rh, sizeof c);
+                if (t->nrm.c[rh.index].state == TBL_PENDING && c.state != TBL_PENDING &&
+                    tbl_curve_set(t, rh.index, &c, v, v + t->nrm.n[0]) == STC_OK)
+                    (*taken_curves)++;
             }
-            good += (off_t)sizeof r;
+            good += (off_t)(sizeof rh + n + sizeof sum);
         }
+        free(buf);
         /* a torn last record (killed mid-write) is dropped and recomputed */
         STC_CHECK(ftruncate(*fd, good) == 0 && lseek(*fd, good, SEEK_SET) == good, STC_EIO,
                   "%s: cannot cut the journal back to its last whole record: %s", jpath,
@@ -121,26 +155,62 @@ static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *ta
     return STC_OK;
 }
 
-static int journal_append(int fd, int index, const tbl_point *p)
+/* One record (magic, index, the payload's parts a and b), checksummed,
+ * written with one write() and synced. */
+static int journal_append(int fd, uint32_t magic, int index, const void *a, size_t na,
+                          const void *b, size_t nb)
 {
-    record r;
-    memset(&r, 0, sizeof r); /* no stray padding bytes in the checksum */
-    r.magic = RECORD_MAGIC;
-    r.index = index;
-    r.p = *p;
-    r.sum = record_sum(&r);
-    return write_all(fd, &r, sizeof r) == 0 && fdatasync(fd) == 0 ? 0 : -1;
+    record_head rh = {magic, index};
+    size_t n = sizeof rh + na + nb;
+    unsigned char *buf = malloc(n + sizeof(uint64_t));
+    if (!buf) return -1;
+    memcpy(buf, &rh, sizeof rh);
+    memcpy(buf + sizeof rh, a, na);
+    if (nb) memcpy(buf + sizeof rh + na, b, nb);
+    uint64_t sum = fnv64(buf, n);
+    memcpy(buf + n, &sum, sizeof sum);
+    int r = write_all(fd, buf, n + sizeof sum) == 0 && fdatasync(fd) == 0 ? 0 : -1;
+    free(buf);
+    return r;
 }
 
-/* Points of an existing table at path (same build) join t. */
-static stc_status take_existing(tbl_table *t, const char *path, int *taken)
+static int journal_point(int fd, int index, const tbl_point *p)
 {
-    *taken = 0;
+    tbl_point q;
+    memset(&q, 0, sizeof q); /* no stray padding bytes in the checksum */
+    q = *p;
+    return journal_append(fd, POINT_MAGIC, index, &q, sizeof q, NULL, 0);
+}
+
+/* A curve's record: the tbl_curve, then P[n_w] and A[n_w]. */
+static int journal_curve(int fd, const tbl_table *t, int c, const tbl_curve *cv,
+                         const double *P, const double *A)
+{
+    int nw = t->nrm.n[0];
+    size_t nv = 2 * (size_t)nw * sizeof(double);
+    double *v = malloc(nv);
+    if (!v) return -1;
+    memcpy(v, P, (size_t)nw * sizeof *v);
+    memcpy(v + nw, A, (size_t)nw * sizeof *v);
+    tbl_curve q;
+    memset(&q, 0, sizeof q);
+    q = *cv;
+    int r = journal_append(fd, CURVE_MAGIC, c, &q, sizeof q, v, nv);
+    free(v);
+    return r;
+}
+
+/* Points and curves of an existing table at path (same build) join t.  A
+ * file without a normal grid (format version 1, say) gives its points to a
+ * build that has one, which then computes the curves. */
+static stc_status take_existing(tbl_table *t, const char *path, int *taken, int *taken_curves)
+{
+    *taken = *taken_curves = 0;
     struct stat st;
     if (stat(path, &st) != 0) return STC_OK;
     tbl_table *old = NULL;
     STC_CALL(tbl_read(path, &old));
-    if (!tbl_same_build(t, old)) {
+    if (!tbl_same_points(t, old) || (old->nrm.level >= 0 && !tbl_same_normal(t, old))) {
         tbl_destroy(&old);
         return STC_FAIL(STC_EINVAL, "%s: a table of another build is there (family, numerics "
                         "or axes differ): choose another file or remove it", path);
@@ -150,6 +220,12 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken)
             t->pt[i] = old->pt[i];
             (*taken)++;
         }
+    const tbl_normal *g = &old->nrm;
+    for (int c = 0; g->level >= 0 && c < tbl_curves(t); c++)
+        if (t->nrm.c[c].state == TBL_PENDING && g->c[c].state != TBL_PENDING &&
+            tbl_curve_set(t, c, &g->c[c], g->P + (size_t)c * g->n[0],
+                          g->A + (size_t)c * g->n[0]) == STC_OK)
+            (*taken_curves)++;
     if (isfinite(old->build_wall_s)) t->build_wall_s += old->build_wall_s;
     tbl_destroy(&old);
     tbl_gp_destroy(&t->gp);
@@ -163,26 +239,38 @@ stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
     return tbl_point_compute(&t->fam, &t->num, w, tR, E, p);
 }
 
+/* Report to the caller (holding the build's lock); nonzero: stop. */
+static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tbl_curve *cv)
+{
+    if (!b->o->progress) return 0;
+    double el = wall_now() - b->t0, eta;
+    if (cv) /* during the curves: the rest of the curves */
+        eta = b->curves_done < b->curves_total
+                  ? el / b->curves_computed * (b->curves_total - b->curves_done)
+                  : 0.0;
+    else
+        eta = b->done < b->total ? (el - b->curves_wall) / b->computed * (b->total - b->done)
+                                 : 0.0;
+    tbl_progress pr = {.index = i, .point = p, .curve = c, .c = cv,
+                       .curves_done = b->curves_done, .curves_total = b->curves_total,
+                       .done = b->done, .total = b->total, .resumed = b->resumed,
+                       .failed = b->failed, .elapsed_s = el, .eta_s = eta};
+    return b->o->progress(b->o->ctx, &pr);
+}
+
 /* After a point: journal first, then the table, then the caller. */
 void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p)
 {
     omp_set_lock(&b->lock);
     {
         int stop = 0;
-        if (journal_append(b->fd, i, p) != 0) b->io_error = errno ? errno : EIO, stop = 1;
+        if (journal_point(b->fd, i, p) != 0) b->io_error = errno ? errno : EIO, stop = 1;
         else {
             b->t->pt[i] = *p;
             b->done++, b->computed++;
             b->failed += p->state == TBL_FAILED;
             b->cpu += p->cpu_s;
-            if (b->o->progress) {
-                double el = wall_now() - b->t0;
-                tbl_progress pr = {i, p, b->done, b->total, b->resumed, b->failed, el,
-                                   b->done < b->total
-                                       ? el / b->computed * (b->total - b->done)
-                                       : 0.0};
-                if (b->o->progress(b->o->ctx, &pr)) stop = 1;
-            }
+            stop = report(b, i, p, -1, NULL);
         }
         if (stop) {
 #pragma omp atomic write
@@ -192,11 +280,53 @@ void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p)
     omp_unset_lock(&b->lock);
 }
 
-/* The serial path: the points on this process's threads, one per point. */
-static stc_status run_points(tbl_build_state *b, const int *todo, int n)
+/* After a curve: the same. */
+static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const double *P,
+                         const double *A)
+{
+    omp_set_lock(&b->lock);
+    {
+        int stop = 0;
+        if (journal_curve(b->fd, b->t, c, cv, P, A) != 0) {
+            b->io_error = errno ? errno : EIO, stop = 1;
+        } else {
+            tbl_curve_set(b->t, c, cv, P, A);
+            b->curves_done++, b->curves_computed++;
+            b->curves_failed += cv->state == TBL_FAILED;
+            b->cpu += cv->cpu_s;
+            b->curves_wall = wall_now() - b->t0;
+            stop = report(b, -1, NULL, c, tbl_curve_get(b->t, c));
+        }
+        if (stop) {
+#pragma omp atomic write
+            b->stop = 1;
+        }
+    }
+    omp_unset_lock(&b->lock);
+}
+
+/* Item k of a todo list: a point i >= 0, or the curve c coded as -(c + 1). */
+static stc_status run_item(tbl_build_state *b, int item, double *P, double *A)
+{
+    if (item >= 0) {
+        tbl_point p;
+        STC_CALL(tbl_build_compute(b->t, item, &p));
+        tbl_build_finish(b, item, &p);
+    } else {
+        tbl_curve cv;
+        STC_CALL(tbl_build_curve(b->t, -item - 1, &cv, P, A));
+        finish_curve(b, -item - 1, &cv, P, A);
+    }
+    return STC_OK;
+}
+
+/* The serial path: the items (curves first, then points) on this process's
+ * threads, one per item. */
+static stc_status run_items(tbl_build_state *b, const int *todo, int n)
 {
     int jobs = b->o->jobs > 0 ? b->o->jobs : omp_get_num_procs();
     if (jobs > n) jobs = n > 0 ? n : 1;
+    int nw = tbl_curves(b->t) > 0 ? b->t->nrm.n[0] : 1;
     /* one thread per point: the solver's own OpenMP regions (CHOLMOD's)
      * run on that thread.  Two or more points at once: one active level,
      * the points'.  One at a time: none, since inside a team of one thread
@@ -211,23 +341,27 @@ static stc_status run_points(tbl_build_state *b, const int *todo, int n)
     openblas_set_num_threads(1);
     stc_status bad = STC_OK;
     char why[512] = "";
-#pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
-    for (int k = 0; k < n; k++) {
-        int stop;
+#pragma omp parallel num_threads(jobs)
+    {
+        double *P = malloc((size_t)nw * sizeof *P), *A = malloc((size_t)nw * sizeof *A);
+#pragma omp for schedule(dynamic, 1)
+        for (int k = 0; k < n; k++) {
+            int stop;
 #pragma omp atomic read
-        stop = b->stop;
-        if (stop) continue;
-        tbl_point p;
-        stc_status s = tbl_build_compute(b->t, todo[k], &p);
-        if (s != STC_OK) {
-            omp_set_lock(&b->lock);
-            if (bad == STC_OK) bad = s, snprintf(why, sizeof why, "%s", stc_errmsg());
-            omp_unset_lock(&b->lock);
+            stop = b->stop;
+            if (stop) continue;
+            stc_status s = P && A ? run_item(b, todo[k], P, A)
+                                  : STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
+            if (s != STC_OK) {
+                omp_set_lock(&b->lock);
+                if (bad == STC_OK) bad = s, snprintf(why, sizeof why, "%s", stc_errmsg());
+                omp_unset_lock(&b->lock);
 #pragma omp atomic write
-            b->stop = 1;
-            continue;
+                b->stop = 1;
+            }
         }
-        tbl_build_finish(b, todo[k], &p);
+        free(P);
+        free(A);
     }
     openblas_set_num_threads(bt);
     omp_set_max_active_levels(levels);
@@ -235,40 +369,73 @@ static stc_status run_points(tbl_build_state *b, const int *todo, int n)
     return STC_OK;
 }
 
+/* The todo list of this shard: curves (coded -(c + 1)) first, then points;
+ * counts into b.  Returns the length; *n_curves of them are curves. */
+static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigned char *need,
+                 int *n_curves)
+{
+    const tbl_table *t = b->t;
+    int n = 0;
+    if (o->only) tbl_normal_needed(t, o->only, need);
+    for (int c = o->shard; c < tbl_curves(t); c += o->shards) {
+        int st_c = t->nrm.c[c].state;
+        if ((o->only && !need[c]) || (o->only_failed && st_c == TBL_PENDING)) continue;
+        b->curves_total++;
+        if (st_c == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_c == TBL_FAILED))
+            todo[n++] = -c - 1;
+        else b->curves_done++;
+    }
+    *n_curves = n;
+    for (int i = o->shard; i < tbl_points(t); i += o->shards) {
+        int st_i = t->pt[i].state;
+        if ((o->only && !o->only[i]) || (o->only_failed && st_i == TBL_PENDING)) continue;
+        b->total++;
+        if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
+            todo[n++] = i;
+        else b->done++, b->resumed++, b->failed += st_i == TBL_FAILED;
+    }
+    return n;
+}
+
 /* The writer's build (serial, or rank 0 of a distributed one): take the
- * points of an earlier run, compute the rest, write the table. */
+ * points and curves of an earlier run, compute the rest (the curves first,
+ * on this process: they are cheap), write the table. */
 static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
                              const tbl_build_opts *o, tbl_build_summary *sum)
 {
     tbl_build_state b = {.t = t, .o = o, .fd = -1, .t0 = wall_now()};
-    int from_file = 0, from_journal = 0; /* points taken from an earlier run */
+    int from_file = 0, from_journal = 0, cf = 0, cj = 0; /* taken from an earlier run */
     int *todo = NULL;
+    unsigned char *need = NULL;
     char jpath[4200];
-    stc_status st = take_existing(t, path, &from_file);
+    stc_status st = take_existing(t, path, &from_file, &cf);
     if (st == STC_OK && snprintf(jpath, sizeof jpath, "%s.journal", path) >= (int)sizeof jpath)
         st = STC_FAIL(STC_EINVAL, "%s: path too long", path);
-    if (st == STC_OK) st = journal_open(t, jpath, &b.fd, &from_journal);
-    int np = tbl_points(t), n = 0;
-    if (st == STC_OK && !(todo = malloc((size_t)np * sizeof *todo)))
+    if (st == STC_OK) st = journal_open(t, jpath, &b.fd, &from_journal, &cj);
+    int np = tbl_points(t), nc = tbl_curves(t), n = 0, ncv = 0;
+    if (st == STC_OK && (!(todo = malloc((size_t)(np + nc) * sizeof *todo)) ||
+                         !(need = calloc((size_t)nc + 1, 1))))
         st = STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
     if (st != STC_OK) {
         /* the other ranks are waiting for work: release them first */
         if (m->size > 1) tbl_mpi_release(m, st, stc_errmsg());
         if (b.fd >= 0) close(b.fd);
+        free(todo);
         return st;
     }
-    for (int i = o->shard; i < np; i += o->shards) {
-        int st_i = t->pt[i].state;
-        if ((o->only && !o->only[i]) || (o->only_failed && st_i == TBL_PENDING)) continue;
-        b.total++;
-        if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
-            todo[n++] = i;
-        else b.done++, b.resumed++, b.failed += st_i == TBL_FAILED;
-    }
+    n = share(&b, o, todo, need, &ncv);
+    free(need);
     /* a lock of this build rather than a named critical section, whose lock
      * would be a global symbol of the shared library */
     omp_init_lock(&b.lock);
-    st = m->size > 1 ? tbl_mpi_serve(m, &b, todo, n) : run_points(&b, todo, n);
+    if (m->size > 1) {
+        /* the other ranks wait for their first point meanwhile */
+        st = run_items(&b, todo, ncv);
+        if (st == STC_OK) st = tbl_mpi_serve(m, &b, todo + ncv, n - ncv);
+        else tbl_mpi_release(m, st, stc_errmsg());
+    } else {
+        st = run_items(&b, todo, n);
+    }
     omp_destroy_lock(&b.lock);
     tbl_mpi_end(m); /* every rank is done: the other ranks need not wait for the file */
     free(todo);
@@ -278,6 +445,8 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         sum->resumed = b.resumed;
         sum->failed = b.failed;
         sum->share = b.total;
+        sum->curves_computed = b.curves_computed;
+        sum->curves_failed = b.curves_failed;
         sum->wall_s = wall_now() - b.t0;
         sum->cpu_s = b.cpu;
     }

@@ -12,12 +12,22 @@
 
 /* Stored format (docs/table-format.md); a reader refuses other versions. */
 #define TBL_FORMAT_NAME "stiction friction table"
-#define TBL_FORMAT_VERSION 1
+#define TBL_FORMAT_VERSION 2 /* 2: the normal grid (/normal); version 1 is read too */
 
 /* The reference sphere every point is computed on (the response is
  * independent of both, include/stiction/table.h). */
 #define TBL_REF_R_MM 10.0
 #define TBL_REF_E_SU_MPA 200000.0
+
+/* The normal grid (table_normal.c): axisymmetric load curves, one per
+ * (t/R, Eco/Esu) node, through every δ node. */
+typedef struct tbl_normal {
+    int level;         /* axisymmetric mesh level; -1: no normal grid (all else empty) */
+    int n[3];          /* axis lengths: w, t/R, Eco/Esu */
+    double *ax[3];     /* [n[k]] */
+    tbl_curve *c;      /* [n[2]][n[1]] */
+    double *P, *A;     /* [n[2]][n[1]][n[0]]: P/Pc_su (smoothed), A/Ac_su; NaN unless done */
+} tbl_normal;
 
 struct tbl_table {
     tbl_family fam;
@@ -29,7 +39,25 @@ struct tbl_table {
     double build_wall_s;
     tbl_gp *gp;        /* μs surrogate, NULL until tbl_fit */
     tbl_fit_info fit;
+    tbl_normal nrm;
 };
+
+/* ---- the normal grid (table_normal.c) ---- */
+
+/* The normal grid of t from its axes and t->num.normal_level (none when
+ * that is -1): every curve pending. */
+stc_status tbl_normal_init(tbl_table *t);
+/* The same on the given axes (a file's); copied. */
+stc_status tbl_normal_init_axes(tbl_table *t, double *const ax[3], const int n[3]);
+void tbl_normal_free(tbl_normal *g);
+/* Same level and axes (bitwise): curves of one may be taken into the other. */
+int tbl_same_normal(const tbl_table *a, const tbl_table *b);
+/* The curves a build restricted to the points only[] needs: those at the
+ * t/R and Eco/Esu the chosen points span (need[c] = 1, else 0). */
+void tbl_normal_needed(const tbl_table *t, const unsigned char *only, unsigned char *need);
+/* Curve c of t computed on the calling thread (tbl_curve_compute); P, A:
+ * [n_w of the normal grid]. */
+stc_status tbl_build_curve(const tbl_table *t, int c, tbl_curve *out, double *P, double *A);
 
 /* Parameters of the reference sphere for a point of family f. */
 void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_params *p);
@@ -41,6 +69,9 @@ int tbl_bracket(const double *ax, int n, double x, double *frac);
 /* 64-bit FNV-1a of the build's definition (family, numerics, axes): the
  * journal's header, so a journal is only ever read by its own build. */
 unsigned long long tbl_build_hash(const tbl_table *t);
+/* The same without the normal grid: the points of a and b are of one build
+ * (a file without a normal grid may be completed by one). */
+int tbl_same_points(const tbl_table *a, const tbl_table *b);
 
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
 
@@ -52,6 +83,8 @@ typedef struct tbl_build_state {
     const tbl_build_opts *o;    /* borrowed */
     int fd;                     /* the journal, open for appending */
     int done, total, resumed, failed, computed; /* points, as in tbl_progress */
+    int curves_done, curves_total, curves_computed, curves_failed; /* normal curves */
+    double curves_wall;         /* wall s the curves took (the points' ETA leaves it out) */
     int stop;                   /* nonzero: hand out no more points */
     int io_error;               /* errno of a failed journal append, else 0 */
     double t0, cpu;             /* start (monotonic s); CPU s of the computed points */

@@ -1,7 +1,10 @@
 /* Interpolation of a friction table with error bars, and the asperity model
  * the surface prediction sums (include/stiction/table.h).
  *
- * P, A and P at inception are nearly free of numerical noise: along
+ * P and A come from the normal grid where it has them (axisymmetric load
+ * curves, table_normal.c), else from the 3D points; the load at inception
+ * is the preload times the points' ratio of the two.  Both grids are read
+ * alike.  P, A and P at inception are nearly free of numerical noise: along
  * δ they follow monotone Steffen (1990) cubics in ln P versus ln w through
  * each (t/R, Eco/Esu) column's done points (exact for power laws such as
  * Hertz), across the t/R columns the same cubic in ln t/R (3 or more
@@ -88,8 +91,26 @@ stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out)
 
 enum { F_P = 0, F_A = 1, F_PS = 2 };
 
-static double field_of(const tbl_point *p, int f)
+/* A grid to interpolate on: the 3D points, or the normal grid's curves. */
+typedef struct grid {
+    const int *n;            /* [3] axis lengths: w, t/R, Eco/Esu */
+    double *const *ax;       /* [3] */
+    const tbl_table *t;
+    int normal;              /* 0: t->pt, 1: t->nrm */
+} grid;
+
+static grid points_grid(const tbl_table *t) { return (grid){t->n, t->ax, t, 0}; }
+static grid normal_grid(const tbl_table *t) { return (grid){t->nrm.n, t->nrm.ax, t, 1}; }
+
+/* Field f at flat index i of g; NaN unless done. */
+static double value_at(const grid *g, int f, int i)
 {
+    if (g->normal) {
+        const double *v = f == F_A ? g->t->nrm.A : g->t->nrm.P; /* NaN unless done */
+        return v[i];
+    }
+    const tbl_point *p = &g->t->pt[i];
+    if (p->state != TBL_DONE) return NAN;
     return f == F_P ? p->P_Pc : f == F_A ? p->A_Ac : p->P_slide_Pc;
 }
 
@@ -98,10 +119,11 @@ static double field_of(const tbl_point *p, int f)
  * the column's done points both continue the end interval's power law.
  * Returns 0, or -1 when fewer than 2 points of the column are done; *gap
  * set when a grid point of the column inside the bracket is not done. */
-static int column_eval(const tbl_table *t, int iE, int it, int f, double lw, double *cub,
+static int column_eval(const grid *g, int iE, int it, int f, double lw, double *cub,
                        double *lin, int *gap)
 {
-    int nw = t->n[0], n = 0, base = (iE * t->n[1] + it) * nw;
+    int nw = g->n[0], n = 0, base = (iE * g->n[1] + it) * nw;
+    const double *ax = g->ax[0];
     double xs[64], ys[64];
     double *xa = nw <= 64 ? xs : malloc((size_t)nw * sizeof *xa);
     double *ya = nw <= 64 ? ys : malloc((size_t)nw * sizeof *ya);
@@ -111,14 +133,14 @@ static int column_eval(const tbl_table *t, int iE, int it, int f, double lw, dou
         return -1;
     }
     for (int i = 0; i < nw; i++) {
-        const tbl_point *p = &t->pt[base + i];
-        if (p->state != TBL_DONE) {
-            if ((i == 0 || log(t->ax[0][i - 1]) < lw) && (i == nw - 1 || lw < log(t->ax[0][i + 1])))
+        double v = value_at(g, f, base + i);
+        if (!isfinite(v)) {
+            if ((i == 0 || log(ax[i - 1]) < lw) && (i == nw - 1 || lw < log(ax[i + 1])))
                 *gap = 1;
             continue;
         }
-        xa[n] = log(t->ax[0][i]);
-        ya[n] = log(field_of(p, f));
+        xa[n] = log(ax[i]);
+        ya[n] = log(v);
         n++;
     }
     int rc = 0;
@@ -149,25 +171,25 @@ static int column_eval(const tbl_table *t, int iE, int it, int f, double lw, dou
  * (*lin); *err the δ-direction error (cubic − line along δ, interpolated
  * linearly).  Returns -1 when a bracketing column has fewer than 2 done
  * points. */
-static int tr_eval(const tbl_table *t, int iE, int f, double lw, double tR, double *cub,
+static int tr_eval(const grid *g, int iE, int f, double lw, double tR, double *cub,
                    double *lin, double *err, int *gap)
 {
-    int nt = t->n[1];
+    int nt = g->n[1];
     double ft;
-    int it = tbl_bracket(t->ax[1], nt, tR, &ft);
+    int it = tbl_bracket(g->ax[1], nt, tR, &ft);
     double xs[64], ys[64], lt = log(tR), cb[2] = {0, 0}, eb[2] = {0, 0};
     int n = 0;
     for (int j = 0; j < nt; j++) {
         double c, l;
         int gj = 0, side = j == it ? 0 : j == it + 1 ? 1 : -1;
         int needed = (side == 0 && ft < 1.0) || (side == 1 && ft > 0.0);
-        if (column_eval(t, iE, j, f, lw, &c, &l, &gj) != 0) {
+        if (column_eval(g, iE, j, f, lw, &c, &l, &gj) != 0) {
             if (needed) return -1;
             continue; /* a column without points: the cubic runs over the others */
         }
         if (needed) *gap |= gj;
         if (side >= 0) cb[side] = c, eb[side] = fabs(c - l);
-        if (n < 64) xs[n] = log(t->ax[1][j]), ys[n] = c, n++;
+        if (n < 64) xs[n] = log(g->ax[1][j]), ys[n] = c, n++;
     }
     *lin = (1 - ft) * cb[0] + ft * cb[1];
     *err = (1 - ft) * eb[0] + ft * eb[1];
@@ -185,18 +207,18 @@ static int tr_eval(const tbl_table *t, int iE, int f, double lw, double tR, doub
  * along t/R the monotone cubic across the columns (tr_eval), linear in ln
  * Eco/Esu.  The error bar: the δ cubic against the δ line and the t/R cubic
  * against the t/R line, in quadrature.  Returns -1 when a column it needs
- * has < 2 points. */
-static int field_eval(const tbl_table *t, int f, double lw, double tR, double E, double *val,
+ * has < 2 points.  t/R and Eco/Esu within the grid's axes. */
+static int field_eval(const grid *g, int f, double lw, double tR, double E, double *val,
                       double *err, int *gap)
 {
     double fe;
-    int iE = tbl_bracket(t->ax[2], t->n[2], E, &fe);
+    int iE = tbl_bracket(g->ax[2], g->n[2], E, &fe);
     double c = 0.0, l = 0.0, ew = 0.0;
     for (int b = 0; b < 2; b++) {
         double wgt = b ? fe : 1.0 - fe;
         if (wgt == 0.0) continue;
         double cc, ll, ee;
-        if (tr_eval(t, iE + b, f, lw, tR, &cc, &ll, &ee, gap) != 0) return -1;
+        if (tr_eval(g, iE + b, f, lw, tR, &cc, &ll, &ee, gap) != 0) return -1;
         c += wgt * cc, l += wgt * ll, ew += wgt * ee;
     }
     *val = exp(c);
@@ -248,10 +270,27 @@ stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_rat
     out->flags = range_flags(t, w, t_over_R, E_ratio);
     double tR = clamp_axis(t, 1, t_over_R), E = clamp_axis(t, 2, E_ratio), lw = log(w);
     int gap = 0, bad = 0;
-    double e_ps;
-    bad |= field_eval(t, F_P, lw, tR, E, &out->P_Pc, &out->P_Pc_err, &gap);
-    bad |= field_eval(t, F_A, lw, tR, E, &out->A_Ac, &out->A_Ac_err, &gap);
-    bad |= field_eval(t, F_PS, lw, tR, E, &out->P_slide_Pc, &e_ps, &gap);
+    double P3, eP3, PS3, e_ps;
+    grid pg = points_grid(t);
+    bad |= field_eval(&pg, F_P, lw, tR, E, &P3, &eP3, &gap);
+    bad |= field_eval(&pg, F_PS, lw, tR, E, &PS3, &e_ps, &gap);
+    STC_CHECK(!bad, STC_ERANGE, "table query at t/R = %g, E-ratio = %g: a neighbouring "
+              "(t/R, E-ratio) column has fewer than 2 done points", t_over_R, E_ratio);
+    /* P and A from the normal grid where the curves around the query are done
+     * (no gap), else from the points; the load at inception keeps the
+     * points' ratio to the preload */
+    int ngap = 0;
+    grid ng = normal_grid(t);
+    if (tbl_curves(t) > 0 &&
+        field_eval(&ng, F_P, lw, tR, E, &out->P_Pc, &out->P_Pc_err, &ngap) == 0 &&
+        field_eval(&ng, F_A, lw, tR, E, &out->A_Ac, &out->A_Ac_err, &ngap) == 0 && !ngap) {
+        out->from_normal = 1;
+        out->P_slide_Pc = out->P_Pc * (PS3 / P3);
+    } else {
+        out->P_Pc = P3, out->P_Pc_err = eP3;
+        bad |= field_eval(&pg, F_A, lw, tR, E, &out->A_Ac, &out->A_Ac_err, &gap);
+        out->P_slide_Pc = PS3;
+    }
     STC_CHECK(!bad, STC_ERANGE, "table query at t/R = %g, E-ratio = %g: a neighbouring "
               "(t/R, E-ratio) column has fewer than 2 done points", t_over_R, E_ratio);
     if (gap) out->flags |= TBL_GAP;

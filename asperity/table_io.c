@@ -74,7 +74,8 @@ static int write_family(hid_t g, const tbl_table *t)
            stc_h5_put_i(g, "placements", n->placements) |
            stc_h5_put_d(g, "elements_per_contact", n->elements_per_contact) |
            stc_h5_put_d(g, "err_floor", n->err_floor) |
-           stc_h5_put_d(g, "err_single", n->err_single);
+           stc_h5_put_d(g, "err_single", n->err_single) |
+           stc_h5_put_i(g, "normal_level", n->normal_level);
 }
 
 static int write_root(hid_t f, const tbl_table *t)
@@ -92,7 +93,9 @@ static int write_root(hid_t f, const tbl_table *t)
            stc_h5_put_d(f, "build_wall_s", t->build_wall_s) |
            stc_h5_put_s(f, "units", "responses normalised by omega_c, P_c, A_c of the "
                                     "substrate (Kogut & Etsion 2002)") |
-           stc_h5_put_s(f, "layout", "points/* are [n_E_ratio][n_t_over_R][n_delta]") |
+           stc_h5_put_s(f, "layout", "points/* are [n_E_ratio][n_t_over_R][n_delta]; "
+                                     "normal/* are [n_E_ratio][n_t_over_R] (per curve) or "
+                                     "[n_E_ratio][n_t_over_R][n_delta] on normal/axes") |
            stc_h5_put_d(f, "R_mm", TBL_REF_R_MM) | stc_h5_put_d(f, "E_su_MPa", TBL_REF_E_SU_MPA) |
            stc_h5_put_i(f, "points_done", done) | stc_h5_put_i(f, "points_failed", failed) |
            stc_h5_put_i(f, "points_pending", pending) | write_family(f, t);
@@ -109,6 +112,9 @@ static int write_array(hid_t g, const char *name, int rank, const hsize_t *dims,
     H5Sclose(sp);
     return e ? -1 : 0;
 }
+
+static int write_strings(hid_t g, const char *name, int rank, const hsize_t *dims,
+                         const char *v, const char *doc);
 
 static int write_points(hid_t f, const tbl_table *t)
 {
@@ -140,12 +146,8 @@ static int write_points(hid_t f, const tbl_table *t)
             memset(rs + (size_t)i * TBL_REASON_MAX, 0, TBL_REASON_MAX);
             snprintf(rs + (size_t)i * TBL_REASON_MAX, TBL_REASON_MAX, "%s", t->pt[i].reason);
         }
-        hid_t st = H5Tcopy(H5T_C_S1);
-        H5Tset_size(st, TBL_REASON_MAX);
-        H5Tset_strpad(st, H5T_STR_NULLTERM);
-        e = write_array(g, "reason", 3, dims, st, st, rs, "why a point failed, or the "
-                        "criterion's reason at inception");
-        H5Tclose(st);
+        e = write_strings(g, "reason", 3, dims, rs, "why a point failed, or the criterion's "
+                          "reason at inception");
     }
     free(dv);
     free(iv);
@@ -190,6 +192,78 @@ static int write_fit(hid_t f, const tbl_table *t)
     return e;
 }
 
+/* The per-curve datasets of the normal grid: name, offset in tbl_curve. */
+static const field curve_fields[] = {
+    {"state", offsetof(tbl_curve, state), 1, "0 pending, 1 done, 2 failed"},
+    {"increments", offsetof(tbl_curve, increments), 1, "load increments of the curve"},
+    {"newton_iterations", offsetof(tbl_curve, newton_iterations), 1, "Newton iterations"},
+    {"wall_s", offsetof(tbl_curve, wall_s), 0, "wall time of the curve, s"},
+    {"cpu_s", offsetof(tbl_curve, cpu_s), 0, "CPU time of the curve, s"},
+};
+enum { NCURVE_FIELD = sizeof curve_fields / sizeof *curve_fields };
+
+static int write_strings(hid_t g, const char *name, int rank, const hsize_t *dims,
+                         const char *v, const char *doc)
+{
+    hid_t st = H5Tcopy(H5T_C_S1);
+    H5Tset_size(st, TBL_REASON_MAX);
+    H5Tset_strpad(st, H5T_STR_NULLTERM);
+    int e = write_array(g, name, rank, dims, st, st, v, doc);
+    H5Tclose(st);
+    return e;
+}
+
+static int write_normal(hid_t f, const tbl_table *t)
+{
+    const tbl_normal *g = &t->nrm;
+    if (g->level < 0) return 0;
+    int nc = tbl_curves(t), e = 0;
+    hsize_t dc[2] = {(hsize_t)g->n[2], (hsize_t)g->n[1]};
+    hsize_t dv[3] = {(hsize_t)g->n[2], (hsize_t)g->n[1], (hsize_t)g->n[0]};
+    hid_t gr = H5Gcreate2(f, "normal", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (gr < 0) return -1;
+    hid_t ga = H5Gcreate2(gr, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    e = ga < 0 || stc_h5_put_i(gr, "level", g->level) != 0 ||
+        stc_h5_put_s(gr, "description", "the preload's P and A from axisymmetric load curves "
+                     "(one per t/R, E_ratio node, through every delta node) at this "
+                     "axisymmetric mesh level") != 0;
+    for (int k = 0; !e && k < 3; k++) {
+        hsize_t n = (hsize_t)g->n[k];
+        e = write_array(ga, axis_name[k], 1, &n, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, g->ax[k],
+                        NULL);
+    }
+    if (ga >= 0) H5Gclose(ga);
+    double *d = malloc((size_t)nc * sizeof *d);
+    int *iv = malloc((size_t)nc * sizeof *iv);
+    char *rs = calloc((size_t)nc, TBL_REASON_MAX);
+    e = e || !d || !iv || !rs;
+    for (int k = 0; !e && k < NCURVE_FIELD; k++) {
+        for (int c = 0; c < nc; c++) {
+            const char *p = (const char *)&g->c[c] + curve_fields[k].off;
+            if (curve_fields[k].is_int) iv[c] = *(const int *)p;
+            else d[c] = *(const double *)p;
+        }
+        e = curve_fields[k].is_int
+                ? write_array(gr, curve_fields[k].name, 2, dc, H5T_STD_I32LE, H5T_NATIVE_INT, iv,
+                              curve_fields[k].doc)
+                : write_array(gr, curve_fields[k].name, 2, dc, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                              d, curve_fields[k].doc);
+    }
+    for (int c = 0; !e && c < nc; c++)
+        snprintf(rs + (size_t)c * TBL_REASON_MAX, TBL_REASON_MAX, "%s", g->c[c].reason);
+    if (!e) e = write_strings(gr, "reason", 2, dc, rs, "why a curve failed");
+    if (!e) e = write_array(gr, "P_over_P_c", 3, dv, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, g->P,
+                            "preload P / Pc_su, the node-entry sawtooth removed (NaN unless "
+                            "the curve is done)");
+    if (!e) e = write_array(gr, "A_over_A_c", 3, dv, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, g->A,
+                            "preload contact area / Ac_su (NaN unless the curve is done)");
+    free(d);
+    free(iv);
+    free(rs);
+    H5Gclose(gr);
+    return e ? -1 : 0;
+}
+
 /* Temporary name beside path (same file system, so rename is atomic). */
 static stc_status tmp_beside(const char *path, char *buf, size_t n)
 {
@@ -230,7 +304,8 @@ stc_status tbl_write(const tbl_table *t, const char *path)
     STC_CHECK(f >= 0, STC_EIO, "%s: cannot create the table file (%s)", tmp, strerror(errno));
     int e;
     H5E_BEGIN_TRY {
-        e = write_root(f, t) | write_axes(f, t) | write_points(f, t) | write_fit(f, t);
+        e = write_root(f, t) | write_axes(f, t) | write_points(f, t) | write_fit(f, t) |
+            write_normal(f, t);
     } H5E_END_TRY;
     herr_t c;
     H5E_BEGIN_TRY { c = H5Fclose(f); } H5E_END_TRY;
@@ -273,8 +348,14 @@ done:
     return st;
 }
 
-static stc_status read_family(hid_t f, const char *path, tbl_family *fam, tbl_numerics *num)
+static stc_status read_family(hid_t f, const char *path, int version, tbl_family *fam,
+                              tbl_numerics *num)
 {
+    /* version 1 has no normal grid: P and A come from the points */
+    num->normal_level = -1;
+    if (version >= 2 && stc_h5_get_i(f, "normal_level", &num->normal_level) != 0)
+        return STC_FAIL(STC_EFORMAT, "%s: friction table without its normal_level attribute",
+                        path);
     char contact[16] = "", crit[16] = "";
     int bad = stc_h5_get_d(f, "E_over_Y_su", &fam->E_over_Y_su) |
               stc_h5_get_d(f, "E_over_Y_co", &fam->E_over_Y_co) |
@@ -302,31 +383,36 @@ static stc_status read_family(hid_t f, const char *path, tbl_family *fam, tbl_nu
     return STC_OK;
 }
 
+/* The three axes in group g (named gname in messages); new arrays in ax. */
+static stc_status read_axes_in(hid_t g, const char *path, const char *gname, double *ax[3],
+                               int n[3])
+{
+    stc_status st = STC_OK;
+    for (int k = 0; k < 3 && st == STC_OK; k++) {
+        hid_t d = -1;
+        H5E_BEGIN_TRY { d = H5Dopen2(g, axis_name[k], H5P_DEFAULT); } H5E_END_TRY;
+        STC_CHECK(d >= 0, STC_EFORMAT, "%s: axis '%s/%s' missing", path, gname, axis_name[k]);
+        hid_t sp = H5Dget_space(d);
+        hssize_t np = H5Sget_simple_extent_npoints(sp);
+        H5Sclose(sp);
+        H5Dclose(d);
+        STC_CHECK(np >= 1 && np <= 10000, STC_EFORMAT, "%s: axis '%s/%s' has %lld values: "
+                  "must be 1 to 10000", path, gname, axis_name[k], (long long)np);
+        n[k] = (int)np;
+        ax[k] = malloc((size_t)np * sizeof(double));
+        STC_CHECK(ax[k], STC_ENOMEM, "tbl_read: out of memory");
+        hsize_t want = (hsize_t)np;
+        st = read_array(g, path, axis_name[k], H5T_NATIVE_DOUBLE, &want, 1, ax[k]);
+    }
+    return st;
+}
+
 static stc_status read_axes(hid_t f, const char *path, double *ax[3], int n[3])
 {
     hid_t g = -1;
     H5E_BEGIN_TRY { g = H5Gopen2(f, "axes", H5P_DEFAULT); } H5E_END_TRY;
     STC_CHECK(g >= 0, STC_EFORMAT, "%s: not a friction table: group 'axes' missing", path);
-    stc_status st = STC_OK;
-    for (int k = 0; k < 3 && st == STC_OK; k++) {
-        hid_t d = -1;
-        H5E_BEGIN_TRY { d = H5Dopen2(g, axis_name[k], H5P_DEFAULT); } H5E_END_TRY;
-        STC_CHECK_GOTO(d >= 0, st, done, STC_EFORMAT, "%s: axis '%s' missing", path,
-                       axis_name[k]);
-        hid_t sp = H5Dget_space(d);
-        hssize_t np = H5Sget_simple_extent_npoints(sp);
-        H5Sclose(sp);
-        H5Dclose(d);
-        STC_CHECK_GOTO(np >= 1 && np <= 10000, st, done, STC_EFORMAT,
-                       "%s: axis '%s' has %lld values: must be 1 to 10000", path, axis_name[k],
-                       (long long)np);
-        n[k] = (int)np;
-        ax[k] = malloc((size_t)np * sizeof(double));
-        STC_CHECK_GOTO(ax[k], st, done, STC_ENOMEM, "tbl_read: out of memory");
-        hsize_t want = (hsize_t)np;
-        st = read_array(g, path, axis_name[k], H5T_NATIVE_DOUBLE, &want, 1, ax[k]);
-    }
-done:
+    stc_status st = read_axes_in(g, path, "axes", ax, n);
     H5Gclose(g);
     return st;
 }
@@ -380,6 +466,70 @@ done:
     return st;
 }
 
+/* The normal grid: its own axes (adopted as they are), curves and values. */
+static stc_status read_normal(hid_t f, const char *path, tbl_table *t)
+{
+    hid_t gr = -1, ga = -1;
+    H5E_BEGIN_TRY { gr = H5Gopen2(f, "normal", H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(gr >= 0, STC_EFORMAT, "%s: friction table with a normal level but no group "
+              "'normal'", path);
+    stc_status st = STC_OK;
+    double *ax[3] = {NULL, NULL, NULL}, *d = NULL, *P = NULL, *A = NULL;
+    int n[3] = {0, 0, 0}, *iv = NULL;
+    char *rs = NULL;
+    int level = -2;
+    stc_h5_get_i(gr, "level", &level);
+    STC_CHECK_GOTO(level == t->num.normal_level, st, done, STC_EFORMAT, "%s: normal grid level "
+                   "%d differs from the table's normal_level %d", path, level,
+                   t->num.normal_level);
+    H5E_BEGIN_TRY { ga = H5Gopen2(gr, "axes", H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK_GOTO(ga >= 0, st, done, STC_EFORMAT, "%s: group 'normal/axes' missing", path);
+    STC_CALL_GOTO(read_axes_in(ga, path, "normal/axes", ax, n), st, done);
+    STC_CALL_GOTO(tbl_normal_init_axes(t, ax, n), st, done);
+    int nc = tbl_curves(t);
+    size_t nv = (size_t)nc * n[0];
+    hsize_t dc[2] = {(hsize_t)n[2], (hsize_t)n[1]};
+    hsize_t dv[3] = {(hsize_t)n[2], (hsize_t)n[1], (hsize_t)n[0]};
+    d = malloc((size_t)nc * sizeof *d);
+    iv = malloc((size_t)nc * sizeof *iv);
+    rs = malloc((size_t)nc * TBL_REASON_MAX);
+    P = malloc(nv * sizeof *P);
+    A = malloc(nv * sizeof *A);
+    STC_CHECK_GOTO(d && iv && rs && P && A, st, done, STC_ENOMEM, "tbl_read: out of memory");
+    tbl_curve *cv = calloc((size_t)nc, sizeof *cv);
+    STC_CHECK_GOTO(cv, st, done, STC_ENOMEM, "tbl_read: out of memory");
+    for (int k = 0; k < NCURVE_FIELD && st == STC_OK; k++) {
+        int isi = curve_fields[k].is_int;
+        st = read_array(gr, path, curve_fields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
+                        dc, 2, isi ? (void *)iv : (void *)d);
+        for (int c = 0; st == STC_OK && c < nc; c++) {
+            char *p = (char *)&cv[c] + curve_fields[k].off;
+            if (isi) *(int *)p = iv[c];
+            else *(double *)p = d[c];
+        }
+    }
+    hid_t stype = H5Tcopy(H5T_C_S1);
+    H5Tset_size(stype, TBL_REASON_MAX);
+    H5Tset_strpad(stype, H5T_STR_NULLTERM);
+    if (st == STC_OK) st = read_array(gr, path, "reason", stype, dc, 2, rs);
+    H5Tclose(stype);
+    if (st == STC_OK) st = read_array(gr, path, "P_over_P_c", H5T_NATIVE_DOUBLE, dv, 3, P);
+    if (st == STC_OK) st = read_array(gr, path, "A_over_A_c", H5T_NATIVE_DOUBLE, dv, 3, A);
+    for (int c = 0; st == STC_OK && c < nc; c++) {
+        memcpy(cv[c].reason, rs + (size_t)c * TBL_REASON_MAX, TBL_REASON_MAX);
+        cv[c].reason[TBL_REASON_MAX - 1] = '\0';
+        if (tbl_curve_set(t, c, &cv[c], P + (size_t)c * n[0], A + (size_t)c * n[0]) != STC_OK)
+            st = STC_FAIL(STC_EFORMAT, "%s: normal grid: %s", path, stc_errmsg());
+    }
+    free(cv);
+done:
+    for (int k = 0; k < 3; k++) free(ax[k]);
+    free(d), free(iv), free(rs), free(P), free(A);
+    if (ga >= 0) H5Gclose(ga);
+    H5Gclose(gr);
+    return st;
+}
+
 stc_status tbl_read(const char *path, tbl_table **out)
 {
     STC_CHECK(out, STC_EINVAL, "tbl_read: out must not be NULL");
@@ -406,18 +556,22 @@ stc_status tbl_read(const char *path, tbl_table **out)
     STC_CHECK_GOTO(!strcmp(fmt, TBL_FORMAT_NAME), st, done, STC_EFORMAT,
                    "%s: not a friction table (format attribute '%s', expected '%s')", path, fmt,
                    TBL_FORMAT_NAME);
-    STC_CHECK_GOTO(ver == TBL_FORMAT_VERSION, st, done, STC_EFORMAT,
-                   "%s: table format version %d: this stiction reads version %d", path, ver,
-                   TBL_FORMAT_VERSION);
+    STC_CHECK_GOTO(ver >= 1 && ver <= TBL_FORMAT_VERSION, st, done, STC_EFORMAT,
+                   "%s: table format version %d: this stiction reads versions 1 to %d", path,
+                   ver, TBL_FORMAT_VERSION);
     tbl_family fam;
     tbl_numerics num;
-    H5E_BEGIN_TRY { st = read_family(f, path, &fam, &num); } H5E_END_TRY;
+    H5E_BEGIN_TRY { st = read_family(f, path, ver, &fam, &num); } H5E_END_TRY;
     if (st) goto done;
     H5E_BEGIN_TRY { st = read_axes(f, path, ax, n); } H5E_END_TRY;
     if (st) goto done;
     STC_CALL_GOTO(tbl_create(&fam, &num, ax[0], n[0], ax[1], n[1], ax[2], n[2], out), st, done);
     H5E_BEGIN_TRY { st = read_points(f, path, *out); } H5E_END_TRY;
     if (st) goto done;
+    if (num.normal_level >= 0) {
+        H5E_BEGIN_TRY { st = read_normal(f, path, *out); } H5E_END_TRY;
+        if (st) goto done;
+    }
     char cmd[512] = "";
     double wall = NAN;
     H5E_BEGIN_TRY {

@@ -123,7 +123,22 @@ static void assert_same_results(const char *a, const char *b)
         assert_int_equal(p->factorizations, q->factorizations);
         assert_string_equal(p->reason, q->reason);
     }
-    printf("  largest relative difference of any stored result: %.2g\n", worst);
+    assert_int_equal(tbl_curves(ta), tbl_curves(tb));
+    assert_true(tbl_curves(ta) > 0);
+    const double *w;
+    int nw = tbl_normal_axis(ta, 0, &w);
+    for (int c = 0; c < tbl_curves(ta); c++) {
+        assert_int_equal(tbl_curve_get(ta, c)->state, TBL_DONE);
+        assert_int_equal(tbl_curve_get(tb, c)->state, TBL_DONE);
+        for (int k = 0; k < nw; k++) {
+            double Pa, Aa, Pb, Ab;
+            tbl_curve_values(ta, c, k, &Pa, &Aa);
+            tbl_curve_values(tb, c, k, &Pb, &Ab);
+            worst = fmax(worst, fmax(fabs(Pa - Pb) / Pb, fabs(Aa - Ab) / Ab));
+        }
+    }
+    printf("  largest relative difference of any stored result (points and normal curves): "
+           "%.2g\n", worst);
     assert_true(worst == 0.0);
     tbl_destroy(&ta);
     tbl_destroy(&tb);
@@ -155,23 +170,25 @@ static int teardown(void **state)
 /* ------------------------------------------------------------ tests */
 
 /* SIGKILL three times, each at a pseudo-random moment (fixed seed) after
- * the run has reported its first point, then to the end: every point
- * reported before a kill is taken by the next run, no half-written table
- * ever sits under the final name, and the result equals the uninterrupted
- * build. */
+ * the run has reported its first normal curve (the first kill) or its first
+ * point (the others), then to the end: every curve and point reported before
+ * a kill is taken by the next run (no curve is computed twice once it was
+ * reported), no half-written table ever sits under the final name, and the
+ * result equals the uninterrupted build. */
 static void test_killed_build_resumes(void **state)
 {
     (void)state;
     unsigned seed = 20261126u;
-    int reported_before = 0;
+    int reported_before = 0, curves_reported = 0;
     for (int k = 0; k < 3; k++) {
         seed = seed * 1103515245u + 12345u;
         double wait_s = 1.5 * ((seed >> 8) % 1000) / 1000.0;
+        const char *first = k == 0 ? "[normal " : "] delta ";
         char err[32];
         snprintf(err, sizeof err, "kill%d.err", k);
         pid_t pid = start_build("k.h5", "--jobs 1", P(err));
         int st, gone = 0;
-        while (!(gone = waitpid(pid, &st, WNOHANG) == pid) && count_lines(P(err), "] delta ") < 1) {
+        while (!(gone = waitpid(pid, &st, WNOHANG) == pid) && count_lines(P(err), first) < 1) {
             struct timespec poll = {0, 20000000};
             nanosleep(&poll, NULL);
         }
@@ -181,9 +198,11 @@ static void test_killed_build_resumes(void **state)
         kill(pid, SIGKILL);
         int rc = wait_rc(pid);
         int reported = count_lines(P(err), "] delta ");
-        printf("  kill %d at %.2f s after its first point (exit %d): %d points reported\n", k,
-               wait_s, rc, reported);
+        int curves = count_lines(P(err), "[normal ");
+        printf("  kill %d at %.2f s after its first %s (exit %d): %d curves, %d points "
+               "reported\n", k, wait_s, k == 0 ? "curve" : "point", rc, curves, reported);
         reported_before += reported;
+        curves_reported += curves;
         if (exists(P("k.h5"))) { /* only ever a whole table */
             tbl_table *t = NULL;
             assert_int_equal(tbl_read(P("k.h5"), &t), STC_OK);
@@ -199,8 +218,15 @@ static void test_killed_build_resumes(void **state)
     assert_non_null(p);
     assert_int_equal(sscanf(p, "this run: %d of %d points of its share computed, %d taken",
                             &computed, &share, &taken), 3);
-    printf("  final run: %d computed, %d taken from the killed runs (%d reported by them)\n",
-           computed, taken, reported_before);
+    int curves_total = -1, curves_now = -1;
+    const char *q = strstr(out, "normal grid: ");
+    assert_non_null(q);
+    assert_int_equal(sscanf(q, "normal grid: %d curves, %*d done, %*d failed, %*d pending; "
+                            "this run computed %d", &curves_total, &curves_now), 2);
+    printf("  final run: %d computed, %d taken from the killed runs (%d reported by them); "
+           "normal curves: %d computed, %d reported by the killed runs, of %d\n", computed,
+           taken, reported_before, curves_now, curves_reported, curves_total);
+    assert_int_equal(curves_now + curves_reported, curves_total);
     assert_int_equal(share, 4);
     assert_int_equal(computed + taken, 4);
     assert_true(taken >= reported_before); /* journal first, report after */

@@ -990,6 +990,170 @@ static void test_retry_failed(void **state)
     tbl_destroy(&t);
 }
 
+/* ---- 8. the normal grid ----------------------------------------------------- */
+
+/* The normal grid keeps the table's nodes on its axes and divides each
+ * interval evenly in ln (4 per factor 2 along δ and t/R, 2 along Eco/Esu).
+ * Where its curves around a query are done, P and A come from them (to the
+ * cubics' accuracy on a response curved across t/R) and the load at
+ * inception keeps the points' ratio to the preload; a pending curve next to
+ * the query sends it back to the points; the curves survive the file; and a
+ * real curve on the axisymmetric mesh follows Hertz in the elastic range. */
+static double nrm_P(double w, double tR, double E)
+{
+    double l = log(tR / 0.02);
+    return pow(w, 1.5) * exp(0.2 * l * l) * pow(E, 0.3);
+}
+
+static void fill_curves(tbl_table *t)
+{
+    const double *w, *tr, *er;
+    int nw = tbl_normal_axis(t, 0, &w), nt = tbl_normal_axis(t, 1, &tr);
+    tbl_normal_axis(t, 2, &er);
+    double P[64], A[64];
+    assert_true(nw <= 64);
+    for (int c = 0; c < tbl_curves(t); c++) {
+        double tR = tr[c % nt], E = er[c / nt];
+        for (int k = 0; k < nw; k++) {
+            P[k] = nrm_P(w[k], tR, E);
+            A[k] = w[k] * (1.0 + 0.1 * log(tR / 0.02));
+        }
+        tbl_curve cv = {.state = TBL_DONE, .increments = 10 + c, .cpu_s = 1.0};
+        check_ok(tbl_curve_set(t, c, &cv, P, A), "tbl_curve_set");
+    }
+}
+
+static void test_normal_grid(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "normal", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/normal.h5", dir);
+    tbl_family f;
+    tbl_numerics num;
+    tbl_family_default(&f);
+    tbl_numerics_default(&num);
+    const double w[] = {0.5, 1, 2, 4}, tr[] = {0.01, 0.04}, er[] = {1.0, 4.0};
+    tbl_table *t = NULL, *r = NULL;
+    check_ok(tbl_create(&f, &num, w, 4, tr, 2, er, 2, &t), "tbl_create");
+    const double *nw_ax, *nt_ax, *ne_ax;
+    int n0 = tbl_normal_axis(t, 0, &nw_ax), n1 = tbl_normal_axis(t, 1, &nt_ax);
+    int n2 = tbl_normal_axis(t, 2, &ne_ax);
+    printf("normal grid of a 4 x 2 x 2 table: %d x %d x %d, %d curves\n", n0, n1, n2,
+           tbl_curves(t));
+    assert_int_equal(n0, 13);
+    assert_int_equal(n1, 9);
+    assert_int_equal(n2, 5);
+    assert_int_equal(tbl_curves(t), 45);
+    for (int k = 0; k < 4; k++) assert_true(same_bits(nw_ax[4 * k], w[k]));
+    assert_true(same_bits(nt_ax[0], tr[0]) && same_bits(nt_ax[8], tr[1]));
+    assert_true(same_bits(ne_ax[0], er[0]) && same_bits(ne_ax[4], er[1]));
+    assert_true(rel(nt_ax[4], 0.02) < 1e-14 && rel(ne_ax[2], 2.0) < 1e-14);
+
+    /* the points: P twice the curves' at E = 1, t/R = 0.02, P at inception 0.9 P */
+    for (int i = 0; i < tbl_points(t); i++) {
+        double wi, tR, E;
+        tbl_coords(t, i, &wi, &tR, &E);
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        p.state = TBL_DONE;
+        p.P_Pc = 2.0 * pow(wi, 1.5);
+        p.P_slide_Pc = 0.9 * p.P_Pc;
+        p.A_Ac = wi;
+        p.mu_s = p.mu_s_preload = p.mu_s_min = p.mu_s_max = 0.4;
+        p.mu_s_err = 0.01;
+        p.Q_max_Pc = 0.4 * p.P_slide_Pc;
+        p.members = 1;
+        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+    }
+    check_ok(tbl_fit(t), "tbl_fit");
+    tbl_value v;
+    query_ok(t, 1.3, 0.017, 1.7, &v);
+    assert_int_equal(v.from_normal, 0); /* every curve pending: the points */
+    assert_true(rel(v.P_Pc, 2.0 * pow(1.3, 1.5)) < 1e-12);
+
+    fill_curves(t);
+    double worst = 0.0, worst_A = 0.0;
+    const double qw[] = {0.6, 1.3, 3.1}, qt[] = {0.011, 0.017, 0.033}, qe[] = {1.2, 1.7, 3.5};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 3; c++) {
+                query_ok(t, qw[a], qt[b], qe[c], &v);
+                assert_int_equal(v.from_normal, 1);
+                worst = fmax(worst, rel(v.P_Pc, nrm_P(qw[a], qt[b], qe[c])));
+                worst_A = fmax(worst_A, rel(v.A_Ac, qw[a] * (1 + 0.1 * log(qt[b] / 0.02))));
+                assert_true(rel(v.P_slide_Pc, 0.9 * v.P_Pc) < 1e-12);
+                assert_true(rel(v.Q_max_Pc, v.mu_s * v.P_slide_Pc) < 1e-12);
+            }
+    printf("P and A from the normal grid at 27 queries between its nodes: worst rel error "
+           "%.2e (P), %.2e (A); P at inception 0.9 P as the points say\n", worst, worst_A);
+    assert_true(worst < 2e-3);
+    assert_true(worst_A < 2e-3);
+
+    /* a pending curve next to the query: back to the points */
+    const tbl_curve pending = {.state = TBL_PENDING};
+    int c_near = 2 * n1 + 3; /* Eco/Esu 2, t/R between 0.0168 and 0.02 */
+    double P[13], A[13];
+    for (int k = 0; k < n0; k++) tbl_curve_values(t, c_near, k, &P[k], &A[k]);
+    check_ok(tbl_curve_set(t, c_near, &pending, P, A), "tbl_curve_set pending");
+    query_ok(t, 1.3, 0.018, 2.0, &v);
+    assert_int_equal(v.from_normal, 0);
+    assert_true(rel(v.P_Pc, 2.0 * pow(1.3, 1.5)) < 1e-12);
+    int cd, cf, cp;
+    tbl_curve_count(t, &cd, &cf, &cp);
+    assert_true(cd == 44 && cf == 0 && cp == 1);
+    unsigned char *only = calloc((size_t)tbl_points(t), 1);
+    assert_non_null(only);
+    assert_int_equal(tbl_curves_pending(t, only), 0); /* no point chosen: no curve */
+    only[0] = 1;                                        /* t/R 0.01, Eco/Esu 1 */
+    assert_int_equal(tbl_curves_pending(t, only), 0);
+    for (int i = 0; i < tbl_points(t); i++) only[i] = 1;
+    assert_int_equal(tbl_curves_pending(t, only), 1);
+    assert_int_equal(tbl_curves_pending(t, NULL), 1);
+    free(only);
+
+    /* through the file, every curve bit for bit */
+    check_ok(tbl_write(t, path), "tbl_write");
+    check_ok(tbl_read(path, &r), "tbl_read");
+    assert_true(tbl_same_build(t, r));
+    for (int c = 0; c < tbl_curves(t); c++) {
+        assert_int_equal(tbl_curve_get(r, c)->state, tbl_curve_get(t, c)->state);
+        assert_int_equal(tbl_curve_get(r, c)->increments, tbl_curve_get(t, c)->increments);
+        for (int k = 0; k < n0; k++) {
+            double a1, a2, b1, b2;
+            tbl_curve_values(t, c, k, &a1, &b1);
+            tbl_curve_values(r, c, k, &a2, &b2);
+            assert_true(same_bits(a1, a2) && same_bits(b1, b2));
+        }
+    }
+    printf("the normal grid through the file: %d curves equal bit for bit\n", tbl_curves(r));
+    tbl_destroy(&r);
+    tbl_destroy(&t);
+
+    /* a real curve: homogeneous sphere (a "coating" of the substrate's material, t/R 0.01),
+     * slip, elastic range (Hertz: P/Pc = w^1.5, A/Ac = w in Kogut & Etsion's normalisation,
+     * on the outer radius); the fixed base at depth R stiffens it by a few tenths of a per
+     * cent (docs/design.md §2.1) */
+    tbl_family slip = f;
+    slip.contact = ASP_CONTACT_SLIP;
+    const double we[] = {0.2, 0.4};
+    double Pe[2], Ae[2];
+    tbl_curve cv;
+    double t0 = now();
+    check_ok(tbl_curve_compute(&slip, 1, 0.01, 1.0, we, 2, Pe, Ae, &cv), "tbl_curve_compute");
+    assert_int_equal(cv.state, TBL_DONE);
+    double eP = 0.0, eA = 0.0;
+    for (int k = 0; k < 2; k++) {
+        /* Hertz on the outer radius R' = 1.01 R: P ∝ R'^1/2, A = π R' δ */
+        eP = fmax(eP, fabs(Pe[k] / (pow(we[k], 1.5) * sqrt(1.01)) - 1));
+        eA = fmax(eA, fabs(Ae[k] / (we[k] * 1.01) - 1));
+    }
+    printf("an axisymmetric curve (level 1, slip, elastic): P/Pc vs Hertz within %.3f %%, "
+           "A/Ac within %.3f %% (%d increments, %.2f s)\n", 100 * eP, 100 * eA, cv.increments,
+           now() - t0);
+    assert_true(eP < 0.005);
+    assert_true(eA < 0.02);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -998,6 +1162,7 @@ int main(void)
         cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),
         cmocka_unit_test(test_t_over_R_at_axis_ends), cmocka_unit_test(test_retry_failed),
+        cmocka_unit_test(test_normal_grid),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

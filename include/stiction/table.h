@@ -65,6 +65,11 @@ typedef struct tbl_numerics {
                           default 0.015 */
     double err_single; /* relative μs error of a point with one member (the single-mesh
                           node-placement scatter); default 0.06 */
+    int normal_level;  /* the preload's P and A from the normal grid: axisymmetric load
+                          curves at this axisymmetric mesh level, one per (t/R, Eco/Esu)
+                          of a grid denser than the points' (the normal step is
+                          axisymmetric; docs/table-format.md), in [0, 3]; -1 = no
+                          normal grid: P and A from the 3D points; default 1 */
 } tbl_numerics;
 STC_API void tbl_numerics_default(tbl_numerics *n);
 STC_API stc_status tbl_numerics_validate(const tbl_numerics *n);
@@ -108,6 +113,27 @@ typedef struct tbl_point {
 STC_API stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
                                      double t_over_R, double E_ratio, tbl_point *out);
 
+/* One axisymmetric load curve of the normal grid (tbl_numerics.normal_level):
+ * the normal step at one (t/R, Eco/Esu) through every δ of the grid. */
+typedef struct tbl_curve {
+    int state;            /* tbl_state */
+    int increments, newton_iterations; /* of the curve's solver run */
+    double wall_s, cpu_s; /* time of the curve, s */
+    char reason[TBL_REASON_MAX]; /* why it failed; "" when done */
+} tbl_curve;
+
+/* Compute one curve: params at R = 10 mm, Esu = 200 GPa as tbl_point_compute,
+ * the axisymmetric model at mesh `level` loaded through w[0..n_w-1]
+ * (δ/ωc_su, increasing) and on past the last one (asp_solver_load_tail), one
+ * thread.  P_Pc[k] is the load with the node-entry sawtooth removed
+ * (asp_solver_P_smooth) / Pc_su, A_Ac[k] the contact area / Ac_su (both
+ * [n_w], written; NaN when not done).  Never fails for a curve that does not
+ * converge: out->state is TBL_FAILED with the reason; STC_EINVAL for bad
+ * arguments only. */
+stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, double E_ratio,
+                             const double *w, int n_w, double *P_Pc, double *A_Ac,
+                             tbl_curve *out);
+
 /* ---- the table ------------------------------------------------------------- */
 
 typedef struct tbl_table tbl_table;
@@ -132,6 +158,25 @@ STC_API stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p);
 /* Counts by state; any pointer nullable. */
 STC_API void tbl_count(const tbl_table *t, int *done, int *failed, int *pending);
 
+/* The normal grid (tbl_numerics.normal_level >= 0): axes 0 (δ/ωc_su), 1 (t/R),
+ * 2 (Eco/Esu), each the table's nodes with every interval divided evenly in
+ * ln: 4 per factor 2 along δ and t/R, 2 along Eco/Esu.  Curve c is at (t/R,
+ * Eco/Esu) = (axis 1 [c % n_tR], axis 2 [c / n_tR]).  tbl_curves is 0 for a
+ * table without one. */
+int tbl_curves(const tbl_table *t);
+int tbl_normal_axis(const tbl_table *t, int axis, const double **values);
+const tbl_curve *tbl_curve_get(const tbl_table *t, int c); /* borrowed; NULL if out of range */
+/* The curve's values at δ node k of the normal grid; NaN when not done. */
+void tbl_curve_values(const tbl_table *t, int c, int k, double *P_Pc, double *A_Ac);
+/* Store a computed curve (copied; P_Pc, A_Ac: [n_w] of the normal grid). */
+stc_status tbl_curve_set(tbl_table *t, int c, const tbl_curve *cv, const double *P_Pc,
+                         const double *A_Ac);
+void tbl_curve_count(const tbl_table *t, int *done, int *failed, int *pending);
+/* Pending curves a build restricted to the points only[] (NULL: all) would
+ * compute: those at the t/R and Eco/Esu the chosen points span; -1 when out
+ * of memory. */
+int tbl_curves_pending(const tbl_table *t, const unsigned char *only);
+
 /* Same family, numerics and axes (bitwise on the numbers): a journal or a
  * shard belongs to the build. */
 STC_API int tbl_same_build(const tbl_table *a, const tbl_table *b);
@@ -150,10 +195,15 @@ STC_API stc_status tbl_read(const char *path, tbl_table **out);
 
 /* ---- building -------------------------------------------------------------- */
 
-/* Progress of a build, after each finished point. */
+/* Progress of a build, after each finished point or normal curve (a build
+ * computes its normal curves first: they are cheap, and every prediction
+ * reads them). */
 typedef struct tbl_progress {
-    int index;              /* the point just finished */
-    const tbl_point *point; /* its result (borrowed) */
+    int index;              /* the point just finished, or -1 after a curve */
+    const tbl_point *point; /* its result (borrowed), or NULL */
+    int curve;              /* the normal curve just finished, or -1 after a point */
+    const tbl_curve *c;     /* its result (borrowed), or NULL */
+    int curves_done, curves_total; /* curves finished of this build's share */
     int done, total;        /* points finished of this build's share (resumed included) */
     int resumed;            /* points taken from an earlier run */
     int failed;             /* failed points so far */
@@ -178,11 +228,14 @@ STC_API void tbl_build_opts_default(tbl_build_opts *o);
 
 typedef struct tbl_build_summary {
     int computed, resumed, failed, share; /* points of this run, from before, failed, in shard */
+    int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s, cpu_s;    /* this run */
 } tbl_build_summary;
 
-/* Compute the pending points of t that fall in the shard and write the table
- * to `path`.  Crash-safe and resumable: each finished point is appended to
+/* Compute the pending normal curves and then the pending points of t that
+ * fall in the shard and write the table to `path` (curve c falls in shard
+ * c % shards; with opts.only, the curves at the t/R and Eco/Esu the chosen
+ * points span).  Crash-safe and resumable: each finished point is appended to
  * the journal `path`.journal (synced) before anything else; a build started
  * again with the same table (tbl_same_build) takes the journal's points and
  * those of an existing `path` instead of recomputing them, so a build killed
@@ -228,10 +281,13 @@ STC_API stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out);
 
 /* Interpolated response with one-standard-error bars. */
 typedef struct tbl_value {
-    double P_Pc, P_Pc_err;  /* preload: monotone cubic in ln P vs ln w, linear in ln t/R,
-                               ln Eco/Esu; err = |cubic - linear| along w */
+    double P_Pc, P_Pc_err;  /* preload: monotone cubics in ln P vs ln w and ln t/R, linear
+                               in ln Eco/Esu, on the normal grid where its curves around
+                               the query are done (else on the points); err = |cubic -
+                               linear| along w and t/R in quadrature */
     double A_Ac, A_Ac_err;
-    double P_slide_Pc;
+    double P_slide_Pc;      /* P_Pc times the points' P_slide / P at the query */
+    int from_normal;        /* 1: P and A from the normal grid, 0: from the 3D points */
     double mu_s, mu_s_err;  /* the surrogate and its standard error */
     double Q_max_Pc, Q_max_Pc_err; /* mu_s P_slide_Pc */
     unsigned flags;

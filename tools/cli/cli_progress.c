@@ -13,12 +13,34 @@ static void fmt_dur(double s, char *buf, size_t n)
     else snprintf(buf, n, "%.1f h", s / 3600);
 }
 
+/* After a normal curve. */
+static int curve_line(const cli_table_progress *c, const tbl_progress *p)
+{
+    const double *ax1, *ax2;
+    int n1 = tbl_normal_axis(c->t, 1, &ax1);
+    tbl_normal_axis(c->t, 2, &ax2);
+    char el[32], eta[32];
+    fmt_dur(p->elapsed_s, el, sizeof el);
+    fmt_dur(p->eta_s, eta, sizeof eta);
+    fprintf(stderr, "%s[normal %d/%d] t/R %g E-ratio %g: %s (%.1f s); elapsed %s, curves eta "
+            "%s%s", c->tty ? "\r\033[K" : "", p->curves_done, p->curves_total,
+            ax1[p->curve % n1], ax2[p->curve / n1],
+            p->c->state == TBL_DONE ? "done" : "FAILED", p->c->wall_s, el, eta,
+            c->tty ? "" : "\n");
+    if (p->c->state == TBL_FAILED)
+        fprintf(stderr, "%s  normal curve %d failed: %s\n", c->tty ? "\n" : "", p->curve,
+                p->c->reason);
+    fflush(stderr);
+    return 0;
+}
+
 /* A line per finished point (stderr): on a terminal one line rewritten in
  * place, else a line each. */
 int cli_table_progress_line(void *ctx, const tbl_progress *p)
 {
     const cli_table_progress *c = ctx;
     if (c->quiet) return 0;
+    if (p->curve >= 0) return curve_line(c, p);
     double w, tR, E;
     tbl_coords(c->t, p->index, &w, &tR, &E);
     char el[32], eta[32], mu[64];

@@ -282,7 +282,7 @@ static stc_status fill_table(const char *cmd, const predict_opts *o, const stc_p
 {
     tbl_table *t = NULL;
     unsigned char *need = NULL;
-    int n = o->np ? o->np : o->ns, computed = 0, marked = 0, failed = 0;
+    int n = o->np ? o->np : o->ns, computed = 0, marked = 0, failed = 0, curves = 0;
     double wall = 0.0;
     stc_status s = tbl_read(o->table, &t);
     if (s == STC_OK) s = tbl_check_params(t, p);
@@ -303,7 +303,7 @@ static stc_status fill_table(const char *cmd, const predict_opts *o, const stc_p
                                    n, need, &pending);
         srf_gw_destroy(&g);
         asp_model_destroy(&guide);
-        if (s != STC_OK || pending == 0) break;
+        if (s != STC_OK || (pending == 0 && tbl_curves_pending(t, need) == 0)) break;
         tbl_build_opts bo;
         tbl_build_summary sum;
         tbl_build_opts_default(&bo);
@@ -312,19 +312,20 @@ static stc_status fill_table(const char *cmd, const predict_opts *o, const stc_p
         cli_table_progress pc = {isatty(2), 0, t};
         bo.progress = cli_table_progress_line;
         bo.ctx = &pc;
-        fprintf(stderr, "stiction %s: filling %s: %d points to compute\n", cmd, o->table,
-                pending);
+        fprintf(stderr, "stiction %s: filling %s: %d points and %d normal curves to compute\n",
+                cmd, o->table, pending, tbl_curves_pending(t, need));
         s = tbl_build(t, o->table, &bo, &sum);
         if (pc.tty && sum.computed > 0) fputc('\n', stderr);
         computed += sum.computed;
+        curves += sum.curves_computed;
         failed += sum.failed;
         wall += sum.wall_s;
     }
     for (int i = 0; need && i < tbl_points(t); i++) marked += need[i] != 0;
     if (s == STC_OK)
         fprintf(stderr, "stiction %s: fill: the loads touch %d of the table's %d points; %d "
-                "computed now (%d failed, %.1f s), %d were there\n", cmd, marked,
-                tbl_points(t), computed, failed, wall, marked - computed);
+                "computed now (%d failed, %.1f s, with %d normal curves), %d were there\n",
+                cmd, marked, tbl_points(t), computed, failed, wall, curves, marked - computed);
     free(need);
     tbl_destroy(&t);
     if (s != STC_OK && strncmp(stc_errmsg(), "table =", 7) != 0) {

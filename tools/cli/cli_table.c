@@ -117,6 +117,9 @@ static const cli_opt build_opts[] = {
     CLI_HEADING("Expert numerics"),
     {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
                                   "(default); a small value (>= 2) gives a quick coarse table"},
+    {"normal-level", "N", "axisymmetric mesh level of the normal grid (the preload's P and A "
+                          "from axisymmetric load curves), 0..3, or -1 for none: P and A from "
+                          "the 3D points (default 1)"},
     {NULL, NULL, NULL},
 };
 
@@ -164,6 +167,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         s = set_int(key, value, 0, 3, &a->num.mesh_level);
     } else if (!strcmp(key, "placements")) {
         s = set_int(key, value, 1, ASP_PLACEMENTS_MAX, &a->num.placements);
+    } else if (!strcmp(key, "normal-level")) {
+        s = set_int(key, value, -1, 3, &a->num.normal_level);
     } else if (!strcmp(key, "elements-per-contact")) {
         s = stc_parse_double(key, value, &a->num.elements_per_contact);
     } else if (!strcmp(key, "out")) {
@@ -256,7 +261,7 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK) s = tbl_build(t, a.out, &a.bo, &sum);
     free(none);
     if (rank > 0) goto out;
-    if (pc.tty && !a.quiet && sum.computed > 0) fputc('\n', stderr);
+    if (pc.tty && !a.quiet && sum.computed + sum.curves_computed > 0) fputc('\n', stderr);
     if (s) {
         rc = cli_fail(cmd->name, s);
         goto out;
@@ -270,6 +275,12 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
            "%.1f s wall, %.1f CPU s per point\n", on, sum.computed, sum.share, sum.resumed,
            sum.wall_s, sum.computed ? sum.cpu_s / sum.computed : 0.0);
+    if (tbl_curves(t) > 0) {
+        int cd, cf, cp;
+        tbl_curve_count(t, &cd, &cf, &cp);
+        printf("normal grid: %d curves, %d done, %d failed, %d pending; this run computed %d\n",
+               tbl_curves(t), cd, cf, cp, sum.curves_computed);
+    }
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK)
         printf("mu_s surrogate: %d points, leave-one-out error %.2f %% rms, %.2f %% largest, "
@@ -288,7 +299,7 @@ out:
 /* ---- info ------------------------------------------------------------------------- */
 
 typedef struct {
-    int json, points;
+    int json, points, curves;
     double *w;
     int nw;
     double tR, E;
@@ -299,6 +310,8 @@ typedef struct {
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON"},
     {"points", NULL, "print every point's stored values instead, as CSV (one row a point)"},
+    {"curves", NULL, "print the normal grid's values instead, as CSV (one row a delta of a "
+                     "curve)"},
     {NULL, NULL, NULL},
 };
 
@@ -307,6 +320,7 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
     query_args *q = ctx;
     if (!strcmp(key, "json")) return cli_parse_flag(key, value, &q->json);
     if (!strcmp(key, "points")) return cli_parse_flag(key, value, &q->points);
+    if (!strcmp(key, "curves")) return cli_parse_flag(key, value, &q->curves);
     if (!strcmp(key, "delta")) {
         free(q->w);
         q->w = NULL;
@@ -384,6 +398,17 @@ static void info_json(const tbl_table *t, const char *path)
         cj_num(&j, "loo_cover2", fi.loo_cover2);
         cj_num(&j, "noise_scale", fi.noise_scale);
     }
+    int cd, cf, cp;
+    tbl_curve_count(t, &cd, &cf, &cp);
+    cj_obj(&j, "normal_grid");
+    tbl_numerics num;
+    tbl_get_numerics(t, &num);
+    cj_int(&j, "level", num.normal_level);
+    cj_int(&j, "curves", tbl_curves(t));
+    cj_int(&j, "done", cd);
+    cj_int(&j, "failed", cf);
+    cj_int(&j, "pending", cp);
+    cj_end_obj(&j);
     cj_arr(&j, "failed_points");
     for (int i = 0; i < tbl_points(t); i++) {
         const tbl_point *p = tbl_point_get(t, i);
@@ -400,6 +425,43 @@ static void info_json(const tbl_table *t, const char *path)
     cj_end_arr(&j);
     cj_end_obj(&j);
     cj_done(&j);
+}
+
+/* Coordinates of normal curve c. */
+static void curve_coords(const tbl_table *t, int c, double *tR, double *E)
+{
+    const double *ax1, *ax2;
+    int n1 = tbl_normal_axis(t, 1, &ax1);
+    tbl_normal_axis(t, 2, &ax2);
+    *tR = ax1[c % n1];
+    *E = ax2[c / n1];
+}
+
+static void info_normal_text(const tbl_table *t)
+{
+    tbl_numerics n;
+    tbl_get_numerics(t, &n);
+    if (tbl_curves(t) == 0) {
+        printf("  normal grid: none (preload P and A from the 3D points)\n");
+        return;
+    }
+    int nk[3], cd, cf, cp;
+    for (int k = 0; k < 3; k++) nk[k] = tbl_normal_axis(t, k, NULL);
+    tbl_curve_count(t, &cd, &cf, &cp);
+    double cpu = 0;
+    for (int c = 0; c < tbl_curves(t); c++)
+        if (tbl_curve_get(t, c)->state != TBL_PENDING) cpu += tbl_curve_get(t, c)->cpu_s;
+    printf("  normal grid (preload P and A): axisymmetric level %d, %d delta x %d t/R x %d "
+           "Eco/Esu; curves %d, done %d, failed %d, pending %d; %.1f CPU s per curve\n",
+           n.normal_level, nk[0], nk[1], nk[2], tbl_curves(t), cd, cf, cp,
+           cd + cf ? cpu / (cd + cf) : 0.0);
+    for (int c = 0; c < tbl_curves(t); c++) {
+        const tbl_curve *cv = tbl_curve_get(t, c);
+        if (cv->state != TBL_FAILED) continue;
+        double tR, E;
+        curve_coords(t, c, &tR, &E);
+        printf("  FAILED normal curve t/R %g, E-ratio %g: %s\n", tR, E, cv->reason);
+    }
 }
 
 static void info_text(const tbl_table *t, const char *path)
@@ -430,6 +492,7 @@ static void info_text(const tbl_table *t, const char *path)
     printf("  points: %d, done %d, failed %d, pending %d\n", tbl_points(t), nd, nf, np);
     printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point\n", cmd, wall,
            nd + nf ? cpu / (nd + nf) : 0.0);
+    info_normal_text(t);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK)
         printf("  mu_s surrogate (%d points): leave-one-out error %.2f %% rms, %.2f %% largest, "
@@ -474,24 +537,48 @@ static void info_points(const tbl_table *t)
     }
 }
 
+/* --curves: the normal grid's values, CSV. */
+static void info_curves(const tbl_table *t)
+{
+    static const char *const state[] = {"pending", "done", "failed"};
+    const double *w;
+    int nw = tbl_normal_axis(t, 0, &w);
+    printf("curve,delta_over_omega_c,t_over_R,E_ratio,state,P_over_P_c,A_over_A_c\n");
+    for (int c = 0; c < tbl_curves(t); c++) {
+        const tbl_curve *cv = tbl_curve_get(t, c);
+        double tR, E;
+        curve_coords(t, c, &tR, &E);
+        for (int k = 0; k < nw; k++) {
+            double P, A;
+            tbl_curve_values(t, c, k, &P, &A);
+            printf("%d,%.10g,%.10g,%.10g,%s", c, w[k], tR, E,
+                   cv->state >= 0 && cv->state <= 2 ? state[cv->state] : "?");
+            if (cv->state == TBL_DONE) printf(",%.10g,%.10g\n", P, A);
+            else printf(",,\n");
+        }
+    }
+}
+
 static int table_info(const cli_cmd *cmd, int argc, char **argv)
 {
     const char *path = NULL;
     cli_peel_positional(&argc, &argv, &path);
     query_args q = {0};
     int done;
-    int rc = cli_parse(cmd->name, "FILE [--json | --points]\n\nSummarise a table: "
+    int rc = cli_parse(cmd->name, "FILE [--json | --points | --curves]\n\nSummarise a table: "
                        "family, grid, coverage, failed points, build time, fit errors;\n"
-                       "or list its points' stored values (--points).",
+                       "or list its points' stored values (--points) or its normal grid's "
+                       "(--curves).",
                        argc, argv, info_opts, NULL, query_set, &q, &done);
     tbl_table *t = NULL;
-    if (!rc && !done && q.json && q.points) {
-        fprintf(stderr, "stiction %s: --json conflicts with --points: --points prints CSV\n",
-                cmd->name);
+    if (!rc && !done && q.json + q.points + q.curves > 1) {
+        fprintf(stderr, "stiction %s: %s conflicts with %s: --points and --curves print CSV\n",
+                cmd->name, q.json ? "--json" : "--points", q.curves ? "--curves" : "--points");
         rc = CLI_EXIT_USAGE;
     }
     if (!rc && !done && !(rc = open_table(cmd->name, path, &t))) {
         if (q.points) info_points(t);
+        else if (q.curves) info_curves(t);
         else if (q.json) info_json(t, path);
         else info_text(t, path);
     }
@@ -602,6 +689,7 @@ static int table_query(const cli_cmd *cmd, int argc, char **argv)
             cj_num(&j, "mu_s_err", v[i].mu_s_err);
             cj_num(&j, "Q_max_over_P_c", v[i].Q_max_Pc);
             cj_num(&j, "Q_max_over_P_c_err", v[i].Q_max_Pc_err);
+            cj_str(&j, "P_A_from", v[i].from_normal ? "normal grid" : "3D points");
             cj_bool(&j, "in_range", v[i].flags == 0);
             cj_str(&j, "flags", flags_text(v[i].flags, fl, sizeof fl));
             cj_end_obj(&j);
