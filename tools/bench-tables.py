@@ -4,6 +4,8 @@
 1. Per bundled table (data/tables/*.h5): points done, the build's wall time,
    CPU seconds per point (mean, range, by t/R), Newton iterations and
    factorizations per point, read from the points' own records.
+   The normal grid of each table (axisymmetric load curves for the preload's
+   P and A): curves and CPU seconds per curve, from the curves' records.
 2. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
    one table point at the thesis family's settings run by `stiction asperity
    --shear` with the normal step and the shear ramp timed apart (the normal
@@ -49,6 +51,17 @@ def table_costs(cli, path):
                  statistics.mean(int(r["factorizations"]) for r in sel)))
 
 
+def curve_costs(cli, path):
+    info = json.loads(run([cli, "table", "info", path, "--json"]))
+    g = info.get("normal_grid", {})
+    if not g.get("curves"):
+        print("  normal grid: none (preload from the 3D points)")
+        return
+    out = run([cli, "table", "info", path])
+    line = [l.strip() for l in out.splitlines() if l.strip().startswith("normal grid")]
+    print("  " + (line[0] if line else "normal grid: %d curves" % g["curves"]))
+
+
 def normal_share(cli):
     print("\nnormal step versus shear ramp of one point (thesis family, t/R 0.025, "
           "Eco/Esu 2, stick, one placement, one thread):")
@@ -68,7 +81,12 @@ def main():
     tables = sys.argv[2:] or sorted(glob.glob("data/tables/*.h5"))
     for t in tables:
         table_costs(cli, t)
+        curve_costs(cli, t)
     normal_share(cli)
+    print("  solver reuse kept: none. A shared normal loading run per column could save at "
+          "most the share above, and only on one mesh fit for every contact of the column "
+          "(a 3D mesh level costs 5-10x the one below, docs/design.md 2.6); the preload's P "
+          "and A come from the normal grid instead, at the CPU s per curve listed per table.")
 
 
 if __name__ == "__main__":

@@ -130,7 +130,7 @@ typedef struct tbl_curve {
  * [n_w], written; NaN when not done).  Never fails for a curve that does not
  * converge: out->state is TBL_FAILED with the reason; STC_EINVAL for bad
  * arguments only. */
-stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, double E_ratio,
+STC_API stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, double E_ratio,
                              const double *w, int n_w, double *P_Pc, double *A_Ac,
                              tbl_curve *out);
 
@@ -163,19 +163,19 @@ STC_API void tbl_count(const tbl_table *t, int *done, int *failed, int *pending)
  * ln: 4 per factor 2 along δ and t/R, 2 along Eco/Esu.  Curve c is at (t/R,
  * Eco/Esu) = (axis 1 [c % n_tR], axis 2 [c / n_tR]).  tbl_curves is 0 for a
  * table without one. */
-int tbl_curves(const tbl_table *t);
-int tbl_normal_axis(const tbl_table *t, int axis, const double **values);
-const tbl_curve *tbl_curve_get(const tbl_table *t, int c); /* borrowed; NULL if out of range */
+STC_API int tbl_curves(const tbl_table *t);
+STC_API int tbl_normal_axis(const tbl_table *t, int axis, const double **values);
+STC_API const tbl_curve *tbl_curve_get(const tbl_table *t, int c); /* borrowed; NULL if out of range */
 /* The curve's values at δ node k of the normal grid; NaN when not done. */
-void tbl_curve_values(const tbl_table *t, int c, int k, double *P_Pc, double *A_Ac);
+STC_API void tbl_curve_values(const tbl_table *t, int c, int k, double *P_Pc, double *A_Ac);
 /* Store a computed curve (copied; P_Pc, A_Ac: [n_w] of the normal grid). */
-stc_status tbl_curve_set(tbl_table *t, int c, const tbl_curve *cv, const double *P_Pc,
+STC_API stc_status tbl_curve_set(tbl_table *t, int c, const tbl_curve *cv, const double *P_Pc,
                          const double *A_Ac);
-void tbl_curve_count(const tbl_table *t, int *done, int *failed, int *pending);
+STC_API void tbl_curve_count(const tbl_table *t, int *done, int *failed, int *pending);
 /* Pending curves a build restricted to the points only[] (NULL: all) would
  * compute: those at the t/R and Eco/Esu the chosen points span; -1 when out
  * of memory. */
-int tbl_curves_pending(const tbl_table *t, const unsigned char *only);
+STC_API int tbl_curves_pending(const tbl_table *t, const unsigned char *only);
 
 /* Same family, numerics and axes (bitwise on the numbers): a journal or a
  * shard belongs to the build. */
