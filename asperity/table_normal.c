@@ -233,47 +233,46 @@ static double wall_now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* The solver run of one curve: out->state set, values written when done. */
+/* The solver run of one curve (as `stiction asperity` runs a load curve):
+ * out->state set, values written when done. */
 static void run_curve(const stc_params *p, const asp_options *o, const stc_critical *c,
                       const double *w, int n_w, double *P_Pc, double *A_Ac, tbl_curve *out)
 {
-    asp_solver *s = NULL;
-    asp_point pt = {0};
-    if (asp_solver_create(p, o, w[n_w - 1] * c->omega_c, &s) != STC_OK) {
+    double *d = malloc((size_t)n_w * sizeof *d);
+    asp_curve_point *pts = malloc((size_t)n_w * sizeof *pts);
+    asp_curve_result res;
+    if (!d || !pts) {
         out->state = TBL_FAILED;
-        snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, stc_errmsg());
+        snprintf(out->reason, sizeof out->reason, "out of memory");
+        free(d), free(pts);
         return;
     }
-    for (int k = 0; k < n_w; k++) {
-        if (asp_solver_load(s, w[k] * c->omega_c, &pt) != STC_OK) {
-            out->state = TBL_FAILED;
-            snprintf(out->reason, sizeof out->reason, "at delta/omega_c = %g: %.*s", w[k],
-                     TBL_REASON_MAX - 40, stc_errmsg());
-            asp_solver_destroy(&s);
-            return;
+    for (int k = 0; k < n_w; k++) d[k] = w[k] * c->omega_c;
+    if (asp_curve_run(p, o, d, n_w, NULL, NULL, pts, &res) != STC_OK) {
+        out->state = TBL_FAILED;
+        if (res.n > 0)
+            snprintf(out->reason, sizeof out->reason, "at delta/omega_c = %g: %.*s",
+                     w[res.n - 1], TBL_REASON_MAX - 40, stc_errmsg());
+        else snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, stc_errmsg());
+    } else {
+        /* a tail that stopped early (res.tail) leaves the last nodes' smoothed
+         * load one-sided, not wrong */
+        out->state = TBL_DONE;
+        out->increments = pts[n_w - 1].pt.increments;
+        out->newton_iterations = pts[n_w - 1].pt.newton_iterations;
+        for (int k = 0; k < n_w; k++) {
+            P_Pc[k] = pts[k].P_smooth / c->P_c;
+            A_Ac[k] = pts[k].pt.A / c->A_c;
+            if (!(isfinite(P_Pc[k]) && P_Pc[k] > 0 && isfinite(A_Ac[k]) && A_Ac[k] > 0)) {
+                out->state = TBL_FAILED;
+                snprintf(out->reason, sizeof out->reason, "at delta/omega_c = %g: no smoothed "
+                         "load or contact area (P/Pc %g, A/Ac %g)", w[k], P_Pc[k], A_Ac[k]);
+                break;
+            }
         }
-        A_Ac[k] = pt.A / c->A_c;
     }
-    /* loaded on past the last node, so that the smoothed load there averages
-     * increments on both sides (asp_solver_load_tail); a tail that stops
-     * early leaves the last nodes' estimate one-sided, not wrong */
-    if (asp_solver_load_tail(s, NULL) != STC_OK) stc_error_clear();
-    for (int k = 0; k < n_w; k++) {
-        double Ps = NAN;
-        asp_solver_P_smooth(s, w[k] * c->omega_c, &Ps);
-        P_Pc[k] = Ps / c->P_c;
-    }
-    out->increments = pt.increments;
-    out->newton_iterations = pt.newton_iterations;
-    out->state = TBL_DONE;
-    for (int k = 0; k < n_w; k++)
-        if (!(isfinite(P_Pc[k]) && P_Pc[k] > 0 && isfinite(A_Ac[k]) && A_Ac[k] > 0)) {
-            out->state = TBL_FAILED;
-            snprintf(out->reason, sizeof out->reason, "at delta/omega_c = %g: no smoothed "
-                     "load or contact area (P/Pc %g, A/Ac %g)", w[k], P_Pc[k], A_Ac[k]);
-            break;
-        }
-    asp_solver_destroy(&s);
+    free(d);
+    free(pts);
 }
 
 stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, double E_ratio,
@@ -305,7 +304,7 @@ stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, do
     o.contact = f->contact;
     o.mesh_level = level;
     o.threads = 1;
-    o.sample_elastic = 1; /* as a load curve of `stiction asperity` */
+    asp_options_for_curve(&o, n_w);
 
     memset(out, 0, sizeof *out);
     for (int k = 0; k < n_w; k++) P_Pc[k] = A_Ac[k] = NAN;
