@@ -32,6 +32,11 @@ def gnuplot(png, width, height, script):
     os.replace(png + ".tmp", png)
 
 
+def number(fig):
+    """The thesis's figure number of a figure name: 'fig4_19' -> '4.19'."""
+    return fig[3:].replace("_", ".")
+
+
 def pct(x):
     """A relative deviation as a signed percentage, e.g. -0.0912 -> '−9.1 %'."""
     return ("%+.1f %%" % (100.0 * x)).replace("-", "−")

@@ -183,7 +183,7 @@ def fig44(cli, out, which):
          "set xlabel 'δ/δ_{c2}  (interference, normalised by the second critical interference"
          " δ_{c2} of the Ronen et al. 2017 fit)'\n"
          "set ylabel '%s'\nset xrange [0:1]\nset yrange [0:1.05]\nset bmargin at screen %g\n"
-         % (name[3:].replace("_", "."), what, ylab, bottom) + note
+         % (figure.number(name), what, ylab, bottom) + note
          + "plot %s, %s w l lw 3 lc rgb 'black' t 'Ronen et al. (2017): %s'\n"
          % (", ".join(curves), ronen,
             "L/L_{c2} = (δ/δ_{c2})^{1.25}" if name == "fig4_4" else "A/A_{c2} = δ/δ_{c2}"))
