@@ -802,6 +802,11 @@ static void test_roundtrip_predict(void **state)
     fclose(f);
     assert_non_null(strstr(det, ",,"));
     assert_null(strstr(det, "nan"));
+    /* its PNG too: A/An alone (gnuplot refuses a plot whose mu_s column is all empty) */
+    assert_int_equal(run("surface predict " ST "--pressures 1,10 --model hertz --png out.png", 1,
+                         buf, sizeof buf), 0);
+    assert_int_equal(stat(P("out.png"), &st), 0);
+    assert_true(st.st_size > 1000);
     assert_int_equal(run("surface predict " ST "--separations 7000", 1, buf, sizeof buf), 0);
     assert_non_null(strstr(buf, "n/a"));
     assert_null(strstr(buf, "nan"));

@@ -569,7 +569,52 @@ static void csv_writer(FILE *f, const context *c, const srf_gw_point *pts, int n
     csv_points(f, c, pts, n);
 }
 
-/* gnuplot: μs (left axis) and A/An (right axis, log) versus P/An (log). */
+/* The PNG's title, one clause a line: the summits summed, the asperity
+ * response and whether the coating enters it, the population's statistics.
+ * A closed-form model takes one layer's properties, so it says that the
+ * coating has no effect instead of showing t as if it mattered. */
+static void png_title(char *buf, size_t n, const context *c)
+{
+    const predict_opts *o = c->o;
+    const srf_gw_info *i = &c->info;
+    stc_material su, co;
+    stc_params_materials(c->p, &su, &co);
+    const char *name = o->surface ? strrchr(o->surface, '/') : NULL;
+    name = name ? name + 1 : o->surface;
+    int k = o->surface ? snprintf(buf, n, "Greenwood-Williamson sum over the %d summits of %s "
+                                          "(%s heights)", i->n_summits, name,
+                                  srf_gw_mode_name(i->mode))
+                       : snprintf(buf, n, "Greenwood-Williamson sum over a Gaussian summit "
+                                          "population");
+    size_t m = k > 0 && (size_t)k < n ? (size_t)k : n - 1;
+    const char *tname = o->table ? strrchr(o->table, '/') : NULL;
+    tname = tname ? tname + 1 : o->table;
+    const stc_material *lay = o->layer == ASP_LAYER_COATING ? &co : &su;
+    if (!o->table)
+        k = snprintf(buf + m, n - m, "\\nasperity: closed-form %s model with the %s's E = %g GPa, "
+                     "Y = %g MPa, ν = %g: the coating is not modelled (t = %g μm has no effect)",
+                     asp_model_name(c->m), asp_model_layer_name(c->m), lay->E / 1000, lay->Y,
+                     lay->nu, 1000 * asp_model_t(c->m));
+    else if (co.E == su.E && co.Y == su.Y && co.nu == su.nu)
+        k = snprintf(buf + m, n - m, "\\nasperity: FE friction table %s, uncoated (the coating "
+                     "layer is the substrate material: E = %g GPa, Y = %g MPa, ν = %g)", tname,
+                     su.E / 1000, su.Y, su.nu);
+    else
+        k = snprintf(buf + m, n - m, "\\nasperity: FE friction table %s; coating t = %g μm on "
+                     "every summit (%s):\\nEco/Esu = %g, Yco = %g MPa on a substrate of "
+                     "E = %g GPa, Y = %g MPa, ν = %g", tname, 1000 * asp_model_t(c->m),
+                     c->range.coating_aware ? "its own t/R" : "at the table's one t/R",
+                     co.E / su.E, co.Y, su.E / 1000, su.Y, su.nu);
+    m += k > 0 && (size_t)k < n - m ? (size_t)k : n - m - 1;
+    snprintf(buf + m, n - m, "\\nsummits: η = %.4g /mm², σ_s = %.3g μm, mean radius R = %.3g μm; "
+             "plasticity index ψ = %.3g", i->eta_per_mm2, 1000 * i->sigma_s_mm,
+             1000 * i->R_mm, i->plasticity_index);
+    for (char *q = buf; *q; q++) /* a file name's quote or backslash would end the string */
+        if (*q == '"' || (*q == '\\' && q[1] != 'n')) *q = '\'';
+}
+
+/* gnuplot: μs (left axis, with the table's error band) and A/An (right
+ * axis, log) versus P/An (log); A/An alone for a model without friction. */
 static int write_png(out_file *f, const char *csv, const context *c)
 {
     if (tmp_name(f, ".png") != CLI_EXIT_OK) return CLI_EXIT_FAIL;
@@ -591,16 +636,29 @@ static int write_png(out_file *f, const char *csv, const context *c)
         signal(SIGPIPE, old);
         return out_error(f, "cannot run gnuplot");
     }
-    fprintf(g, "set terminal png size 900,600\nset output '%s'\nset datafile separator ','\n"
-               "set key top center\nset logscale x\nset logscale y2\nset ytics nomirror\n"
-               "set y2tics\nset format y2 '%%g'\nset grid\nset xlabel 'nominal pressure P/A_n [MPa]'\n"
-               "set ylabel 'static friction coefficient mu_s = sum Q_{max} / sum P'\n"
-               "set y2label 'real contact area fraction A/A_n'\n"
-               "set title 'GW summation: %s model (%s layer), %s, t = %g mm'\n"
-               "plot '%s' every ::1 using 2:7 with linespoints lw 2 title 'mu_s', "
-               "'' every ::1 using 2:4 axes x1y2 with linespoints lw 2 title 'A/A_n'\n",
-            f->tmp, asp_model_name(c->m), asp_model_layer_name(c->m),
-            srf_gw_mode_name(c->info.mode), asp_model_t(c->m), csv);
+    char title[2048];
+    png_title(title, sizeof title, c);
+    int mu = c->range.has_friction;
+    fprintf(g, "set terminal pngcairo enhanced size 1000,650 font ',10'\nset encoding utf8\n"
+               "set output '%s'\nset datafile separator ','\nset key top center\n"
+               "set logscale x\nset grid\nset xlabel 'nominal pressure P/A_n [MPa]'\n"
+               "set title \"%s\" noenhanced\n", f->tmp, title);
+    if (mu)
+        fprintf(g, "set logscale y2\nset ytics nomirror\nset y2tics\nset format y2 '%%g'\n"
+                   "set ylabel 'static friction coefficient μ_s = ΣQ_{max} / ΣP'\n"
+                   "set y2label 'real contact area fraction A/A_n'\nplot ");
+    else /* hertz: Qmax and μs are not defined */
+        fprintf(g, "set logscale y\nset ylabel 'real contact area fraction A/A_n'\n"
+                   "set label 'μ_s: not defined (the %s model has no friction law)' at graph "
+                   "0.02, graph 0.95\nplot ", asp_model_name(c->m));
+    if (c->ex) /* column 13: mu_s_err, the table's one-standard-error band */
+        fprintf(g, "'%s' every ::1 using 2:($7-$13):($7+$13) with filledcurves fs transparent "
+                   "solid 0.25 lc rgb '#c04000' title 'μ_s ± 1 standard error (table)', ", csv);
+    if (mu)
+        fprintf(g, "'%s' every ::1 using 2:7 with linespoints lw 2 pt 7 lc rgb '#c04000' "
+                   "title 'μ_s', ", csv);
+    fprintf(g, "'%s' every ::1 using 2:4 %s with linespoints lw 2 pt 5 lc rgb '#0050a0' "
+               "title 'A/A_n%s'\n", csv, mu ? "axes x1y2" : "", mu ? " (right axis)" : "");
     int rc = pclose(g);
     signal(SIGPIPE, old);
     struct stat sb;
