@@ -1,4 +1,10 @@
-/* Grey-scale PNG of a height map (libpng), written to a temp file and renamed. */
+/* PNG of a height map (libpng), written to a temp file and renamed.  The map
+ * itself, one grey pixel a grid point (black = lowest, white = highest, y up),
+ * stands above a caption that makes the picture readable on its own: what
+ * the map is (synthesized with which spectrum and seed, or imported from
+ * which file), its size and orientation, the heights the grey scale spans
+ * (with a ramp) and a length scale bar.  The caption is drawn with a built-in
+ * 5 x 9 bitmap font, so nothing beyond libpng is needed. */
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
@@ -14,20 +20,251 @@
 /* zlib level 1..9: 3 keeps a 4096² map under a second with near-best size */
 #define SRF_PNG_COMPRESSION 3
 
-/* Rows top to bottom = y from high to low, so the picture has y up. */
-static int write_rows(png_structp png, const srf_map *m, unsigned char *row, double lo, double hi)
+#define CELL_W 6     /* glyph 5 wide + 1 space, at scale 1 */
+#define LINE_H 11    /* glyph 9 high (rows 7-8: descenders) + 2 */
+#define MIN_COLS 64  /* the caption is at least this many characters wide */
+#define MAX_LINES 10 /* caption lines after wrapping */
+#define LINE_LEN 512
+
+/* Printable ASCII 32..126, one byte a row (bit 4 = leftmost column). */
+static const unsigned char GLYPHS[95][9] = {
+    {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, /* space */
+    {0x04, 0x04, 0x04, 0x04, 0x04, 0x00, 0x04, 0x00, 0x00}, /* ! */
+    {0x0a, 0x0a, 0x0a, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, /* " */
+    {0x0a, 0x0a, 0x1f, 0x0a, 0x1f, 0x0a, 0x0a, 0x00, 0x00}, /* # */
+    {0x04, 0x0f, 0x14, 0x0e, 0x05, 0x1e, 0x04, 0x00, 0x00}, /* $ */
+    {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03, 0x00, 0x00}, /* % */
+    {0x0c, 0x12, 0x14, 0x08, 0x15, 0x12, 0x0d, 0x00, 0x00}, /* & */
+    {0x04, 0x04, 0x08, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, /* quote */
+    {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02, 0x00, 0x00}, /* ( */
+    {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08, 0x00, 0x00}, /* ) */
+    {0x00, 0x04, 0x15, 0x0e, 0x15, 0x04, 0x00, 0x00, 0x00}, /* star */
+    {0x00, 0x04, 0x04, 0x1f, 0x04, 0x04, 0x00, 0x00, 0x00}, /* + */
+    {0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x0c, 0x04, 0x08}, /* , */
+    {0x00, 0x00, 0x00, 0x1f, 0x00, 0x00, 0x00, 0x00, 0x00}, /* - */
+    {0x00, 0x00, 0x00, 0x00, 0x00, 0x0c, 0x0c, 0x00, 0x00}, /* . */
+    {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00, 0x00, 0x00}, /* slash */
+    {0x0e, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0e, 0x00, 0x00}, /* 0 */
+    {0x04, 0x0c, 0x04, 0x04, 0x04, 0x04, 0x0e, 0x00, 0x00}, /* 1 */
+    {0x0e, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1f, 0x00, 0x00}, /* 2 */
+    {0x1f, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0e, 0x00, 0x00}, /* 3 */
+    {0x02, 0x06, 0x0a, 0x12, 0x1f, 0x02, 0x02, 0x00, 0x00}, /* 4 */
+    {0x1f, 0x10, 0x1e, 0x01, 0x01, 0x11, 0x0e, 0x00, 0x00}, /* 5 */
+    {0x06, 0x08, 0x10, 0x1e, 0x11, 0x11, 0x0e, 0x00, 0x00}, /* 6 */
+    {0x1f, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08, 0x00, 0x00}, /* 7 */
+    {0x0e, 0x11, 0x11, 0x0e, 0x11, 0x11, 0x0e, 0x00, 0x00}, /* 8 */
+    {0x0e, 0x11, 0x11, 0x0f, 0x01, 0x02, 0x0c, 0x00, 0x00}, /* 9 */
+    {0x00, 0x0c, 0x0c, 0x00, 0x0c, 0x0c, 0x00, 0x00, 0x00}, /* : */
+    {0x00, 0x0c, 0x0c, 0x00, 0x00, 0x0c, 0x0c, 0x04, 0x08}, /* ; */
+    {0x02, 0x04, 0x08, 0x10, 0x08, 0x04, 0x02, 0x00, 0x00}, /* < */
+    {0x00, 0x00, 0x1f, 0x00, 0x1f, 0x00, 0x00, 0x00, 0x00}, /* = */
+    {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08, 0x00, 0x00}, /* > */
+    {0x0e, 0x11, 0x01, 0x02, 0x04, 0x00, 0x04, 0x00, 0x00}, /* ? */
+    {0x0e, 0x11, 0x01, 0x0d, 0x15, 0x15, 0x0e, 0x00, 0x00}, /* @ */
+    {0x0e, 0x11, 0x11, 0x1f, 0x11, 0x11, 0x11, 0x00, 0x00}, /* A */
+    {0x1e, 0x11, 0x11, 0x1e, 0x11, 0x11, 0x1e, 0x00, 0x00}, /* B */
+    {0x0e, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0e, 0x00, 0x00}, /* C */
+    {0x1c, 0x12, 0x11, 0x11, 0x11, 0x12, 0x1c, 0x00, 0x00}, /* D */
+    {0x1f, 0x10, 0x10, 0x1e, 0x10, 0x10, 0x1f, 0x00, 0x00}, /* E */
+    {0x1f, 0x10, 0x10, 0x1e, 0x10, 0x10, 0x10, 0x00, 0x00}, /* F */
+    {0x0e, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0f, 0x00, 0x00}, /* G */
+    {0x11, 0x11, 0x11, 0x1f, 0x11, 0x11, 0x11, 0x00, 0x00}, /* H */
+    {0x0e, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0e, 0x00, 0x00}, /* I */
+    {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0c, 0x00, 0x00}, /* J */
+    {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11, 0x00, 0x00}, /* K */
+    {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1f, 0x00, 0x00}, /* L */
+    {0x11, 0x1b, 0x15, 0x15, 0x11, 0x11, 0x11, 0x00, 0x00}, /* M */
+    {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11, 0x00, 0x00}, /* N */
+    {0x0e, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0e, 0x00, 0x00}, /* O */
+    {0x1e, 0x11, 0x11, 0x1e, 0x10, 0x10, 0x10, 0x00, 0x00}, /* P */
+    {0x0e, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0d, 0x00, 0x00}, /* Q */
+    {0x1e, 0x11, 0x11, 0x1e, 0x14, 0x12, 0x11, 0x00, 0x00}, /* R */
+    {0x0f, 0x10, 0x10, 0x0e, 0x01, 0x01, 0x1e, 0x00, 0x00}, /* S */
+    {0x1f, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x00, 0x00}, /* T */
+    {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0e, 0x00, 0x00}, /* U */
+    {0x11, 0x11, 0x11, 0x11, 0x11, 0x0a, 0x04, 0x00, 0x00}, /* V */
+    {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0a, 0x00, 0x00}, /* W */
+    {0x11, 0x11, 0x0a, 0x04, 0x0a, 0x11, 0x11, 0x00, 0x00}, /* X */
+    {0x11, 0x11, 0x0a, 0x04, 0x04, 0x04, 0x04, 0x00, 0x00}, /* Y */
+    {0x1f, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1f, 0x00, 0x00}, /* Z */
+    {0x0e, 0x08, 0x08, 0x08, 0x08, 0x08, 0x0e, 0x00, 0x00}, /* [ */
+    {0x00, 0x10, 0x08, 0x04, 0x02, 0x01, 0x00, 0x00, 0x00}, /* backslash */
+    {0x0e, 0x02, 0x02, 0x02, 0x02, 0x02, 0x0e, 0x00, 0x00}, /* ] */
+    {0x04, 0x0a, 0x11, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, /* ^ */
+    {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1f, 0x00, 0x00}, /* _ */
+    {0x08, 0x04, 0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, /* ` */
+    {0x00, 0x00, 0x0e, 0x01, 0x0f, 0x11, 0x0f, 0x00, 0x00}, /* a */
+    {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x1e, 0x00, 0x00}, /* b */
+    {0x00, 0x00, 0x0e, 0x10, 0x10, 0x11, 0x0e, 0x00, 0x00}, /* c */
+    {0x01, 0x01, 0x0d, 0x13, 0x11, 0x11, 0x0f, 0x00, 0x00}, /* d */
+    {0x00, 0x00, 0x0e, 0x11, 0x1f, 0x10, 0x0e, 0x00, 0x00}, /* e */
+    {0x06, 0x09, 0x08, 0x1c, 0x08, 0x08, 0x08, 0x00, 0x00}, /* f */
+    {0x00, 0x00, 0x0f, 0x11, 0x11, 0x11, 0x0f, 0x01, 0x0e}, /* g */
+    {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x11, 0x00, 0x00}, /* h */
+    {0x04, 0x00, 0x0c, 0x04, 0x04, 0x04, 0x0e, 0x00, 0x00}, /* i */
+    {0x02, 0x00, 0x06, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0c}, /* j */
+    {0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12, 0x00, 0x00}, /* k */
+    {0x0c, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0e, 0x00, 0x00}, /* l */
+    {0x00, 0x00, 0x1a, 0x15, 0x15, 0x11, 0x11, 0x00, 0x00}, /* m */
+    {0x00, 0x00, 0x16, 0x19, 0x11, 0x11, 0x11, 0x00, 0x00}, /* n */
+    {0x00, 0x00, 0x0e, 0x11, 0x11, 0x11, 0x0e, 0x00, 0x00}, /* o */
+    {0x00, 0x00, 0x1e, 0x11, 0x11, 0x11, 0x1e, 0x10, 0x10}, /* p */
+    {0x00, 0x00, 0x0f, 0x11, 0x11, 0x11, 0x0f, 0x01, 0x01}, /* q */
+    {0x00, 0x00, 0x16, 0x19, 0x10, 0x10, 0x10, 0x00, 0x00}, /* r */
+    {0x00, 0x00, 0x0e, 0x10, 0x0e, 0x01, 0x1e, 0x00, 0x00}, /* s */
+    {0x08, 0x08, 0x1c, 0x08, 0x08, 0x09, 0x06, 0x00, 0x00}, /* t */
+    {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0d, 0x00, 0x00}, /* u */
+    {0x00, 0x00, 0x11, 0x11, 0x11, 0x0a, 0x04, 0x00, 0x00}, /* v */
+    {0x00, 0x00, 0x11, 0x11, 0x15, 0x15, 0x0a, 0x00, 0x00}, /* w */
+    {0x00, 0x00, 0x11, 0x0a, 0x04, 0x0a, 0x11, 0x00, 0x00}, /* x */
+    {0x00, 0x00, 0x11, 0x11, 0x11, 0x11, 0x0f, 0x01, 0x0e}, /* y */
+    {0x00, 0x00, 0x1f, 0x02, 0x04, 0x08, 0x1f, 0x00, 0x00}, /* z */
+    {0x02, 0x04, 0x04, 0x08, 0x04, 0x04, 0x02, 0x00, 0x00}, /* { */
+    {0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x00, 0x00}, /* | */
+    {0x08, 0x04, 0x04, 0x02, 0x04, 0x04, 0x08, 0x00, 0x00}, /* } */
+    {0x00, 0x00, 0x08, 0x15, 0x02, 0x00, 0x00, 0x00, 0x00}, /* ~ */
+};
+
+typedef struct {
+    unsigned char *px; /* [h][w] grey, owned */
+    int w, h;
+} canvas;
+
+static void fill(canvas *c, int x0, int y0, int w, int h, unsigned char v)
 {
+    for (int y = y0 < 0 ? 0 : y0; y < y0 + h && y < c->h; y++)
+        for (int x = x0 < 0 ? 0 : x0; x < x0 + w && x < c->w; x++) c->px[(size_t)y * c->w + x] = v;
+}
+
+/* Text at (x, y), the top left of its first cell, s pixels a font pixel;
+ * a byte outside printable ASCII is drawn as '?'. */
+static void draw_text(canvas *c, int x, int y, int s, const char *t)
+{
+    for (; *t; t++, x += CELL_W * s) {
+        unsigned char ch = (unsigned char)*t;
+        const unsigned char *g = GLYPHS[(ch >= 32 && ch < 127 ? ch : '?') - 32];
+        for (int r = 0; r < 9; r++)
+            for (int k = 0; k < 5; k++)
+                if (g[r] & (0x10 >> k)) fill(c, x + k * s, y + r * s, s, s, 0);
+    }
+}
+
+/* Split text into lines of at most cols characters at spaces ('\n' forces
+ * a break; a word longer than a line is cut).  Returns the line count. */
+static int wrap(const char *text, int cols, char out[][LINE_LEN], int max)
+{
+    int n = 0;
+    if (cols >= LINE_LEN) cols = LINE_LEN - 1;
+    while (*text && n < max) {
+        int len = 0, cut = -1;
+        while (text[len] && text[len] != '\n' && len < cols) {
+            if (text[len] == ' ') cut = len;
+            len++;
+        }
+        if (text[len] && text[len] != '\n' && text[len] != ' ' && cut > 0) len = cut;
+        memcpy(out[n], text, (size_t)len);
+        out[n++][len] = '\0';
+        text += len;
+        while (*text == ' ' || *text == '\n') text++;
+    }
+    return n;
+}
+
+/* What the map is, for the caption: origin, spectrum and seed (synthesized)
+ * or the file (imported), size and orientation, the grey scale's heights. */
+static void describe(const srf_map *m, double lo, double hi, double mean, double rms,
+                     double zf, const char *zu, char *buf, size_t n)
+{
+    const srf_synth_params *p = &m->synth;
+    char spec[256] = "", shape[128] = "Gaussian heights";
+    if (p->spectrum == SRF_SPECTRUM_SELF_AFFINE)
+        snprintf(spec, sizeof spec, "self-affine spectrum (Hurst %g, roll-off %g mm, cut-off %g mm)",
+                 p->hurst, p->lambda_rolloff, p->lambda_cutoff);
+    else if (p->spectrum == SRF_SPECTRUM_EXPONENTIAL)
+        snprintf(spec, sizeof spec, "exponential autocorrelation (beta* %g x %g mm)", p->beta_x,
+                 p->beta_y);
+    else snprintf(spec, sizeof spec, "%s spectrum", srf_spectrum_name(p->spectrum));
+    if (m->johnson[0])
+        snprintf(shape, sizeof shape, "heights Johnson %s-translated to skewness %.3g, kurtosis "
+                 "%.3g", m->johnson, m->skewness_reached, m->kurtosis_reached);
+    size_t k = 0;
+    if (m->origin == SRF_ORIGIN_SYNTH)
+        k = (size_t)snprintf(buf, n, "Rough surface height map, synthesized: %s, %s, seed %lu.",
+                             spec, shape, m->seed);
+    else if (m->origin == SRF_ORIGIN_IMPORT)
+        k = (size_t)snprintf(buf, n, "Rough surface height map, imported from %s (heights x %g "
+                             "to mm, best-fit plane removed).", m->source, m->zscale);
+    else k = (size_t)snprintf(buf, n, "Rough surface height map.");
+    if (k >= n) return;
+    snprintf(buf + k, n - k, "\n%g x %g mm, %d x %d points (one pixel each), x to the right, "
+             "y up%s.\nGrey: black = %+.3g %s (lowest) ... white = %+.3g %s (highest); rms %.3g %s "
+             "about the mean %+.3g %s.", m->lx, m->ly, m->nx, m->ny,
+             m->periodic ? ", periodic" : "", zf * lo, zu, zf * hi, zu, zf * rms, zu, zf * mean,
+             zu);
+}
+
+/* A round length (1, 2 or 5 times a power of ten) near a fifth of lx. */
+static double scale_length(double lx)
+{
+    double d = pow(10.0, floor(log10(lx / 5))), f = lx / 5 / d;
+    return (f >= 5 ? 5 : f >= 2 ? 2 : 1) * d;
+}
+
+/* The key row at y: the grey ramp between the lowest and highest heights,
+ * then a scale bar of a round length at the map's pixel size. */
+static void draw_key(canvas *c, const srf_map *m, int y, int s, double lo, double hi, double zf,
+                     const char *zu)
+{
+    char t[64];
+    int x = 4 * s, rw = 128 * s;
+    snprintf(t, sizeof t, "%+.3g %s", zf * lo, zu);
+    draw_text(c, x, y, s, t);
+    x += ((int)strlen(t) + 1) * CELL_W * s;
+    for (int i = 0; i < rw; i++) fill(c, x + i, y, 1, 9 * s, (unsigned char)(255 * i / (rw - 1)));
+    fill(c, x - 1, y - 1, rw + 2, 1, 0), fill(c, x - 1, y + 9 * s, rw + 2, 1, 0);
+    fill(c, x - 1, y - 1, 1, 9 * s + 2, 0), fill(c, x + rw, y - 1, 1, 9 * s + 2, 0);
+    x += rw + CELL_W * s;
+    snprintf(t, sizeof t, "%+.3g %s", zf * hi, zu);
+    draw_text(c, x, y, s, t);
+    x += ((int)strlen(t) + 4) * CELL_W * s;
+    double L = scale_length(m->lx);
+    int bw = (int)lrint(L / (m->lx / m->nx));
+    fill(c, x, y + 3 * s, bw, 3 * s, 0);
+    fill(c, x, y, s, 9 * s, 0), fill(c, x + bw - s, y, s, 9 * s, 0);
+    snprintf(t, sizeof t, "%g mm", L);
+    draw_text(c, x + bw + CELL_W * s, y, s, t);
+}
+
+/* The canvas: the map on top (rows top to bottom = y from high to low), the
+ * caption below. */
+static stc_status render(const srf_map *m, double lo, double hi, double mean, double rms,
+                         canvas *c)
+{
+    int s = m->nx >= 768 ? 2 : 1; /* font scale */
+    double zf = fmax(fabs(lo), fabs(hi)) < 0.1 ? 1000.0 : 1.0;
+    const char *zu = zf > 1 ? "um" : "mm";
+    char text[2048], lines[MAX_LINES][LINE_LEN];
+    describe(m, lo, hi, mean, rms, zf, zu, text, sizeof text);
+    int w = m->nx > MIN_COLS * CELL_W * s + 8 * s ? m->nx : MIN_COLS * CELL_W * s + 8 * s;
+    int nl = wrap(text, (w - 8 * s) / (CELL_W * s), lines, MAX_LINES);
+    c->w = w;
+    c->h = m->ny + 4 * s + (nl + 1) * LINE_H * s + 4 * s;
+    c->px = malloc((size_t)c->w * c->h);
+    STC_CHECK(c->px, STC_ENOMEM, "png: out of memory");
+    memset(c->px, 255, (size_t)c->w * c->h);
     double f = hi > lo ? 255.0 / (hi - lo) : 0.0;
     for (int r = 0; r < m->ny; r++) {
         const double *z = m->z + (size_t)(m->ny - 1 - r) * m->nx;
+        unsigned char *row = c->px + (size_t)r * c->w;
         for (int i = 0; i < m->nx; i++) row[i] = (unsigned char)lrint((z[i] - lo) * f);
-        png_write_row(png, row);
     }
-    return 0;
+    int y = m->ny + 4 * s;
+    for (int k = 0; k < nl; k++, y += LINE_H * s) draw_text(c, 4 * s, y, s, lines[k]);
+    draw_key(c, m, y + s, s, lo, hi, zf, zu);
+    return STC_OK;
 }
 
-static stc_status write_png_file(FILE *fp, const srf_map *m, unsigned char *row, double lo,
-                                 double hi)
+static stc_status write_png_file(FILE *fp, const canvas *c)
 {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -41,10 +278,10 @@ static stc_status write_png_file(FILE *fp, const srf_map *m, unsigned char *row,
     }
     png_init_io(png, fp);
     png_set_compression_level(png, SRF_PNG_COMPRESSION);
-    png_set_IHDR(png, info, (png_uint_32)m->nx, (png_uint_32)m->ny, 8, PNG_COLOR_TYPE_GRAY,
+    png_set_IHDR(png, info, (png_uint_32)c->w, (png_uint_32)c->h, 8, PNG_COLOR_TYPE_GRAY,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    write_rows(png, m, row, lo, hi);
+    for (int r = 0; r < c->h; r++) png_write_row(png, c->px + (size_t)r * c->w);
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     return STC_OK;
@@ -54,30 +291,36 @@ stc_status srf_map_write_png(const srf_map *m, const char *path)
 {
     STC_CHECK(m && m->z && path, STC_EINVAL, "map_write_png: NULL argument");
     size_t n = (size_t)m->nx * m->ny;
-    double lo = m->z[0], hi = m->z[0];
-#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
+    double lo = m->z[0], hi = m->z[0], sum = 0.0, sq = 0.0;
+#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi) \
+    reduction(+ : sum, sq)
     for (size_t k = 0; k < n; k++) {
         lo = fmin(lo, m->z[k]);
         hi = fmax(hi, m->z[k]);
+        sum += m->z[k];
+        sq += m->z[k] * m->z[k];
     }
+    double mean = sum / n, rms = sqrt(fmax(sq / n - mean * mean, 0.0));
+    if (fabs(mean) < 1e-9 * rms) mean = 0.0; /* a synthesized map's rounding, not a mean */
     char tmp[4096];
     STC_CALL(srf_tmpname(path, tmp, sizeof tmp));
-    unsigned char *row = malloc((size_t)m->nx);
-    FILE *fp = fopen(tmp, "wb");
+    canvas c = {NULL, 0, 0};
+    FILE *fp = NULL;
     stc_status st = STC_OK;
-    STC_CHECK_GOTO(row, st, fail, STC_ENOMEM, "png: out of memory");
+    STC_CALL_GOTO(render(m, lo, hi, mean, rms, &c), st, fail);
+    fp = fopen(tmp, "wb");
     STC_CHECK_GOTO(fp, st, fail, STC_EIO, "%s: cannot open: %s", tmp, strerror(errno));
-    STC_CALL_GOTO(write_png_file(fp, m, row, lo, hi), st, fail);
-    int c = fclose(fp);
+    STC_CALL_GOTO(write_png_file(fp, &c), st, fail);
+    int cl = fclose(fp);
     fp = NULL;
-    STC_CHECK_GOTO(c == 0, st, fail, STC_EIO, "%s: write error: %s", tmp, strerror(errno));
+    STC_CHECK_GOTO(cl == 0, st, fail, STC_EIO, "%s: write error: %s", tmp, strerror(errno));
     STC_CHECK_GOTO(rename(tmp, path) == 0, st, fail, STC_EIO, "%s: cannot rename: %s", path,
                    strerror(errno));
-    free(row);
+    free(c.px);
     return STC_OK;
 fail:
     if (fp) fclose(fp);
-    free(row);
+    free(c.px);
     remove(tmp);
     return st;
 }

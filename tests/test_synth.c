@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include <png.h>
 
 #include <fftw3.h>
 #include <hdf5.h>
@@ -602,6 +603,8 @@ static void test_h5_roundtrip(void **state)
     srf_map_destroy(&a);
 }
 
+/* The PNG: the map one grey pixel a point (black = lowest, white = highest,
+ * y up) at its top left, a caption below it. */
 static void test_png(void **state)
 {
     (void)state;
@@ -611,14 +614,35 @@ static void test_png(void **state)
     srf_map *m = NULL;
     assert_int_equal(srf_synthesize(&p, 1, &m), STC_OK);
     assert_int_equal(srf_map_write_png(m, path), STC_OK);
-    unsigned char h[24];
+    unsigned char h[8];
     FILE *f = fopen(path, "rb");
     assert_non_null(f);
-    assert_int_equal(fread(h, 1, 24, f), 24);
+    assert_int_equal(fread(h, 1, 8, f), 8);
     fclose(f);
     assert_memory_equal(h, "\x89PNG\r\n\x1a\n", 8);
-    assert_int_equal((h[16] << 24) | (h[17] << 16) | (h[18] << 8) | h[19], 40); /* IHDR width */
-    assert_int_equal((h[20] << 24) | (h[21] << 16) | (h[22] << 8) | h[23], 30);
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    assert_true(png_image_begin_read_from_file(&img, path));
+    img.format = PNG_FORMAT_GRAY;
+    assert_true(img.width >= 40 && img.height > 30);
+    unsigned char *px = malloc(PNG_IMAGE_SIZE(img));
+    assert_non_null(px);
+    assert_true(png_image_finish_read(&img, NULL, px, 0, NULL));
+    double lo = m->z[0], hi = m->z[0];
+    for (int k = 0; k < 40 * 30; k++) lo = fmin(lo, m->z[k]), hi = fmax(hi, m->z[k]);
+    int lo_seen = 0, hi_seen = 0, ink = 0;
+    for (int r = 0; r < 30; r++)
+        for (int i = 0; i < 40; i++) {
+            double z = m->z[(29 - r) * 40 + i]; /* row 0 of the picture: the highest y */
+            unsigned char v = px[(size_t)r * img.width + i];
+            assert_int_equal(v, (int)lrint((z - lo) * 255.0 / (hi - lo)));
+            lo_seen += v == 0, hi_seen += v == 255;
+        }
+    assert_true(lo_seen >= 1 && hi_seen >= 1);
+    for (size_t k = (size_t)31 * img.width; k < (size_t)img.width * img.height; k++) ink += px[k] == 0;
+    assert_true(ink > 200); /* the caption's text */
+    free(px);
     srf_map_destroy(&m);
 }
 
