@@ -196,11 +196,12 @@ static void describe(const srf_map *m, double lo, double hi, double mean, double
                              "to mm, best-fit plane removed).", m->source, m->zscale);
     else k = (size_t)snprintf(buf, n, "Rough surface height map.");
     if (k >= n) return;
+    char off[64] = ""; /* the mean, where it is not the datum */
+    if (mean != 0.0) snprintf(off, sizeof off, " %+.3g %s", zf * mean, zu);
     snprintf(buf + k, n - k, "\n%g x %g mm, %d x %d points (one pixel each), x to the right, "
              "y up%s.\nGrey: black = %+.3g %s (lowest) ... white = %+.3g %s (highest); rms %.3g %s "
-             "about the mean %+.3g %s.", m->lx, m->ly, m->nx, m->ny,
-             m->periodic ? ", periodic" : "", zf * lo, zu, zf * hi, zu, zf * rms, zu, zf * mean,
-             zu);
+             "about the mean%s.", m->lx, m->ly, m->nx, m->ny, m->periodic ? ", periodic" : "",
+             zf * lo, zu, zf * hi, zu, zf * rms, zu, off);
 }
 
 /* A round length (1, 2 or 5 times a power of ten) near a fifth of lx. */
