@@ -284,17 +284,21 @@ def fig410(rn, out, fig="fig4_10"):
 
 
 def e1_vs_wsp(rn, tr, deltas):
-    """Eco/Esu = 1 (the homogeneous sphere) at t/R tr: FE Qmax/Pc over the WSP
-    plateau - 1 at each delta that ran."""
-    return [r["Q_max_over_P_c"] / (wsp_mu(d) * r["P_over_P_c"]) - 1
-            for d in deltas for r in [rn.result(grid_name(tr, 1, d))] if r]
+    """Eco/Esu = 1 (the homogeneous sphere) at t/R tr against the WSP fit at
+    each delta that ran: (Qmax/Pc over the fit's plateau with the preload,
+    mu_s over the fit's) - 1."""
+    rs = [(d, r) for d in deltas for r in [rn.result(grid_name(tr, 1, d))] if r]
+    return ([r["Q_max_over_P_c"] / (wsp_mu(d) * r["P_over_P_c"]) - 1 for d, r in rs],
+            [r["mu_s"] / wsp_mu(d) - 1 for d, r in rs])
 
 
 def grid_notes(devs):
-    return ["Dashed: the plateau of the homogeneous sphere's %s, with the FE's P" % WSP_FIT,
-            "(made for a slip normal step; E_{co}/E_{su} = 1 is that sphere): FE vs it %s."
-            " No published fit gives the coated sphere's Q." % pct_range(devs),
-            PLACEMENT]
+    plateau, mu = devs
+    return ["Dashed: the plateau of the homogeneous sphere's %s, with the FE's preload P" % WSP_FIT,
+            "(made for a slip normal step; E_{co}/E_{su} = 1 is that sphere). FE vs it: Q_{max}"
+            " %s, μ_{s} = Q_{max}/P at inception %s (P falls during the ramp)."
+            % (pct_range(plateau), pct_range(mu)),
+            "No published fit gives the coated sphere's Q. " + PLACEMENT]
 
 
 def fig_grid(rn, out, fig):
