@@ -151,7 +151,7 @@ static double edge_fit(const double *r, const double *F, int L, int nr, int axi)
  * estimate before it entered, continuous at the entry since F_L starts at 0)
  * bounds a from below, which removes that drop of the node-entry sawtooth.
  *
- * Measured with tools/carea-study.py, a / a_ref - 1 in %, old -> new;
+ * Measured (docs/design.md §3.7), a / a_ref - 1 in %, old -> new;
  * a_ref: the new estimator at level 3 (at 6 and 24 ωc the mean over levels
  * 3, 4 and --elements-per-contact 40..56, spread 0.32 / 0.58 %).
  *   homogeneous WSP sphere, slip  level 0          level 1          level 2
@@ -254,33 +254,6 @@ static void layer_maxima(asp_solver *s, asp_point *pt)
         for (int i = 0; i < d; i++) s->yt[k].cur_loc[i] = xq[d * q + i];
     }
 }
-
-/* Study hook of tools/carea-study.py, compiled only with -DASP_CAREA_DUMP
- * (never in normal builds: the library writes no files of its own): appends
- * the contact candidates of each converged increment (x, u, f_z, state) to
- * the file named by $ASP_CAREA_DUMP, one JSON line per increment, so that
- * radius estimators can be compared offline on the same converged states. */
-#ifdef ASP_CAREA_DUMP
-#include <stdio.h>
-static void carea_dump(const asp_solver *s)
-{
-    const char *path = getenv("ASP_CAREA_DUMP");
-    FILE *f = path ? fopen(path, "a") : NULL;
-    if (!f) return;
-    const asp_mesh *m = s->mesh;
-    int d = s->dim;
-    fprintf(f, "{\"dim\": %d, \"delta\": %.12g, \"Rp\": %.12g, \"nodes\": [", d, s->delta, s->Rp);
-    for (int k = 0; k < s->ncand; k++) {
-        int n = s->cand[k];
-        fprintf(f, "%s[", k ? ", " : "");
-        for (int i = 0; i < d; i++) fprintf(f, "%.12g, ", m->x[d * n + i]);
-        for (int i = 0; i < d; i++) fprintf(f, "%.12g, ", s->u[d * n + i]);
-        fprintf(f, "%.12g, %d]", s->fint[d * n + d - 1], s->cs[k]);
-    }
-    fprintf(f, "]}\n");
-    fclose(f);
-}
-#endif
 
 /* How far the contact edge on a line of nodes has advanced since the ramp
  * started, from the gap of the first open node past it.  Near an edge where
@@ -509,9 +482,6 @@ void asp_contact_results(asp_solver *s, asp_point *pt)
     pt->a = contact_radius(r, F, L, nr, d == 2);
     pt->A = M_PI * pt->a * pt->a;
     layer_maxima(s, pt);
-#ifdef ASP_CAREA_DUMP
-    carea_dump(s);
-#endif
 }
 
 /* First yield per layer.  While a layer is elastic its peak von Mises

@@ -714,7 +714,7 @@ static void test_surface_layers(void **state)
  * R = 10.5 mm, slip) at δ = 6 ωc, level 1.  Reference a_ref = 0.28651 mm:
  * the mean of this estimator over six fine runs, levels 3 and 4 and
  * --elements-per-contact 40, 44, 52, 56 (spread 0.32 %; the old Hertz
- * two-node fit: mean 0.28576, spread 0.95 %; tools/carea-study.py --fine).
+ * two-node fit: mean 0.28576, spread 0.95 %; docs/design.md §3.7).
  * Level 1 measured: +1.41 % (0.29055 mm, 0.9 s); the old estimator gave
  * +5.0 % (0.30091 mm: a flat-topped pressure read as Hertz puts a outward). */
 static void test_contact_radius_plastic(void **state)
