@@ -621,6 +621,7 @@ static void fill_result(const ramp *r, asp_slide *det, asp_shear_result *res)
     res->index = sr.index;
     res->increments = sr.increments;
     res->converged = sr.state == ASP_SLIDE_INCEPTION;
+    res->outcome = sr.outcome;
     snprintf(res->reason, sizeof res->reason, "%s", sr.reason);
     int i = sr.index >= 0 && sr.index < r->npt ? sr.index : r->npt - 1;
     res->A_stick = i >= 0 ? r->pts[i].A_stick : NAN;
@@ -641,6 +642,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
     ramp r = {res, malloc((size_t)s->ncand), malloc((size_t)s->ncand * 2 * sizeof(double)),
               NULL, 0, 0, 0.0};
     stc_status st = STC_OK;
+    asp_outcome why = ASP_OUTCOME_FAILED; /* of a failure */
     int stop = 0;
     STC_CHECK_GOTO(r.cs0 && r.cst0, st, done, STC_ENOMEM, "shear: out of memory");
     STC_CALL_GOTO(setup_ramp(s, o, res, &det), st, done);
@@ -660,24 +662,29 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
         }
         res->cutbacks++;
         if (++cuts > s->opt.max_cutbacks) {
-            char why[512];
-            snprintf(why, sizeof why, "%s", stc_errmsg());
-            if (asp_slide_mechanism(det, why)) break; /* sliding in the material */
-            st = STC_FAIL(STC_ENOCONV, "shear: cut-back limit (%d halvings) reached at ux = %g "
-                                       "mm: %s", s->opt.max_cutbacks, s->ux_conv, why);
+            char msg[512];
+            snprintf(msg, sizeof msg, "%s", stc_errmsg());
+            if (asp_slide_mechanism(det, msg)) break; /* sliding in the material */
+            why = ASP_OUTCOME_CUTBACK_LIMIT;
+            st = STC_FAIL(STC_ENOCONV, "shear: %s (%d halvings) reached at ux = %g mm: %s",
+                          asp_outcome_str(why), s->opt.max_cutbacks, s->ux_conv, msg);
             goto done;
         }
         du *= 0.5;
     }
     fill_result(&r, det, res);
-    if (stop)
-        st = STC_FAIL(STC_ENOCONV, "shear: stopped by the caller at ux = %g mm", s->ux_conv);
-    else if (!res->converged)
+    if (stop) {
+        why = ASP_OUTCOME_STOPPED;
+        st = STC_FAIL(STC_ENOCONV, "shear: %s at ux = %g mm", asp_outcome_str(why), s->ux_conv);
+    } else if (!res->converged) {
+        why = res->outcome;
         st = STC_FAIL(STC_ENOCONV, "shear: %s", res->reason);
+    }
 done:
     if (st != STC_OK) { /* what was reached stays in res; the reason says why */
         if (det && r.npt > 0 && !res->increments) fill_result(&r, det, res);
         res->converged = 0;
+        res->outcome = why;
         snprintf(res->reason, sizeof res->reason, "%s", stc_errmsg());
     }
     res->wall_s = omp_get_wtime() - t0;

@@ -170,10 +170,12 @@ static int peak_index(const asp_slide *d, int upto)
     return k;
 }
 
-static asp_slide_state finish(asp_slide *d, asp_slide_state st, int i, const char *fmt, double v)
+static asp_slide_state finish(asp_slide *d, asp_slide_state st, asp_outcome why, int i,
+                              const char *fmt, double v)
 {
     asp_slide_result *r = &d->res;
     r->state = st;
+    r->outcome = why;
     r->index = i;
     r->Q_max = d->Q[peak_index(d, d->n - 1)];
     if (st == ASP_SLIDE_INCEPTION && d->par.criterion == ASP_SLIDE_STIFFNESS)
@@ -237,33 +239,33 @@ static asp_slide_state evaluate(asp_slide *d)
     if (last < 1) return ASP_SLIDE_RUNNING;
     if (p->criterion == ASP_SLIDE_STIFFNESS) {
         if (last >= 2 && KT(d, last) <= p->alpha * d->KT1)
-            return finish(d, ASP_SLIDE_INCEPTION, last,
+            return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, last,
                           "stiffness criterion: KT_i/KT_1 <= alpha = %g (BKE 2007)", p->alpha);
     } else {
         int i = shear_inception(d);
         if (i >= 0 && secant(d, i, last) <= p->flat_tol * d->KT1)
-            return finish(d, ASP_SLIDE_INCEPTION, i,
+            return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, i,
                           "shear criterion: whole contact at its shear limit (fraction >= "
                           "1 - %g) and Q stopped rising (WSP 2012)", p->slip_tol);
         if (i >= 0) /* full_tol > flat_tol: see KT_after */
-            return finish(d, ASP_SLIDE_INCEPTION, i,
+            return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, i,
                           "shear criterion: whole contact at its shear limit (fraction >= "
                           "1 - %g), Q still rising past it (WSP 2012; KT_after)", p->slip_tol);
         if ((i = plastic_plateau(d)) >= 0)
-            return finish(d, ASP_SLIDE_INCEPTION, i,
+            return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, i,
                           "Q stopped rising (plastic plateau) with only %.3f of the contact "
                           "area at tau_c", d->frac[i]);
     }
     if (passed_maximum(d)) {
         int k = peak_index(d, last);
-        return finish(d, ASP_SLIDE_INCEPTION, k,
+        return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, k,
                       "Q passed a maximum and fell for %g increments", (double)p->n_flat);
     }
     if (last >= p->max_increments)
-        return finish(d, ASP_SLIDE_GAVE_UP, peak_index(d, last),
+        return finish(d, ASP_SLIDE_GAVE_UP, ASP_OUTCOME_MAX_ITERATIONS, peak_index(d, last),
                       "no inception after %g increments (max-increments)", (double)last);
     if (d->ux[last] >= d->ux_max * (1 - 1e-12))
-        return finish(d, ASP_SLIDE_GAVE_UP, peak_index(d, last),
+        return finish(d, ASP_SLIDE_GAVE_UP, ASP_OUTCOME_GAVE_UP, peak_index(d, last),
                       "no inception up to ux-max = %g mm", d->ux_max);
     return ASP_SLIDE_RUNNING;
 }
@@ -279,6 +281,7 @@ asp_slide_state asp_slide_push(asp_slide *d, double ux, double Q, double P, doub
     }
     if (d->n > 0 && !(ux > d->ux[d->n - 1])) {
         d->res.state = ASP_SLIDE_GAVE_UP;
+        d->res.outcome = ASP_OUTCOME_FAILED;
         snprintf(d->res.reason, sizeof d->res.reason,
                  "ux = %g mm pushed after ux = %g mm: the ramp must increase", ux,
                  d->ux[d->n - 1]);
@@ -289,7 +292,8 @@ asp_slide_state asp_slide_push(asp_slide *d, double ux, double Q, double P, doub
     d->res.increments = i;
     if (i == 1) d->KT1 = KT(d, 1);
     if (i == 1 && !(d->KT1 > 0.0)) {
-        finish(d, ASP_SLIDE_GAVE_UP, 1, "first increment has KT_1 = %g N/mm <= 0", d->KT1);
+        finish(d, ASP_SLIDE_GAVE_UP, ASP_OUTCOME_GAVE_UP, 1,
+               "first increment has KT_1 = %g N/mm <= 0", d->KT1);
         return d->res.state;
     }
     return evaluate(d);
@@ -303,7 +307,7 @@ int asp_slide_mechanism(asp_slide *d, const char *why)
         return 0;
     if (d->frac[last] < 1.0 - p->slip_tol || !(KT(d, last) <= p->full_tol * d->KT1)) return 0;
     double kt = KT(d, last) / d->KT1;
-    finish(d, ASP_SLIDE_INCEPTION, last, "mechanism", 0.0);
+    finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_MECHANISM, last, "mechanism", 0.0);
     snprintf(d->res.reason, sizeof d->res.reason,
              "whole contact at its shear limit, no equilibrium past it (plastic mechanism; "
              "KT/KT_1 = %.3g): %.50s", kt, why);

@@ -75,6 +75,7 @@
 #include <limits.h>
 #include <math.h>
 #include <omp.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
@@ -769,8 +770,10 @@ static void hertz_active_set(asp_solver *s, double delta)
 
 /* ---- Newton ---------------------------------------------------------------- */
 
+/* Work and exit of one increment's Newton solves. */
 typedef struct nstat {
     int iters, facts, passes;
+    asp_outcome why; /* how the last Newton solve or active-set loop ended */
 } nstat;
 
 static double norm_sel(const asp_solver *s, const double *v, int want_fixed)
@@ -813,11 +816,12 @@ static stc_status factorize(asp_solver *s, nstat *ns)
     if (s->have_factor) STC_CALL(asp_prec_update(s));
     else s->fx_ok = 0;
     s->k_last = 0;
-    STC_CHECK(s->cc.status == CHOLMOD_OK, STC_ESOLVER,
-              "CHOLMOD factorization at δ = %g mm: %s (column %d of %d)", s->delta,
-              s->cc.status == CHOLMOD_NOT_POSDEF ? "matrix not positive definite"
-                                                 : "numerical failure",
-              (int)s->L->minor, s->ndof);
+    if (s->cc.status != CHOLMOD_OK) {
+        ns->why = s->cc.status == CHOLMOD_NOT_POSDEF ? ASP_OUTCOME_NOT_POSDEF
+                                                     : ASP_OUTCOME_SOLVER_FAILED;
+        return STC_FAIL(STC_ESOLVER, "CHOLMOD factorization at δ = %g mm: %s (column %d of %d)",
+                        s->delta, asp_outcome_str(ns->why), (int)s->L->minor, s->ndof);
+    }
     return STC_OK;
 }
 
@@ -1207,6 +1211,20 @@ static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const 
  * slower); with 10 they are unchanged; docs/design.md §3.5. */
 enum { NEWTON_STALL = 10 };
 
+/* A Newton exit: records why in ns; with a message (fmt not NULL) it is a
+ * failure, STC_ENOCONV. */
+static stc_status newton_exit(nstat *ns, asp_outcome why, const char *fmt, ...)
+{
+    ns->why = why;
+    if (!fmt) return STC_OK;
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return STC_FAIL(STC_ENOCONV, "%s", msg);
+}
+
 /* Newton with backtracking line search for the current constraints.  With
  * need_asm = 0 the caller guarantees fint (and, if k_fresh, K) belong to u. */
 static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, double *u0,
@@ -1229,24 +1247,29 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
              * reactions themselves; measured: a ramp increment of the coated
              * t/R .025 Eco/Esu 4 delta = 1 case started at ~1e-12 N and was
              * cut back as "diverged" at 5e-4 N (P = 1.3 N) */
-            STC_CHECK(isfinite(rn) && rn <= 1e8 * fmax(r_first, o->rtol * ref), STC_ENOCONV,
-                      "Newton diverged at δ = %g mm (residual %.3g N)", delta, rn);
+            if (!(isfinite(rn) && rn <= 1e8 * fmax(r_first, o->rtol * ref)))
+                return newton_exit(ns, ASP_OUTCOME_DIVERGED, "Newton %s at δ = %g mm "
+                                   "(residual %.3g N)", asp_outcome_str(ASP_OUTCOME_DIVERGED),
+                                   delta, rn);
             if (rn <= rtol * ref && (dun <= utol * uscale || rn <= 1e-3 * rtol * ref))
-                return STC_OK;
-            if (rn <= 1e-300) return STC_OK; /* nothing loads the body yet */
+                return newton_exit(ns, ASP_OUTCOME_CONVERGED, NULL);
+            if (rn <= 1e-300) /* nothing loads the body yet */
+                return newton_exit(ns, ASP_OUTCOME_CONVERGED, NULL);
             /* stagnation: the residual has not halved its best in NEWTON_STALL
              * iterations, so no linear rate gets it to the tolerance within
              * max_newton; the caller cuts the increment back now instead */
             if (rn < 0.5 * r_best) r_best = rn, it_best = it;
-            STC_CHECK(it - it_best < NEWTON_STALL, STC_ENOCONV,
-                      "Newton stagnated at δ = %g mm: residual %.3g, not below half of %.3g "
-                      "in %d iterations (tolerance %.3g)",
-                      delta, rn / fmax(ref, 1e-300), r_best / fmax(ref, 1e-300), NEWTON_STALL,
-                      o->rtol);
+            if (it - it_best >= NEWTON_STALL)
+                return newton_exit(ns, ASP_OUTCOME_STAGNATED, "Newton %s at δ = %g mm: "
+                                   "residual %.3g, not below half of %.3g in %d iterations "
+                                   "(tolerance %.3g)", asp_outcome_str(ASP_OUTCOME_STAGNATED),
+                                   delta, rn / fmax(ref, 1e-300), r_best / fmax(ref, 1e-300),
+                                   NEWTON_STALL, o->rtol);
         }
-        STC_CHECK(it < o->max_newton, STC_ENOCONV,
-                  "Newton: %d iterations at δ = %g mm, residual %.3g (tolerance %.3g)",
-                  it, delta, rn / fmax(ref, 1e-300), o->rtol);
+        if (it >= o->max_newton)
+            return newton_exit(ns, ASP_OUTCOME_MAX_ITERATIONS, "Newton: %d iterations at "
+                               "δ = %g mm, residual %.3g (tolerance %.3g)", it, delta,
+                               rn / fmax(ref, 1e-300), o->rtol);
         if (age >= o->newton_reuse || cn > 0.0) {
             STC_CHECK(s->k_fresh, STC_ESOLVER, "solver: stale stiffness at δ = %g mm", delta);
             if (cn > 0.0) { /* before the identity rows */
@@ -1273,8 +1296,9 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
             /* a step that imposes a constraint jump is taken whole: the
              * residual before it does not see the jump */
             if ((cn > 0.0 && st == STC_OK) || rt <= (1.0 - 1e-4 * alpha) * rn || ls == 4) {
-                STC_CHECK(st == STC_OK, STC_ENOCONV, "line search: element inverted at δ = %g mm",
-                          delta);
+                if (st != STC_OK)
+                    return newton_exit(ns, ASP_OUTCOME_INVERTED, "line search: %s at δ = %g mm",
+                                       asp_outcome_str(ASP_OUTCOME_INVERTED), delta);
                 break;
             }
             alpha *= 0.5;
@@ -1304,9 +1328,12 @@ static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
     double loose = fmin(1e4, 1e-4 / s->opt.rtol);
     for (int pass = 0;; pass++) {
         ns->passes++;
-        STC_CHECK_GOTO(pass < s->opt.max_active_set, st, done, STC_ENOCONV,
-                       "contact active set did not settle in %d passes at δ = %g mm (cycling)",
-                       pass, delta);
+        if (pass >= s->opt.max_active_set) {
+            ns->why = ASP_OUTCOME_CYCLING;
+            st = STC_FAIL(STC_ENOCONV, "contact active set %s in %d passes at δ = %g mm "
+                          "(cycling)", asp_outcome_str(ns->why), pass, delta);
+            goto done;
+        }
         /* settle the active set on loosely converged states first, then
          * converge fully and check it once more */
         set_dirichlet(s, delta);
@@ -1688,7 +1715,7 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
         /* no sliver steps, unless the step brackets a first yield */
         int at_yield = aimed && lim < s->step;
         if (delta - dnew < 0.2 * fmin(s->step, lim) && !at_yield) dnew = delta;
-        nstat ns = {0, 0, 0};
+        nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
         memcpy(cs0, s->cs, (size_t)s->ncand);
         memcpy(cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *cst0);
         /* predictor: the last increment scaled to this Δδ */
@@ -1712,8 +1739,9 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
         if (++cuts > s->opt.max_cutbacks) {
             char why[512];
             snprintf(why, sizeof why, "%s", stc_errmsg());
-            st = STC_FAIL(STC_ENOCONV, "cut-back limit (%d halvings) reached at δ = %g mm: %s",
-                          s->opt.max_cutbacks, s->delta, why);
+            st = STC_FAIL(STC_ENOCONV, "%s (%d halvings) reached at δ = %g mm: %s",
+                          asp_outcome_str(ASP_OUTCOME_CUTBACK_LIMIT), s->opt.max_cutbacks,
+                          s->delta, why);
             break;
         }
         st = STC_OK;
@@ -1756,7 +1784,7 @@ stc_status asp_solver_load_tail(asp_solver *s, asp_point *out)
 stc_status asp_solver_increment_here(asp_solver *s, double pred, int *iters, int *facts,
                                      int *passes)
 {
-    nstat ns = {0, 0, 0};
+    nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
     stc_status st = increment(s, s->delta, pred, &ns); /* Δδ = 0 */
     *iters += ns.iters, *facts += ns.facts, *passes += ns.passes;
     return st;

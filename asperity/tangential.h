@@ -15,7 +15,7 @@
 #define STICTION_TANGENTIAL_H
 
 #include "fe.h"
-#include "stiction/asperity.h" /* asp_hertz_delta_guess (slide.c) */
+#include "stiction/asperity.h" /* asp_hertz_delta_guess (slide.c), asp_outcome */
 #include "stiction/status.h"
 
 /* ---- nodal stick law (friction.c) ------------------------------------- */
@@ -173,6 +173,8 @@ typedef struct asp_slide_result {
     int n_contact;       /* contact nodes there */
     int index;           /* index of that point in the ramp (0 = ux = 0) */
     int increments;      /* accepted increments pushed */
+    asp_outcome outcome; /* CONVERGED or MECHANISM (inception), MAX_ITERATIONS,
+                            GAVE_UP, FAILED; NONE while running */
     char reason[160];    /* in words */
 } asp_slide_result;
 

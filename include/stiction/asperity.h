@@ -180,6 +180,30 @@ typedef struct asp_yield {
     double r, z;   /* location (axisymmetric r, z; 3D: x = r, z), mm */
 } asp_yield;
 
+/* How an iterative loop of the solver ended (Newton, Krylov, active set,
+ * load stepping, the shear ramp); asp_outcome_str gives it in words.  The
+ * messages and reasons name the loop and its numbers. */
+typedef enum asp_outcome {
+    ASP_OUTCOME_NONE = 0,       /* not run yet */
+    ASP_OUTCOME_CONVERGED,      /* within tolerance (the ramp: sliding inception) */
+    ASP_OUTCOME_MECHANISM,      /* ramp: inception at a plastic mechanism (no
+                                   equilibrium past a contact wholly at its limit) */
+    ASP_OUTCOME_DIVERGED,       /* Newton: residual grew past 1e8 of the first */
+    ASP_OUTCOME_STAGNATED,      /* Newton: residual stopped halving its best */
+    ASP_OUTCOME_MAX_ITERATIONS, /* an iteration or increment limit was reached */
+    ASP_OUTCOME_CYCLING,        /* contact active set did not settle */
+    ASP_OUTCOME_INVERTED,       /* an element inverted */
+    ASP_OUTCOME_NOT_POSDEF,     /* factorization: matrix not positive definite */
+    ASP_OUTCOME_SOLVER_FAILED,  /* factorization, solve or Krylov breakdown */
+    ASP_OUTCOME_CUTBACK_LIMIT,  /* max_cutbacks halvings of one increment failed */
+    ASP_OUTCOME_GAVE_UP,        /* ramp: its ux limit, or no tangential stiffness */
+    ASP_OUTCOME_STOPPED,        /* ramp: the caller's callback stopped it */
+    ASP_OUTCOME_FAILED          /* another failure (input, memory, I/O) */
+} asp_outcome;
+
+/* Static text of an outcome ("converged", "diverged", ...); thread-safe. */
+STC_API const char *asp_outcome_str(asp_outcome o);
+
 /* Create a solver for the parameters `p` (copied) and options `o` (copied,
  * NULL = defaults), meshed for interferences up to delta_max (mm).
  * Returns new in *out. */
@@ -314,6 +338,7 @@ typedef struct asp_shear_result {
     asp_shear_criterion criterion;
     asp_junction junction;
     int converged;       /* 1: inception found; 0: gave up or failed (see reason) */
+    asp_outcome outcome; /* how the ramp ended (CONVERGED or MECHANISM: inception) */
     int index;           /* ramp point of inception (0 = ux = 0) */
     int increments;      /* accepted ramp increments */
     int cutbacks;        /* ramp increment halvings */
