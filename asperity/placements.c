@@ -21,6 +21,10 @@
 #include "solver_impl.h"
 #include "stc_check.h"
 
+/* OpenBLAS extension (see linsolve.c) */
+void openblas_set_num_threads(int num_threads);
+int openblas_get_num_threads(void);
+
 /* Normal step of one member (its solver is kept for the ramp). */
 static void member_load(const stc_params *p, const asp_options *o, double delta,
                         asp_placement_member *m, asp_solver **sv)

@@ -36,7 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "solver_impl.h"
+#include "linsolve_impl.h"
 #include "stc_check.h"
 
 enum { PREC_MAX_EXPAND = 256 }; /* cut: at most this many supernodes moved to the top */
@@ -196,30 +196,30 @@ done:
     return st;
 }
 
-void asp_prec_free(asp_solver *s)
+void asp_prec_free(asp_linsolve *ls)
 {
-    struct asp_prec *pr = s->prec;
+    struct asp_prec *pr = ls->prec;
     if (pr) {
         free(pr->range), free(pr->top), free(pr->topcol), free(pr->intop);
         free(pr->buf), free(pr->tmp);
         free(pr);
-        s->prec = NULL;
+        ls->prec = NULL;
     }
-    if (s->mv) {
-        free(s->mv->buf);
-        free(s->mv);
-        s->mv = NULL;
+    if (ls->mv) {
+        free(ls->mv->buf);
+        free(ls->mv);
+        ls->mv = NULL;
     }
-    free(s->fx), free(s->fy);
-    s->fx = NULL, s->fy = NULL, s->fx_size = 0, s->fx_ok = 0;
+    free(ls->fx), free(ls->fy);
+    ls->fx = NULL, ls->fy = NULL, ls->fx_size = 0, ls->fx_ok = 0;
 }
 
-static stc_status prec_plan(asp_solver *s)
+static stc_status prec_plan(asp_linsolve *ls)
 {
-    const cholmod_factor *L = s->L;
+    const cholmod_factor *L = ls->L;
     struct asp_prec *pr = calloc(1, sizeof *pr);
     STC_CHECK(pr, STC_ENOMEM, "solver: out of memory for the solve plan");
-    s->prec = pr;
+    ls->prec = pr;
     pr->buf = malloc(ASP_PREC_PARTS * L->n * sizeof *pr->buf);
     pr->tmp = malloc(ASP_PREC_PARTS * L->n * sizeof *pr->tmp);
     STC_CHECK(pr->buf && pr->tmp, STC_ENOMEM, "solver: out of memory for the solve plan");
@@ -243,25 +243,25 @@ static stc_status prec_plan(asp_solver *s)
  * CHOLMOD supernode k: columns super[k] .. super[k+1]-1, row indices
  * s[pi[k] .. pi[k+1]) (the columns themselves first), values column-major
  * from px[k] (CHOLMOD User Guide, "cholmod_factor"). */
-stc_status asp_prec_update(asp_solver *s)
+stc_status asp_prec_update(asp_linsolve *ls)
 {
-    const cholmod_factor *L = s->L;
-    s->fx_ok = 0;
+    const cholmod_factor *L = ls->L;
+    ls->fx_ok = 0;
     if (!L->is_super || !L->is_ll) return STC_OK;
-    if (s->fx_size < L->xsize) {
-        free(s->fx);
-        s->fx = malloc(L->xsize * sizeof *s->fx);
-        s->fx_size = s->fx ? L->xsize : 0;
-        STC_CHECK(s->fx, STC_ENOMEM, "solver: out of memory for the factor copy");
+    if (ls->fx_size < L->xsize) {
+        free(ls->fx);
+        ls->fx = malloc(L->xsize * sizeof *ls->fx);
+        ls->fx_size = ls->fx ? L->xsize : 0;
+        STC_CHECK(ls->fx, STC_ENOMEM, "solver: out of memory for the factor copy");
     }
-    if (!s->fy) {
-        s->fy = malloc((size_t)s->ndof * sizeof *s->fy);
-        STC_CHECK(s->fy, STC_ENOMEM, "solver: out of memory");
+    if (!ls->fy) {
+        ls->fy = malloc((size_t)ls->n * sizeof *ls->fy);
+        STC_CHECK(ls->fy, STC_ENOMEM, "solver: out of memory");
     }
-    if (!s->prec) STC_CALL(prec_plan(s));
+    if (!ls->prec) STC_CALL(prec_plan(ls));
     const double *x = L->x;
-    for (size_t k = 0; k < L->xsize; k++) s->fx[k] = (float)x[k];
-    s->fx_ok = 1;
+    for (size_t k = 0; k < L->xsize; k++) ls->fx[k] = (float)x[k];
+    ls->fx_ok = 1;
     return STC_OK;
 }
 
@@ -269,13 +269,13 @@ stc_status asp_prec_update(asp_solver *s)
 
 /* Forward step of supernode k: y_k = L_kk^-1 y_k, then the rows below get
  * -L_bk y_k, those in the top into buf when buf is given. */
-static void fwd_node(const asp_solver *s, int k, float *y, float *t, float *buf,
+static void fwd_node(const asp_linsolve *ls, int k, float *y, float *t, float *buf,
                      const unsigned char *intop)
 {
-    const cholmod_factor *L = s->L;
+    const cholmod_factor *L = ls->L;
     const int *super = L->super, *pi = L->pi, *px = L->px;
     int k1 = super[k], nc = super[k + 1] - k1, nr = pi[k + 1] - pi[k], nb = nr - nc;
-    const float *Lk = s->fx + px[k];
+    const float *Lk = ls->fx + px[k];
     const int *rows = (const int *)L->s + pi[k] + nc, one = 1;
     const float f0 = 0.0f, f1 = 1.0f;
     strsv_("L", "N", "N", &nc, Lk, &nr, y + k1, &one);
@@ -293,12 +293,12 @@ static void fwd_node(const asp_solver *s, int k, float *y, float *t, float *buf,
 }
 
 /* Backward step of supernode k: y_k -= L_bk' y_b, then y_k = L_kk^-T y_k. */
-static void bwd_node(const asp_solver *s, int k, float *y, float *t)
+static void bwd_node(const asp_linsolve *ls, int k, float *y, float *t)
 {
-    const cholmod_factor *L = s->L;
+    const cholmod_factor *L = ls->L;
     const int *super = L->super, *pi = L->pi, *px = L->px;
     int k1 = super[k], nc = super[k + 1] - k1, nr = pi[k + 1] - pi[k], nb = nr - nc;
-    const float *Lk = s->fx + px[k];
+    const float *Lk = ls->fx + px[k];
     const int *rows = (const int *)L->s + pi[k] + nc, one = 1;
     const float f1 = 1.0f, fm1 = -1.0f;
     if (nb > 0) {
@@ -310,15 +310,15 @@ static void bwd_node(const asp_solver *s, int k, float *y, float *t)
 
 /* out = P' L^-T L^-1 P b with the float factor (A = P' L L' P), in float;
  * per supernode as CHOLMOD does in double (cholmod_super_lsolve / ltsolve).
- * Threads: s->nthr; OpenBLAS must run on one thread (the caller's). */
-void asp_prec_solve(const asp_solver *s, const double *b, double *out)
+ * Threads: ls->nthr; OpenBLAS must run on one thread (the caller's). */
+void asp_prec_solve(const asp_linsolve *ls, const double *b, double *out)
 {
-    const struct asp_prec *pr = s->prec;
-    const int *perm = s->L->Perm;
-    int n = s->ndof;
-    float *y = s->fy;
+    const struct asp_prec *pr = ls->prec;
+    const int *perm = ls->L->Perm;
+    int n = ls->n;
+    float *y = ls->fy;
     for (int i = 0; i < n; i++) y[i] = (float)b[perm[i]];
-    int nthr = s->nthr < ASP_PREC_PARTS ? s->nthr : ASP_PREC_PARTS;
+    int nthr = ls->nthr < ASP_PREC_PARTS ? ls->nthr : ASP_PREC_PARTS;
 #pragma omp parallel num_threads(nthr) if (nthr > 1)
     {
 #pragma omp for schedule(static, 1)
@@ -327,7 +327,7 @@ void asp_prec_solve(const asp_solver *s, const double *b, double *out)
             for (int i = 0; i < pr->ntopcol; i++) buf[pr->topcol[i]] = 0.0f;
             for (int r = pr->rptr[p]; r < pr->rptr[p + 1]; r++)
                 for (int k = pr->range[2 * r]; k <= pr->range[2 * r + 1]; k++)
-                    fwd_node(s, k, y, t, buf, pr->intop);
+                    fwd_node(ls, k, y, t, buf, pr->intop);
         }
 #pragma omp single
         {
@@ -335,15 +335,15 @@ void asp_prec_solve(const asp_solver *s, const double *b, double *out)
                 const float *buf = pr->buf + (size_t)p * n;
                 for (int i = 0; i < pr->ntopcol; i++) y[pr->topcol[i]] -= buf[pr->topcol[i]];
             }
-            for (int i = 0; i < pr->ntop; i++) fwd_node(s, pr->top[i], y, pr->tmp, NULL, NULL);
-            for (int i = pr->ntop - 1; i >= 0; i--) bwd_node(s, pr->top[i], y, pr->tmp);
+            for (int i = 0; i < pr->ntop; i++) fwd_node(ls, pr->top[i], y, pr->tmp, NULL, NULL);
+            for (int i = pr->ntop - 1; i >= 0; i--) bwd_node(ls, pr->top[i], y, pr->tmp);
         }
 #pragma omp for schedule(static, 1)
         for (int p = 0; p < ASP_PREC_PARTS; p++) {
             float *t = pr->tmp + (size_t)p * n;
             for (int r = pr->rptr[p]; r < pr->rptr[p + 1]; r++)
                 for (int k = pr->range[2 * r + 1]; k >= pr->range[2 * r]; k--)
-                    bwd_node(s, k, y, t);
+                    bwd_node(ls, k, y, t);
         }
     }
     for (int i = 0; i < n; i++) out[perm[i]] = y[i];
@@ -352,14 +352,14 @@ void asp_prec_solve(const asp_solver *s, const double *b, double *out)
 /* ---- the mat-vec --------------------------------------------------------- */
 
 /* Split K's columns where half its stored entries lie (once per pattern). */
-stc_status asp_matvec_setup(asp_solver *s)
+stc_status asp_matvec_setup(asp_linsolve *ls)
 {
-    if (s->mv) return STC_OK;
-    const int *Kp = s->K->p, *Ki = s->K->i;
-    int n = s->ndof;
+    if (ls->mv) return STC_OK;
+    const int *Kp = ls->K->p, *Ki = ls->K->i;
+    int n = ls->n;
     struct asp_mvplan *mv = calloc(1, sizeof *mv);
     STC_CHECK(mv, STC_ENOMEM, "solver: out of memory for the mat-vec plan");
-    s->mv = mv;
+    ls->mv = mv;
     int cut = 0;
     while (cut < n && 2 * Kp[cut] < Kp[n]) cut++;
     int lo = cut;
@@ -395,33 +395,33 @@ static void matvec_cols(const cholmod_sparse *K, const double *x, double *y, int
 }
 
 /* The same for the entries l0 .. l1 of the tangent's non-factorized part
- * Kd + W (solver_impl.h: Kd symmetric, W skew, W_ji = -W_ij); free_only:
+ * Kd + W (linsolve_impl.h: Kd symmetric, W skew, W_ji = -W_ij); free_only:
  * their free-free block. */
-static void skew_entries(const asp_solver *s, const double *x, double *y, int l0, int l1,
+static void skew_entries(const asp_linsolve *ls, const double *x, double *y, int l0, int l1,
                          int j0, double *low, int lo, int free_only)
 {
-    const int *Ki = s->K->i;
+    const int *Ki = ls->K->i;
     for (int l = l0; l < l1; l++) {
-        int k = s->sk_k[l], i = Ki[k], j = s->sk_j[l];
-        if (free_only && (s->fixed[j] || s->fixed[i])) continue;
-        double v = (s->Kd[k] + s->Kk[k]) * x[j];
+        int k = ls->sk_k[l], i = Ki[k], j = ls->sk_j[l];
+        if (free_only && (ls->fixed[j] || ls->fixed[i])) continue;
+        double v = (ls->Kd[k] + ls->Kk[k]) * x[j];
         if (i >= j0) y[i] += v;
         else low[i - lo] += v;
-        if (i != j) y[j] += (s->Kd[k] - s->Kk[k]) * x[i];
+        if (i != j) y[j] += (ls->Kd[k] - ls->Kk[k]) * x[i];
     }
 }
 
 /* y = A x, A the upper-stored symmetric K (skew 0), the tangent K + Kd + W
  * (skew 1) or K plus the free-free block of Kd + W (skew 2); in two parts
- * (see the file comment; asp_matvec_setup first).  Threads: s->nthr. */
-void asp_tangent_matvec(const asp_solver *s, const double *x, double *y, int skew)
+ * (see the file comment; asp_matvec_setup first).  Threads: ls->nthr. */
+void asp_tangent_matvec(const asp_linsolve *ls, const double *x, double *y, int skew)
 {
-    const struct asp_mvplan *mv = s->mv;
-    int n = s->ndof, nthr = s->nthr < 2 ? s->nthr : 2, nsk = skew && s->skew ? s->nsk : 0;
+    const struct asp_mvplan *mv = ls->mv;
+    int n = ls->n, nthr = ls->nthr < 2 ? ls->nthr : 2, nsk = skew && ls->skew ? ls->nsk : 0;
     int lcut = 0, hi = nsk; /* first listed entry in a column >= cut (sk_j ascends) */
     while (lcut < hi) {
         int mid = (lcut + hi) / 2;
-        if (s->sk_j[mid] < mv->cut) lcut = mid + 1;
+        if (ls->sk_j[mid] < mv->cut) lcut = mid + 1;
         else hi = mid;
     }
     memset(y, 0, (size_t)n * sizeof *y);
@@ -430,12 +430,12 @@ void asp_tangent_matvec(const asp_solver *s, const double *x, double *y, int ske
 #pragma omp for schedule(static, 1)
         for (int p = 0; p < 2; p++) {
             if (p == 0) {
-                matvec_cols(s->K, x, y, 0, mv->cut, NULL, 0);
-                skew_entries(s, x, y, 0, lcut, 0, NULL, 0, skew == 2);
+                matvec_cols(ls->K, x, y, 0, mv->cut, NULL, 0);
+                skew_entries(ls, x, y, 0, lcut, 0, NULL, 0, skew == 2);
             } else {
                 memset(mv->buf, 0, (size_t)(mv->cut - mv->lo) * sizeof *mv->buf);
-                matvec_cols(s->K, x, y, mv->cut, n, mv->buf, mv->lo);
-                skew_entries(s, x, y, lcut, nsk, mv->cut, mv->buf, mv->lo, skew == 2);
+                matvec_cols(ls->K, x, y, mv->cut, n, mv->buf, mv->lo);
+                skew_entries(ls, x, y, lcut, nsk, mv->cut, mv->buf, mv->lo, skew == 2);
             }
         }
 #pragma omp single
@@ -443,9 +443,9 @@ void asp_tangent_matvec(const asp_solver *s, const double *x, double *y, int ske
     }
 }
 
-int asp_prec_parts(const asp_solver *s, double *top_w, double *part_w)
+int asp_prec_parts(const asp_linsolve *ls, double *top_w, double *part_w)
 {
-    const struct asp_prec *pr = s->prec;
+    const struct asp_prec *pr = ls->prec;
     if (!pr) return 0;
     int np = 0;
     *top_w = pr->top_w;

@@ -76,7 +76,8 @@ void asp_shear_options_default(asp_shear_options *o)
  * converged step in the first iteration). */
 void asp_shear_assemble(asp_solver *s, int want_K)
 {
-    double *Kx = s->K->x;
+    double *Kx, *Kd, *Kk;
+    asp_ls_values(s->ls, &Kx, &Kd, &Kk);
     asp_fric_law stuck = s->fric;
     stuck.tau_c = HUGE_VAL;
     int frozen = s->fric_frozen;
@@ -144,9 +145,9 @@ static stc_status alloc_shear(asp_solver *s)
               STC_ENOMEM, "shear: out of memory");
     for (int k = 0; k < s->ncand; k++) {
         int n3 = 3 * s->cand[k];
-        s->cpos[3 * k] = asp_kpos(s->K, n3, n3);
-        s->cpos[3 * k + 1] = asp_kpos(s->K, n3, n3 + 1);
-        s->cpos[3 * k + 2] = asp_kpos(s->K, n3 + 1, n3 + 1);
+        s->cpos[3 * k] = asp_ls_pos(s->ls, n3, n3);
+        s->cpos[3 * k + 1] = asp_ls_pos(s->ls, n3, n3 + 1);
+        s->cpos[3 * k + 2] = asp_ls_pos(s->ls, n3 + 1, n3 + 1);
         STC_CHECK(s->cpos[3 * k] >= 0 && s->cpos[3 * k + 1] >= 0 && s->cpos[3 * k + 2] >= 0,
                   STC_ESOLVER, "shear: node %d's 2x2 block is not in the pattern", s->cand[k]);
     }

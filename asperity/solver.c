@@ -236,13 +236,6 @@ static stc_status node_graph(const asp_mesh *m, const int *hidx, int **ptr_out, 
     return STC_OK;
 }
 
-int asp_kpos(const cholmod_sparse *K, int i, int j)
-{
-    const int *Kp = K->p, *Ki = K->i;
-    const int *f = bsearch(&i, Ki + Kp[j], (size_t)(Kp[j + 1] - Kp[j]), sizeof *Ki, cmp_int);
-    return f ? (int)(f - Ki) : -1;
-}
-
 /* The DOFs of element e with each DOF of a hanging node replaced by its
  * masters' (gi) and weights (gw); gn: how many per element DOF. */
 static void hang_expand(const asp_solver *s, int e, int gi[24][4], double gw[24][4], int gn[24])
@@ -293,14 +286,15 @@ static stc_status build_hang_map(asp_solver *s)
                 for (int ka = 0; ka < gn[a]; ka++)
                     for (int kb = 0; kb < gn[b]; kb++) {
                         int I = gi[a][ka], J = gi[b][kb];
-                        s->hpos[n++] = I <= J ? asp_kpos(s->K, I, J) : -1;
+                        s->hpos[n++] = I <= J ? asp_ls_pos(s->ls, I, J) : -1;
                     }
     }
     return STC_OK;
 }
 
-/* Upper-triangular CSC pattern of K and the element scatter map. */
-static stc_status build_pattern(asp_solver *s)
+/* Upper-triangular CSC pattern of K, DOF by DOF from the node adjacency:
+ * *Kp [ndof + 1] and *Ki [Kp[ndof]] returned new (the caller frees). */
+static stc_status build_pattern(const asp_solver *s, int **Kp_out, int **Ki_out)
 {
     const asp_mesh *m = s->mesh;
     int d = s->dim, *ptr = NULL, *nb = NULL;
@@ -311,21 +305,12 @@ static stc_status build_pattern(asp_solver *s)
             for (int c = 0; c < d; c++)
                 for (int r = 0; r < d; r++)
                     nnz += (size_t)(nb[k] * d + r <= i * d + c);
-    s->K = cholmod_allocate_sparse((size_t)s->ndof, (size_t)s->ndof, nnz, 1, 1, 1, CHOLMOD_REAL,
-                                   &s->cc);
-    if (!s->K) {
-        free(ptr), free(nb);
+    int *Kp = malloc(((size_t)s->ndof + 1) * sizeof *Kp), *Ki = malloc((nnz ? nnz : 1) * sizeof *Ki);
+    if (!Kp || !Ki || nnz > INT_MAX) {
+        free(ptr), free(nb), free(Kp), free(Ki);
         return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
     }
-    s->Kk = calloc(nnz ? nnz : 1, sizeof *s->Kk);
-    s->Kd = calloc(nnz ? nnz : 1, sizeof *s->Kd);
-    s->sk_k = malloc((nnz ? nnz : 1) * sizeof *s->sk_k);
-    s->sk_j = malloc((nnz ? nnz : 1) * sizeof *s->sk_j);
-    if (!s->Kk || !s->Kd || !s->sk_k || !s->sk_j) {
-        free(ptr), free(nb);
-        return STC_FAIL(STC_ENOMEM, "solver: cannot allocate the %zu-entry matrix", nnz);
-    }
-    int *Kp = s->K->p, *Ki = s->K->i, w = 0;
+    int w = 0;
     for (int i = 0; i < m->nnode; i++)
         for (int c = 0; c < d; c++) {
             int col = i * d + c;
@@ -336,6 +321,16 @@ static stc_status build_pattern(asp_solver *s)
         }
     Kp[s->ndof] = w;
     free(ptr), free(nb);
+    *Kp_out = Kp, *Ki_out = Ki;
+    return STC_OK;
+}
+
+/* The element scatter map emap (and the hanging-node one) into the linear
+ * solver's value arrays. */
+static stc_status build_scatter_map(asp_solver *s)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim;
     size_t nmap = (size_t)m->nelem * s->nde * s->nde;
     s->emap = malloc(nmap * sizeof *s->emap);
     STC_CHECK(s->emap, STC_ENOMEM, "solver: out of memory");
@@ -345,7 +340,7 @@ static stc_status build_pattern(asp_solver *s)
                 int I = m->conn[s->nen * e + a / d] * d + a % d;
                 int J = m->conn[s->nen * e + b / d] * d + b % d;
                 size_t at = ((size_t)e * s->nde + a) * s->nde + b;
-                s->emap[at] = I <= J && !(s->hoff && s->hoff[e] >= 0) ? asp_kpos(s->K, I, J) : -1;
+                s->emap[at] = I <= J && !(s->hoff && s->hoff[e] >= 0) ? asp_ls_pos(s->ls, I, J) : -1;
             }
     return s->hoff ? build_hang_map(s) : STC_OK;
 }
@@ -399,7 +394,8 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
                          const double *Kp, int atomic)
 {
     int nde = s->nde, gi[24][4], gn[24];
-    double gw[24][4], *Kx = s->K->x, *Kk = s->Kk, *Kd = s->Kd, *f = s->fint;
+    double gw[24][4], *Kx, *Kk, *Kd, *f = s->fint;
+    asp_ls_values(s->ls, &Kx, &Kd, &Kk);
     hang_expand(s, e, gi, gw, gn);
     for (int a = 0; a < nde; a++)
         for (int k = 0; k < gn[a]; k++) {
@@ -449,7 +445,8 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
     }
     const int *c = s->mesh->conn + (size_t)s->nen * e;
     const int *map = s->emap + (size_t)e * nde * nde;
-    double *Kx = s->K->x, *Kk = s->Kk, *Kd = s->Kd, *f = s->fint;
+    double *Kx, *Kk, *Kd, *f = s->fint;
+    asp_ls_values(s->ls, &Kx, &Kd, &Kk);
     if (!atomic) {
         for (int a = 0; a < nde; a++) f[d * c[a / d] + a % d] += fe[a];
         if (want_K && elastic) { /* Ke = Kp, symmetric: nothing for Kk, Kd */
@@ -554,11 +551,13 @@ static stc_status build_elastic_K(asp_solver *s)
 {
     const asp_mesh *m = s->mesh;
     int nde = s->nde, d = s->dim, npk = nde * (nde + 1) / 2;
-    size_t nnz = s->K->nzmax;
+    size_t nnz = asp_ls_nnz(s->ls);
+    double *Kx, *Kd, *Kk;
+    asp_ls_values(s->ls, &Kx, &Kd, &Kk);
     s->kglob = malloc(nnz * sizeof *s->kglob);
     s->kel = malloc((size_t)m->nelem * npk * sizeof *s->kel);
     STC_CHECK(s->kglob && s->kel, STC_ENOMEM, "solver: out of memory for the elastic stiffness");
-    memset(s->K->x, 0, nnz * sizeof(double));
+    memset(Kx, 0, nnz * sizeof(double));
     for (int e = 0; e < m->nelem; e++) {
         double X[24], zero[24] = {0}, fe[24] = {0}, Ke[24 * 24];
         element_X(s, e, X);
@@ -571,7 +570,7 @@ static stc_status build_elastic_K(asp_solver *s)
             for (int j = i; j < nde; j++) *k++ = Ke[i * nde + j];
         scatter(s, e, 1, fe, Ke, Ke, 0, 1);
     }
-    memcpy(s->kglob, s->K->x, nnz * sizeof *s->kglob);
+    memcpy(s->kglob, Kx, nnz * sizeof *s->kglob);
     return STC_OK;
 }
 
@@ -616,8 +615,7 @@ static stc_status assemble(asp_solver *s, int want_K)
     s->k_fresh = 0;
     if (want_K) {
         if (!s->kglob) STC_CALL(build_elastic_K(s));
-        memcpy(s->K->x, s->kglob, s->K->nzmax * sizeof(double));
-        for (int l = 0; l < s->nsk; l++) s->Kk[s->sk_k[l]] = s->Kd[s->sk_k[l]] = 0.0;
+        asp_ls_begin_tangent(s->ls, s->kglob);
     }
     if (s->ncolor > 0) {
         /* colour by colour: no two elements of a colour share a node, so
@@ -647,33 +645,9 @@ static stc_status assemble(asp_solver *s, int want_K)
     s->t_asm += omp_get_wtime() - t0;
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
     if (s->shear) asp_shear_assemble(s, want_K); /* stick-law springs (shear.c) */
-    if (want_K) {
-        /* list the (few: plastic elements') entries of Kd + W, so the
-         * mat-vecs of every Krylov iteration skip the zeros (3D level 0:
-         * the skew mat-vec was as costly as the K mat-vec) */
-        const int *Kp = s->K->p;
-        s->nsk = 0;
-        for (int j = 0; j < s->ndof; j++)
-            for (int k = Kp[j]; k < Kp[j + 1]; k++)
-                if (s->Kk[k] != 0.0 || s->Kd[k] != 0.0)
-                    s->sk_k[s->nsk] = k, s->sk_j[s->nsk++] = j;
-        s->skew = s->nsk > 0;
-    }
+    if (want_K) asp_ls_end_tangent(s->ls);
     s->k_fresh = want_K;
     return STC_OK;
-}
-
-/* Identity rows/columns for the constrained DOFs (values only). */
-static void apply_constraints(asp_solver *s)
-{
-    const int *Kp = s->K->p, *Ki = s->K->i;
-    double *Kx = s->K->x;
-    s->k_fresh = 0;
-    for (int j = 0; j < s->ndof; j++)
-        for (int k = Kp[j]; k < Kp[j + 1]; k++) {
-            int i = Ki[k];
-            if (s->fixed[i] || s->fixed[j]) Kx[k] = (i == j) ? 1.0 : 0.0;
-        }
 }
 
 /* ---- constraints and contact -------------------------------------------- */
@@ -784,47 +758,6 @@ static double norm_sel(const asp_solver *s, const double *v, int want_fixed)
     return sqrt(a);
 }
 
-/* The Krylov kernels (precond.c) call OpenBLAS from their own threads, on
- * one right-hand side: OpenBLAS itself must run on the calling thread (its
- * threads only spun there: 3D level 0, loaded machine, 55 ms per threaded
- * solve against 13.5 ms serial).  Returns the count to restore. */
-static int blas_serial_begin(void)
-{
-    int bt = openblas_get_num_threads();
-    if (bt != 1) openblas_set_num_threads(1);
-    return bt;
-}
-
-static void blas_serial_end(int bt)
-{
-    if (bt != 1) openblas_set_num_threads(bt);
-}
-
-static stc_status factorize(asp_solver *s, nstat *ns)
-{
-    apply_constraints(s);
-    /* small systems: CHOLMOD's OpenMP regions (4 threads compiled in) and
-     * OpenBLAS threads only spin; max-active-levels 0 serializes them */
-    int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
-    if (s->serial_factor) omp_set_max_active_levels(0), openblas_set_num_threads(1);
-    double t0 = omp_get_wtime();
-    cholmod_factorize(s->K, s->L, &s->cc);
-    s->t_fact += omp_get_wtime() - t0;
-    if (s->serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
-    ns->facts++;
-    s->have_factor = s->cc.status == CHOLMOD_OK;
-    if (s->have_factor) STC_CALL(asp_prec_update(s));
-    else s->fx_ok = 0;
-    s->k_last = 0;
-    if (s->cc.status != CHOLMOD_OK) {
-        ns->why = s->cc.status == CHOLMOD_NOT_POSDEF ? ASP_OUTCOME_NOT_POSDEF
-                                                     : ASP_OUTCOME_SOLVER_FAILED;
-        return STC_FAIL(STC_ESOLVER, "CHOLMOD factorization at δ = %g mm: %s (column %d of %d)",
-                        s->delta, asp_outcome_str(ns->why), (int)s->L->minor, s->ndof);
-    }
-    return STC_OK;
-}
-
 /* Constraint defect c = ubc - u on the fixed DOFs (0 elsewhere); returns |c|. */
 static double constraint_defect(const asp_solver *s, double *c)
 {
@@ -837,12 +770,12 @@ static double constraint_defect(const asp_solver *s, double *c)
 }
 
 /* Newton step for K du = -r with du = c on the fixed DOFs (lifting: the
- * free DOFs get -K_fc c, the linear response to the prescribed jump).
- * When cn > 0, du holds K c (unconstrained K) on entry. */
-static void newton_rhs(const asp_solver *s, cholmod_dense *b, const double *c, double cn,
-                       const double *du)
+ * free DOFs get -K_fc c, the linear response to the prescribed jump), into
+ * the linear solver's right-hand side.  When cn > 0, du holds K c
+ * (unconstrained K) on entry. */
+static void newton_rhs(const asp_solver *s, const double *c, double cn, const double *du)
 {
-    double *bx = b->x;
+    double *bx = asp_ls_rhs(s->ls);
     if (cn > 0.0) {
         for (int i = 0; i < s->ndof; i++) bx[i] = s->fixed[i] ? c[i] : -s->fint[i] - du[i];
     } else {
@@ -850,130 +783,16 @@ static void newton_rhs(const asp_solver *s, cholmod_dense *b, const double *c, d
     }
 }
 
-/* du = A^-1 b with the current factor (cholmod_solve2 reuses the solution
- * and workspace of earlier solves: no allocation per Newton step). */
-static stc_status direct_solve(asp_solver *s, cholmod_dense *b, double *du)
-{
-    STC_CHECK(cholmod_solve2(CHOLMOD_A, s->L, b, NULL, &s->kx, NULL, &s->ky, &s->ke, &s->cc),
-              STC_ESOLVER, "CHOLMOD solve failed (status %d)", s->cc.status);
-    memcpy(du, s->kx->x, (size_t)s->ndof * sizeof *du);
-    return STC_OK;
-}
-
-/* Under the midpoint return the tangent is not symmetric (j2.c).  The
- * matrix factorized, K, is then an SPD approximation (j2's Dp: the tangent
- * of a proportional increment), and the tangent is K + Kd + W (Kd
- * symmetric, W skew).  Factorizing the symmetric part alone made Newton
- * converge linearly (residual ~x0.1 per iteration; axisymmetric level 1 at
- * 60 ωc: 380 Newton iterations against 230 with radial return), and that
- * symmetric part can be indefinite (the coated t/R .025 δ = 30 ramp at
- * 8.5 elements per contact: 20 shifted factorizations, 4 cut-backs,
- * 909 s).  After a direct solve, corrections du += K^-1 (b - (K + Kd + W)
- * du) restore the quadratic rate (243 iterations); each costs a mat-vec
- * and a triangular solve.  They converge while |K^-1 (Kd + W)| < 1; a
- * correction that does not halve the residual is undone and GMRES with the
- * same factor takes over (the Krylov path uses GMRES directly,
- * linear_step).  K is the constrained (identity-row) matrix here, Kd and W
- * their free-free blocks. */
-enum { SKEW_SWEEPS = 3 };
-static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du, double eta);
-static double dot(const double *a, const double *b, int n);
-static int precondition(asp_solver *s, const double *r, double *z);
-static int gmres(asp_solver *s, const double *bx, double *du, double tol, double eta,
-                 int kmax);
-static stc_status krylov_alloc(asp_solver *s);
-static stc_status gmres_alloc(asp_solver *s);
-
-/* r = b - (K + Kd + W) du on the free DOFs (0 on the fixed); returns |r|. */
-static double skew_residual(const asp_solver *s, const double *bx, const double *du, double *r)
-{
-    asp_tangent_matvec(s, du, r, 2);
-    double a = 0.0;
-    for (int i = 0; i < s->ndof; i++) {
-        r[i] = s->fixed[i] ? 0.0 : bx[i] - r[i];
-        a += r[i] * r[i];
-    }
-    return sqrt(a);
-}
-
-/* eta: the Newton step's forcing term for the fallback GMRES (0: the fixed
- * tolerance) */
-static stc_status skew_correct(asp_solver *s, cholmod_dense *b, double *du, double eta)
-{
-    if (!s->skew) return STC_OK;
-    STC_CALL(krylov_alloc(s));
-    int bt = blas_serial_begin();
-    stc_status st = skew_sweeps(s, b, du, eta);
-    blas_serial_end(bt);
-    return st;
-}
-
-static stc_status skew_sweeps(asp_solver *s, cholmod_dense *b, double *du, double eta)
-{
-    int n = s->ndof;
-    double *r = s->skew_r, *z = s->kv + n, *bx = b->x; /* gmres uses kv[0, n) */
-    double rn = skew_residual(s, bx, du, r), tol = 1e-10 * sqrt(dot(bx, bx, n));
-    for (int sweep = 0; sweep < SKEW_SWEEPS && rn > tol; sweep++) {
-        STC_CHECK(!precondition(s, r, z), STC_ESOLVER, "CHOLMOD solve failed (status %d)",
-                  s->cc.status);
-        for (int i = 0; i < n; i++) du[i] += z[i]; /* z is 0 on the fixed DOFs */
-        double r1 = skew_residual(s, bx, du, r);
-        if (r1 < 0.5 * rn) {
-            rn = r1;
-            continue;
-        }
-        /* not contracting: undo, and GMRES preconditioned by the factor */
-        for (int i = 0; i < n; i++) du[i] -= z[i];
-        STC_CALL(gmres_alloc(s));
-        int k = gmres(s, bx, r, 0.0, eta, s->opt.krylov_max);
-        if (k >= 0) memcpy(du, r, (size_t)n * sizeof *du);
-        break; /* else: keep the best correction so far */
-    }
-    return STC_OK;
-}
-
-static stc_status newton_solve(asp_solver *s, cholmod_dense *b, const double *c, double cn,
-                               double *du)
-{
-    newton_rhs(s, b, c, cn, du);
-    STC_CALL(direct_solve(s, b, du));
-    return skew_correct(s, b, du, 0.0);
-}
-
-/* ---- Newton-Krylov (speed3d) ----------------------------------------------
- * The tangent is assembled every iteration anyway (the element loop is
- * 5-13 % of a 3D iteration), but a numeric Cholesky factorization costs
- * ~50 triangular solves (3D level 0: 0.63 s against 0.012 s).  So a Newton
- * step is solved by the preconditioned conjugate gradient on the free DOFs
- * (Saad, Iterative Methods for Sparse Linear Systems, 2nd ed. 2003,
- * alg. 9.1) with the LAST factor as the preconditioner (Newton-Krylov:
- * Knoll & Keyes, J. Comput. Phys. 193 (2004) 357).  The factor may belong
- * to an earlier tangent and an earlier active set: any SPD matrix is a
- * valid preconditioner, its distance from the current one only sets the
- * iteration count; past krylov_max iterations the tangent is refactorized
- * (and the direct solve used).  The constrained K is SPD (identity rows and
- * columns on the fixed DOFs), and the fixed DOFs are exactly the prescribed
- * jump c: PCG works on the free block only, with the preconditioner
- * projected onto it (a principal block of an SPD inverse is SPD). */
-
-static double dot(const double *a, const double *b, int n)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; i++) s += a[i] * b[i];
-    return s;
-}
-
-/* PCG tolerance: the smaller of an absolute 1e-3 rtol |reaction|, the
+/* Krylov tolerance: the smaller of an absolute 1e-3 rtol |reaction|, the
  * smallest residual the tests of newton() distinguish, so the iterates
  * pass the same tests as with the exact solve, and 1e-6 of the step's
- * right-hand side, so a step near convergence still lowers the residual
- * (the line search needs it).  Measured on the coated stick axisymmetric
- * case δ = 10 ωc (PCG forced): the same 98 Newton iterations and answers
- * as factorizing; a relative 1e-2 moved P by 1 % (the stick positions
- * come from the iterates), and a floor at 1e-2 rtol |reaction| cost 25 %
- * more Newton iterations and 50 % more line-search evaluations. */
+ * right-hand side (linsolve.c), so a step near convergence still lowers
+ * the residual (the line search needs it).  Measured on the coated stick
+ * axisymmetric case δ = 10 ωc (PCG forced): the same 98 Newton iterations
+ * and answers as factorizing; a relative 1e-2 moved P by 1 % (the stick
+ * positions come from the iterates), and a floor at 1e-2 rtol |reaction|
+ * cost 25 % more Newton iterations and 50 % more line-search evaluations. */
 #define KRYLOV_ABS 1e-3
-#define KRYLOV_ETA 1e-6
 
 /* Inexact Newton: the Krylov solve of a Newton step need only be as
  * accurate as the step's linear model is useful, which it is to about the
@@ -999,205 +818,36 @@ static double forcing(double ratio)
     return fmin(KRYLOV_EW_GAMMA * ratio * ratio, KRYLOV_EW_MAX);
 }
 
-/* The Krylov stopping tolerance of pcg and gmres for a start residual of
- * norm r0: the caller's absolute tol (0: none yet, relative only) capped
- * at KRYLOV_ETA r0, then loosened to the forcing term eta r0. */
-static double krylov_tol(double tol, double eta, double r0)
+/* A failed factorization in words, at the converged δ. */
+static stc_status linear_failed(const asp_solver *s, nstat *ns, stc_status st)
 {
-    double rel = KRYLOV_ETA * r0;
-    return fmax(tol > 0.0 ? fmin(tol, rel) : rel, eta * r0);
+    asp_ls_stats ls;
+    asp_ls_get_stats(s->ls, &ls);
+    if (ls.factor != ASP_OUTCOME_NOT_POSDEF && ls.factor != ASP_OUTCOME_SOLVER_FAILED) return st;
+    ns->why = ls.factor;
+    return STC_FAIL(STC_ESOLVER, "CHOLMOD factorization at δ = %g mm: %s (column %d of %d)",
+                    s->delta, asp_outcome_str(ls.factor), ls.minor, s->ndof);
 }
 
-/* GMRES keeps at most this many basis vectors (krylov_max above it: the
- * step is refactorized after KRYLOV_MAX_CAP iterations) */
-#define KRYLOV_MAX_CAP 100
-
-/* z = P K^-1 P r with the stored factor, its float copy where there is one
- * (P: zero the fixed DOFs). */
-static int precondition(asp_solver *s, const double *r, double *z)
+/* One Newton step at a fresh tangent (linsolve.c: Krylov with the last
+ * factor, or factorize and solve; K gets the identity rows).  When cn > 0,
+ * du holds K c (unconstrained K) on entry, as for newton_solve. */
+static stc_status linear_step(asp_solver *s, nstat *ns, const double *c, double cn, double *du,
+                              double tol, double eta)
 {
-    if (s->fx_ok) {
-        asp_prec_solve(s, r, z);
-        for (int i = 0; i < s->ndof; i++)
-            if (s->fixed[i]) z[i] = 0.0;
-        return 0;
-    }
-    memcpy(s->kb->x, r, (size_t)s->ndof * sizeof *r);
-    if (!cholmod_solve2(CHOLMOD_A, s->L, s->kb, NULL, &s->kx, NULL, &s->ky, &s->ke, &s->cc))
-        return -1;
-    const double *x = s->kx->x;
-    for (int i = 0; i < s->ndof; i++) z[i] = s->fixed[i] ? 0.0 : x[i];
-    return 0;
+    newton_rhs(s, c, cn, du);
+    s->k_fresh = 0;
+    int f;
+    stc_status st = asp_ls_step(s->ls, du, tol, eta, &f);
+    ns->facts += f;
+    return st == STC_OK || !f ? st : linear_failed(s, ns, st);
 }
 
-/* PCG for A du = b (A: constrained tangent in s->K, b in bx): du = b on the
- * fixed DOFs, the free block to |r| <= krylov_tol(tol, eta, |r0|) (eta:
- * the forcing term, 0 for none).  Returns the iterations,
- * or -1 when it needs more than kmax (or the preconditioner failed). */
-static int pcg(asp_solver *s, const double *bx, double *du, double tol, double eta, int kmax)
+/* A Newton step with the factor of an earlier one (newton_reuse). */
+static stc_status newton_solve(asp_solver *s, const double *c, double cn, double *du)
 {
-    int n = s->ndof;
-    double *r = s->kv, *z = r + n, *p = z + n, *q = p + n;
-    for (int i = 0; i < n; i++) r[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
-    double rz = 0.0;
-    tol = krylov_tol(tol, eta, sqrt(dot(r, r, n)));
-    for (int k = 0;; k++) {
-        if (sqrt(dot(r, r, n)) <= tol) {
-            for (int i = 0; i < n; i++)
-                if (s->fixed[i]) du[i] = bx[i];
-            return k;
-        }
-        if (k == kmax || precondition(s, r, z)) return -1;
-        double rz1 = dot(r, z, n), beta = k ? rz1 / rz : 0.0;
-        rz = rz1;
-        /* (the first direction is z itself: p holds no data yet, and 0 times
-         * a stale NaN would not be 0) */
-        for (int i = 0; i < n; i++) p[i] = k ? z[i] + beta * p[i] : z[i];
-        asp_tangent_matvec(s, p, q, 0); /* zero on the fixed DOFs: p is */
-        double pq = dot(p, q, n), alpha = rz / pq;
-        if (!(pq > 0.0) || !isfinite(alpha)) return -1;
-        for (int i = 0; i < n; i++) du[i] += alpha * p[i], r[i] -= alpha * q[i];
-    }
-}
-
-/* GMRES for the same system when the tangent has a skew part (midpoint
- * return, j2.c), PCG's contract: right-preconditioned restarted GMRES, one
- * cycle of at most kmax iterations (Saad 2003, alg. 9.5, with Givens
- * rotations; modified Gram-Schmidt).  Right preconditioning keeps the
- * true residual, which is what tol bounds.  Returns the iterations, or -1
- * when kmax do not reach tol (or the preconditioner failed). */
-static int gmres(asp_solver *s, const double *bx, double *du, double tol, double eta,
-                 int kmax)
-{
-    int n = s->ndof, m = kmax < KRYLOV_MAX_CAP ? kmax : KRYLOV_MAX_CAP;
-    double *V = s->gv, *w = V + (size_t)(m + 1) * n, *z = s->kv;
-    double H[(KRYLOV_MAX_CAP + 1) * KRYLOV_MAX_CAP], cs[KRYLOV_MAX_CAP], sn[KRYLOV_MAX_CAP];
-    double g[KRYLOV_MAX_CAP + 1], y[KRYLOV_MAX_CAP];
-    for (int i = 0; i < n; i++) V[i] = s->fixed[i] ? 0.0 : bx[i], du[i] = 0.0;
-    double beta = sqrt(dot(V, V, n));
-    tol = krylov_tol(tol, eta, beta);
-    int k = 0;
-    if (beta > tol) {
-        for (int i = 0; i < n; i++) V[i] /= beta;
-        g[0] = beta;
-        for (;; k++) {
-            if (k == m) return -1;
-            double *vk = V + (size_t)k * n, *vn = V + (size_t)(k + 1) * n;
-            if (precondition(s, vk, z)) return -1;
-            asp_tangent_matvec(s, z, w, 2);
-            for (int i = 0; i < n; i++)
-                if (s->fixed[i]) w[i] = 0.0;
-            for (int j = 0; j <= k; j++) {
-                const double *vj = V + (size_t)j * n;
-                double h = dot(w, vj, n);
-                H[j * m + k] = h;
-                for (int i = 0; i < n; i++) w[i] -= h * vj[i];
-            }
-            double hn = sqrt(dot(w, w, n));
-            if (!isfinite(hn)) return -1;
-            for (int i = 0; i < n; i++) vn[i] = hn > 0.0 ? w[i] / hn : 0.0;
-            for (int j = 0; j < k; j++) { /* earlier rotations */
-                double a = H[j * m + k], b = H[(j + 1) * m + k];
-                H[j * m + k] = cs[j] * a + sn[j] * b;
-                H[(j + 1) * m + k] = -sn[j] * a + cs[j] * b;
-            }
-            double a = H[k * m + k], r = hypot(a, hn);
-            if (!(r > 0.0)) return -1;
-            cs[k] = a / r, sn[k] = hn / r;
-            H[k * m + k] = r;
-            g[k + 1] = -sn[k] * g[k];
-            g[k] *= cs[k];
-            if (fabs(g[k + 1]) <= tol || hn == 0.0) {
-                k++;
-                break;
-            }
-        }
-        for (int j = k - 1; j >= 0; j--) { /* H y = g, upper triangular */
-            double v = g[j];
-            for (int l = j + 1; l < k; l++) v -= H[j * m + l] * y[l];
-            y[j] = v / H[j * m + j];
-        }
-        for (int i = 0; i < n; i++) w[i] = 0.0;
-        for (int j = 0; j < k; j++) {
-            const double *vj = V + (size_t)j * n;
-            for (int i = 0; i < n; i++) w[i] += y[j] * vj[i];
-        }
-        if (precondition(s, w, z)) return -1;
-        for (int i = 0; i < n; i++) du[i] = z[i];
-    }
-    for (int i = 0; i < n; i++)
-        if (s->fixed[i]) du[i] = bx[i];
-    return k;
-}
-
-/* GMRES basis, allocated the first time a tangent has a skew part. */
-static stc_status gmres_alloc(asp_solver *s)
-{
-    if (s->gv) return STC_OK;
-    int m = s->opt.krylov_max < KRYLOV_MAX_CAP ? s->opt.krylov_max : KRYLOV_MAX_CAP;
-    s->gv = malloc((size_t)(m + 2) * (size_t)s->ndof * sizeof *s->gv);
-    STC_CHECK(s->gv, STC_ENOMEM, "solver: out of memory for the GMRES basis");
-    return STC_OK;
-}
-
-static stc_status krylov_alloc(asp_solver *s)
-{
-    if (s->kv) return STC_OK;
-    size_t n = (size_t)s->ndof;
-    s->kv = calloc(4 * n, sizeof *s->kv);
-    s->kb = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
-    STC_CHECK(s->kv && s->kb, STC_ENOMEM, "solver: out of memory for the PCG vectors");
-    return STC_OK;
-}
-
-/* PCG pays where a factorization costs many PCG iterations (one solve and
- * one mat-vec each): the flop ratio fl / (nnz(L) + nnz(K)) of the analysis
- * is ~700 on the 3D level-0 half model, where the measured time ratio is
- * ~50, but 60-180 on the axisymmetric meshes (levels 1-3), where a
- * factorization costs a few PCG iterations and PCG (~15 per step measured
- * at level 1) was slower than factorizing every step; 320 lies between. */
-static int krylov_pays(const asp_solver *s)
-{
-    if (s->opt.krylov != ASP_KRYLOV_AUTO) return s->opt.krylov == ASP_KRYLOV_ON;
-    double nnzk = ((const int *)s->K->p)[s->ndof];
-    return s->cc.fl > 320.0 * (s->cc.lnz + nnzk);
-}
-
-/* One Newton step at a fresh tangent: PCG with the last factor when there
- * is one (tolerance tol on the free-DOF residual, loosened to the forcing
- * term eta, see pcg), else, or when PCG needs more than krylov_max
- * iterations, factorize and solve directly.  When
- * cn > 0, du holds K c (unconstrained K) on entry, as for newton_solve. */
-static stc_status linear_step(asp_solver *s, nstat *ns, cholmod_dense *b, const double *c,
-                              double cn, double *du, double tol, double eta)
-{
-    apply_constraints(s);
-    newton_rhs(s, b, c, cn, du);
-    /* refactorize once PCG needs half its budget: the tangent has drifted
-     * (plastic zone, contact) and the count climbs from there (3D level 0,
-     * curve to 30 ωc: 2 factorizations + 1754 PCG iterations with the hard
-     * limit only, 11 + 939 with this rule; a factorization costs ~45).
-     * Budget 50, not 30, since the Krylov kernels run on two threads (a
-     * factorization now costs ~60 iterations; idle machine, whole runs):
-     * graded 3D curve n = 4 20.9 -> 17.2 s, WSP 3 / 12 ωc shear 12.2 / 15.5
-     * -> 10.6 / 13.8 s, coated stick δ = 10 shear 43.0 -> 37.7 s
-     * (docs/design.md §3.5, §3.6) */
-    if (s->have_factor && krylov_pays(s) && 2 * s->k_last <= s->opt.krylov_max) {
-        STC_CALL(krylov_alloc(s));
-        if (s->skew) STC_CALL(gmres_alloc(s));
-        int bt = blas_serial_begin();
-        double t0 = omp_get_wtime();
-        int k = s->skew ? gmres(s, b->x, du, tol, eta, s->opt.krylov_max)
-                        : pcg(s, b->x, du, tol, eta, s->opt.krylov_max);
-        s->t_pcg += omp_get_wtime() - t0;
-        blas_serial_end(bt);
-        s->k_last = k;
-        s->n_kits += k >= 0 ? k : s->opt.krylov_max;
-        if (k >= 0) return STC_OK;
-    }
-    STC_CALL(factorize(s, ns));
-    STC_CALL(direct_solve(s, b, du));
-    return skew_correct(s, b, du, eta);
+    newton_rhs(s, c, cn, du);
+    return asp_ls_resolve(s->ls, du);
 }
 
 /* Iterations without halving the best residual before Newton gives up.
@@ -1228,7 +878,7 @@ static stc_status newton_exit(nstat *ns, asp_outcome why, const char *fmt, ...)
 /* Newton with backtracking line search for the current constraints.  With
  * need_asm = 0 the caller guarantees fint (and, if k_fresh, K) belong to u. */
 static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, double *u0,
-                         cholmod_dense *b, double loose, int need_asm)
+                         double loose, int need_asm)
 {
     const asp_options *o = &s->opt;
     double rtol = o->rtol * loose, utol = o->utol * loose;
@@ -1272,14 +922,13 @@ static stc_status newton(asp_solver *s, double delta, nstat *ns, double *du, dou
                                rn / fmax(ref, 1e-300), o->rtol);
         if (age >= o->newton_reuse || cn > 0.0) {
             STC_CHECK(s->k_fresh, STC_ESOLVER, "solver: stale stiffness at δ = %g mm", delta);
-            if (cn > 0.0) { /* before the identity rows */
-                asp_tangent_matvec(s, c, du, 1);
-            }
+            if (cn > 0.0) /* before the identity rows */
+                asp_ls_matvec(s->ls, c, du, ASP_LS_TANGENT);
             double eta = cn > 0.0 ? 0.0 : r_prev > 0.0 ? forcing(rn / r_prev) : KRYLOV_EW_MAX;
-            STC_CALL(linear_step(s, ns, b, c, cn, du, KRYLOV_ABS * o->rtol * ref, eta));
+            STC_CALL(linear_step(s, ns, c, cn, du, KRYLOV_ABS * o->rtol * ref, eta));
             age = 0;
         } else {
-            STC_CALL(newton_solve(s, b, c, cn, du));
+            STC_CALL(newton_solve(s, c, cn, du));
         }
         age++;
         ns->iters++;
@@ -1315,7 +964,6 @@ static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
 {
     int n = s->ndof;
     double *du = s->du_scr, *u0 = s->u0_scr;
-    cholmod_dense *b = s->b_scr;
     stc_status st = STC_OK;
     for (int i = 0; i < n; i++) s->u[i] = s->u_conv[i] + pred * s->du_last[i];
     /* nodes the predicted surface pushes through the flat touch now, all at
@@ -1337,11 +985,11 @@ static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
         /* settle the active set on loosely converged states first, then
          * converge fully and check it once more */
         set_dirichlet(s, delta);
-        STC_CALL_GOTO(newton(s, delta, ns, du, u0, b, loose, pass == 0), st, done);
+        STC_CALL_GOTO(newton(s, delta, ns, du, u0, loose, pass == 0), st, done);
         int ch = update_active_set(s, delta, 0);
         if (ch == 0 && loose > 1.0) {
             loose = 1.0;
-            STC_CALL_GOTO(newton(s, delta, ns, du, u0, b, loose, 0), st, done);
+            STC_CALL_GOTO(newton(s, delta, ns, du, u0, loose, 0), st, done);
             ch = update_active_set(s, delta, 0);
         }
         if (ch == 0) break;
@@ -1385,12 +1033,9 @@ static stc_status alloc_state(asp_solver *s)
     s->fixed = calloc(n, 1);
     s->ubc = calloc(n, sizeof *s->u), s->cvec = calloc(n, sizeof *s->u);
     s->du_scr = malloc(n * sizeof *s->u), s->u0_scr = malloc(n * sizeof *s->u);
-    s->b_scr = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
-    s->skew_r = malloc(n * sizeof *s->u);
     s->eplastic = calloc((size_t)s->mesh->nelem, 1);
     STC_CHECK(s->u && s->u_conv && s->du_last && s->fint && s->sig && s->st_old && s->st_new &&
-                  s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->b_scr &&
-                  s->skew_r && s->eplastic,
+                  s->fixed && s->ubc && s->cvec && s->du_scr && s->u0_scr && s->eplastic,
               STC_ENOMEM, "solver: out of memory for %zu DOFs", n);
     return STC_OK;
 }
@@ -1486,6 +1131,18 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     return STC_OK;
 }
 
+/* The linear solver on the pattern of the mesh (linsolve.c); small:
+ * factorize on one thread (see asp_solver_create). */
+static stc_status make_linsolve(asp_solver *s, int small)
+{
+    int *Kp = NULL, *Ki = NULL;
+    STC_CALL(build_pattern(s, &Kp, &Ki));
+    asp_ls_options lo = {s->opt.krylov, s->opt.krylov_max, s->nthr, small, s->dim == 3};
+    stc_status st = asp_ls_create(s->ndof, Kp, Ki, s->fixed, &lo, &s->ls);
+    free(Kp), free(Ki);
+    return st;
+}
+
 stc_status asp_solver_create(const stc_params *p, const asp_options *o, double delta_max,
                              asp_solver **out)
 {
@@ -1497,15 +1154,11 @@ stc_status asp_solver_create(const stc_params *p, const asp_options *o, double d
     if (o) s->opt = *o;
     else asp_options_default(&s->opt);
     stc_status st;
-    cholmod_start(&s->cc);
-    s->cc.print = 0;
-    s->cc.error_handler = NULL;
     STC_CALL_GOTO(check_options(&s->opt), st, fail);
     STC_CHECK_GOTO(delta_max > 0.0 && delta_max <= 0.01 * p->R, st, fail, STC_EINVAL,
                    "delta = %g mm: must be in (0, 0.01 R] (small-strain model)", delta_max);
     s->delta_max = delta_max;
     STC_CALL_GOTO(make_mesh(s, delta_max), st, fail);
-    STC_CALL_GOTO(build_pattern(s), st, fail);
     STC_CALL_GOTO(setup_candidates(s), st, fail);
     STC_CALL_GOTO(alloc_state(s), st, fail);
     /* Threads: measured on the 4.6k-DOF axisymmetric level-1 mesh, a load
@@ -1516,28 +1169,8 @@ stc_status asp_solver_create(const stc_params *p, const asp_options *o, double d
     int small = s->dim == 2 && s->ndof < ASP_SERIAL_MAX_DOF;
     s->nthr = s->opt.threads > 0 ? s->opt.threads : small ? 1 : omp_get_max_threads();
     STC_CALL_GOTO(build_colors(s), st, fail);
-    STC_CALL_GOTO(asp_matvec_setup(s), st, fail);
-    s->serial_factor = small;
-    /* 3D: METIS nested dissection (the better of it and AMD is kept):
-     * on the level-0 half model (24k DOFs) it cut the factor from 1.9e7 to
-     * 1.2e7 nonzeros and the flops 3x (3.4 s -> 2.2 s for a Hertz point);
-     * CHOLMOD's default (AMD, METIS only if the fill is extreme) kept AMD */
-    if (s->dim == 3) {
-        s->cc.nmethods = 2;
-        s->cc.method[0].ordering = CHOLMOD_METIS;
-        s->cc.method[1].ordering = CHOLMOD_AMD;
-        /* supernodes amalgamated twice as far as CHOLMOD's defaults (4, 16,
-         * 48 columns; 0.8, 0.1, 0.05 zeros): fewer, larger dense blocks for
-         * OpenBLAS.  Measured, two runs each, idle machine: graded curve
-         * n = 4 18.2 -> 17.6 s, WSP 3 / 12 ωc shear 11.8 / 14.0 -> 10.8 /
-         * 13.0 s, coated stick δ = 10 shear 40.3 s either way; answers equal
-         * to all printed digits (docs/design.md §3.5) */
-        s->cc.nrelax[0] = 8, s->cc.nrelax[1] = 32, s->cc.nrelax[2] = 96;
-        s->cc.zrelax[0] = 0.8, s->cc.zrelax[1] = 0.2, s->cc.zrelax[2] = 0.1;
-    }
-    s->L = cholmod_analyze(s->K, &s->cc);
-    STC_CHECK_GOTO(s->L, st, fail, STC_ESOLVER, "CHOLMOD analyze failed (status %d)",
-                   s->cc.status);
+    STC_CALL_GOTO(make_linsolve(s, small), st, fail);
+    STC_CALL_GOTO(build_scatter_map(s), st, fail);
     for (int k = 0; k < 2; k++) s->yt[k].y.reached = 0;
     *out = s;
     return STC_OK;
@@ -1550,18 +1183,11 @@ void asp_solver_destroy(asp_solver **sp)
 {
     if (!sp || !*sp) return;
     asp_solver *s = *sp;
-    if (s->L) cholmod_free_factor(&s->L, &s->cc);
-    if (s->K) cholmod_free_sparse(&s->K, &s->cc);
-    free(s->kv), cholmod_free_dense(&s->kb, &s->cc), cholmod_free_dense(&s->kx, &s->cc);
-    free(s->skew_r);
-    free(s->du_scr), free(s->u0_scr), cholmod_free_dense(&s->b_scr, &s->cc);
-    cholmod_free_dense(&s->ky, &s->cc), cholmod_free_dense(&s->ke, &s->cc);
-    cholmod_finish(&s->cc);
+    asp_ls_destroy(&s->ls);
+    free(s->du_scr), free(s->u0_scr);
     asp_mesh_destroy(&s->mesh);
     free(s->emap), free(s->hidx), free(s->hoff), free(s->hpos);
-    free(s->Kk), free(s->Kd), free(s->sk_k), free(s->sk_j), free(s->gv);
     free(s->cptr), free(s->celem);
-    asp_prec_free(s);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
     free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
     free(s->kel), free(s->kglob), free(s->eplastic);
@@ -1582,9 +1208,11 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->a_max = s->a_max;
     info->elements_per_contact = s->n_contact;
     info->a_min = s->a_min;
+    asp_ls_stats ls;
+    asp_ls_get_stats(s->ls, &ls);
     info->time_assembly_s = s->t_asm;
-    info->time_factorize_s = s->t_fact;
-    info->time_pcg_s = s->t_pcg;
+    info->time_factorize_s = ls.time_factorize_s;
+    info->time_pcg_s = ls.time_krylov_s;
 }
 
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y)
@@ -1749,7 +1377,9 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
     free(cs0), free(cst0);
     s->pt.wall_s += omp_get_wtime() - t0;
     s->pt.assemblies = s->n_asm;
-    s->pt.krylov_iterations = s->n_kits;
+    asp_ls_stats ls;
+    asp_ls_get_stats(s->ls, &ls);
+    s->pt.krylov_iterations = ls.krylov_iterations;
     if (out) *out = s->pt;
     return st;
 }

@@ -2,9 +2,8 @@
 #ifndef STICTION_SOLVER_IMPL_H
 #define STICTION_SOLVER_IMPL_H
 
-#include <cholmod.h>
-
 #include "fe.h"
+#include "linsolve.h"
 #include "stiction/asperity.h"
 #include "tangential.h"
 
@@ -35,20 +34,6 @@ typedef struct asp_foot_line {
 
 enum { ASP_FOOT_MAXLINES = 96 }; /* 32 per direction */
 
-/* OpenBLAS extension (cblas.h of OpenBLAS is not on the default include
- * path here); OpenBLAS is the one BLAS the project links.  solver.c
- * serializes small factorizations with it, placements.c runs concurrent
- * members on one BLAS thread each. */
-void openblas_set_num_threads(int num_threads);
-int openblas_get_num_threads(void);
-/* Single-precision BLAS, Fortran interface (solver.c's float preconditioner;
- * the C interface's header would pull in complex.h, whose I clashes) */
-void strsv_(const char *uplo, const char *trans, const char *diag, const int *n,
-            const float *a, const int *lda, float *x, const int *incx);
-void sgemv_(const char *trans, const int *m, const int *n, const float *alpha,
-            const float *a, const int *lda, const float *x, const int *incx,
-            const float *beta, float *y, const int *incy);
-
 struct asp_solver {
     stc_params par;
     asp_options opt;
@@ -60,44 +45,20 @@ struct asp_solver {
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
     double n_contact;     /* elements across a_max (h = a_max / n_contact) */
 
-    cholmod_common cc;
-    cholmod_sparse *K;    /* upper triangle, fixed pattern: the matrix factorized, the
-                             tangent where it is symmetric, else an SPD approximation */
-    double *Kk;           /* [nnz(K)] skew part of the tangent (K's pattern, upper entries;
-                             the midpoint return's, j2.c); all zero under radial return */
-    double *Kd;           /* [nnz(K)] symmetric part of the tangent minus K (same) */
-    int skew;             /* Kk or Kd is not zero: K is not the tangent */
-    int *sk_k, *sk_j, nsk; /* the entries k (in column j) where Kk or Kd is not zero */
+    asp_linsolve *ls;     /* the linear solver (linsolve.c) on K's fixed pattern */
     int ncolor, *cptr, *celem; /* element colours (no shared node within one):
                                   celem[cptr[c] .. cptr[c+1]); ncolor 0: none */
-    cholmod_factor *L;    /* analysed once per mesh */
     int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
     int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
     int *hoff;            /* [nelem] start in hpos of an element that uses a hanging
                              node (scatter_hang), else -1; NULL if none */
     int *hpos;            /* positions in K->x of those elements' T^T Ke T terms */
 
-    /* linear algebra (speed3d) */
-    int have_factor;      /* L holds a numeric factor (of an earlier tangent) */
-    cholmod_dense *kx, *ky, *ke; /* cholmod_solve2 solution and workspace */
-    cholmod_dense *kb;    /* PCG: preconditioner right-hand side */
-    double *kv;           /* [4][ndof] PCG vectors r, z, p, q (lazily allocated) */
-    double *gv;           /* GMRES: [krylov_max + 2][ndof] basis and work (lazily) */
-    float *fx;            /* single-precision copy of the supernodal factor's values */
-    size_t fx_size;       /* its allocated length; fx_ok: it matches the factor */
-    int fx_ok;
-    float *fy;            /* [ndof] its solve's work vector */
-    struct asp_prec *prec; /* the float solve's plan (precond.c), NULL until made */
-    struct asp_mvplan *mv; /* the mat-vec's plan (precond.c) */
-    double *skew_r;       /* [ndof] residual of the skew corrections */
-    int n_kits;           /* PCG iterations (cumulative) */
-    int k_last;           /* PCG iterations of the last step (-1: failed) */
-    double t_asm, t_fact, t_pcg; /* cumulative wall time: element loop, factorizations, PCG, s */
+    double t_asm;         /* cumulative wall time of the element loops, s */
     int level;            /* mesh level in use (opt.mesh_level resolved) */
 
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
     double *du_scr, *u0_scr;      /* [ndof] scratch of increment(): step, line-search base */
-    cholmod_dense *b_scr;         /* [ndof] scratch of increment(): Newton right-hand side */
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
@@ -108,7 +69,6 @@ struct asp_solver {
     double *ubc;                  /* [ndof] prescribed values of the fixed DOFs */
     double *cvec;                 /* [ndof] scratch: constraint defect */
     int nthr;                     /* assembly threads */
-    int serial_factor;            /* run CHOLMOD and OpenBLAS on one thread */
     int k_fresh;                  /* K holds the unconstrained tangent at u */
 
     int ncand;                    /* contact candidates, sorted by distance from the axis */
@@ -170,29 +130,9 @@ stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
 /* mesh.c: asp_options.surface_layers with -1 (automatic) resolved. */
 int asp_surface_layers(const asp_options *o);
 
-/* Position of the upper-triangle entry (i, j), i <= j, in K->x; -1 if not
- * in the pattern (solver.c). */
-int asp_kpos(const cholmod_sparse *K, int i, int j);
 /* Displacement of node n from the DOF vector u (dim components into out):
  * a hanging node's is the weighted average of its masters' (solver.c). */
 void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
-
-/* precond.c: the Krylov kernels on s->nthr threads (OpenBLAS on one thread:
- * the caller sets it).  asp_prec_update copies the factor to float after
- * each factorization (fx_ok: it succeeded for a supernodal LL' factor);
- * asp_prec_solve: out = K^-1 b with it; asp_matvec_setup once per pattern,
- * then asp_tangent_matvec: y = K x (skew 0), (K + Kd + W) x (1), or with
- * the free-free block of Kd + W (2); asp_prec_free frees both plans and
- * the float factor. */
-stc_status asp_prec_update(asp_solver *s);
-void asp_prec_solve(const asp_solver *s, const double *b, double *out);
-stc_status asp_matvec_setup(asp_solver *s);
-void asp_tangent_matvec(const asp_solver *s, const double *x, double *y, int skew);
-void asp_prec_free(asp_solver *s);
-/* The solve plan: parts that got subtrees (0: no plan, one part runs all),
- * the factor entries of the top and of each part (part_w: ASP_PREC_PARTS). */
-enum { ASP_PREC_PARTS = 2 };
-int asp_prec_parts(const asp_solver *s, double *top_w, double *part_w);
 
 /* asp_contact.c: results at the converged state; the contact footprint of
  * the tangential step (shear.c). */

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "linsolve_impl.h"
 #include "solver_impl.h"
 #include "stiction/formulas.h"
 
@@ -60,10 +61,11 @@ static void test_precond(void **state)
 {
     (void)state;
     asp_solver *s = loaded_3d();
+    asp_linsolve *ls = s->ls;
     int n = s->ndof;
-    assert_true(s->fx_ok);
+    assert_true(ls->fx_ok);
     double top, w[ASP_PREC_PARTS];
-    int np = asp_prec_parts(s, &top, w);
+    int np = asp_prec_parts(ls, &top, w);
     double all = top + w[0] + w[1];
     printf("# precond: %d DOFs, factor entries: top %.1f %%, parts %.1f / %.1f %%\n", n,
            100 * top / all, 100 * w[0] / all, 100 * w[1] / all);
@@ -76,33 +78,33 @@ static void test_precond(void **state)
     double *r = malloc(4 * (size_t)n * sizeof *r), *z1 = r + n, *z2 = z1 + n, *zd = z2 + n;
     assert_non_null(r);
     fill(s, r);
-    s->nthr = 1;
-    asp_prec_solve(s, r, z1);
-    s->nthr = 2;
-    asp_prec_solve(s, r, z2);
+    ls->nthr = 1;
+    asp_prec_solve(ls, r, z1);
+    ls->nthr = 2;
+    asp_prec_solve(ls, r, z2);
     assert_memory_equal(z1, z2, (size_t)n * sizeof *z1);
-    cholmod_dense *b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &s->cc);
+    cholmod_dense *b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &ls->cc);
     assert_non_null(b);
     memcpy(b->x, r, (size_t)n * sizeof *r);
-    cholmod_dense *x = cholmod_solve(CHOLMOD_A, s->L, b, &s->cc);
+    cholmod_dense *x = cholmod_solve(CHOLMOD_A, ls->L, b, &ls->cc);
     assert_non_null(x);
     memcpy(zd, x->x, (size_t)n * sizeof *zd);
     double es = rel_diff(z1, zd, n);
-    cholmod_free_dense(&x, &s->cc), cholmod_free_dense(&b, &s->cc);
+    cholmod_free_dense(&x, &ls->cc), cholmod_free_dense(&b, &ls->cc);
 
     /* mat-vec against the plain upper-triangle product */
-    const int *Kp = s->K->p, *Ki = s->K->i;
-    const double *Kx = s->K->x;
+    const int *Kp = ls->K->p, *Ki = ls->K->i;
+    const double *Kx = ls->K->x;
     memset(zd, 0, (size_t)n * sizeof *zd);
     for (int j = 0; j < n; j++)
         for (int k = Kp[j]; k < Kp[j + 1]; k++) {
             zd[Ki[k]] += Kx[k] * r[j];
             if (Ki[k] != j) zd[j] += Kx[k] * r[Ki[k]];
         }
-    s->nthr = 1;
-    asp_tangent_matvec(s, r, z1, 0);
-    s->nthr = 2;
-    asp_tangent_matvec(s, r, z2, 0);
+    ls->nthr = 1;
+    asp_tangent_matvec(ls, r, z1, ASP_LS_K);
+    ls->nthr = 2;
+    asp_tangent_matvec(ls, r, z2, ASP_LS_K);
     assert_memory_equal(z1, z2, (size_t)n * sizeof *z1);
     double em = rel_diff(z1, zd, n);
     printf("# precond: float solve vs CHOLMOD %.1e, mat-vec vs plain %.1e\n", es, em);
