@@ -34,6 +34,8 @@ typedef struct asp_foot_line {
 
 enum { ASP_FOOT_MAXLINES = 96 }; /* 32 per direction */
 
+typedef struct asp_asm asp_asm;
+
 struct asp_solver {
     stc_params par;
     asp_options opt;
@@ -46,15 +48,8 @@ struct asp_solver {
     double n_contact;     /* elements across a_max (h = a_max / n_contact) */
 
     asp_linsolve *ls;     /* the linear solver (linsolve.c) on K's fixed pattern */
-    int ncolor, *cptr, *celem; /* element colours (no shared node within one):
-                                  celem[cptr[c] .. cptr[c+1]); ncolor 0: none */
-    int *emap;            /* [nelem][nde][nde] position in K->x or -1 */
-    int *hidx;            /* [nnode] hanging-node index (mesh->hang) or -1; NULL if none */
-    int *hoff;            /* [nelem] start in hpos of an element that uses a hanging
-                             node (scatter_hang), else -1; NULL if none */
-    int *hpos;            /* positions in K->x of those elements' T^T Ke T terms */
-
-    double t_asm;         /* cumulative wall time of the element loops, s */
+    asp_asm *as;          /* assembly: pattern, scatter maps, colours (assemble.c) */
+    int nthr;             /* threads of the element loop and the Krylov kernels */
     int level;            /* mesh level in use (opt.mesh_level resolved) */
 
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
@@ -62,13 +57,9 @@ struct asp_solver {
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
-    double *kel;          /* [nelem][nde (nde + 1) / 2] elastic Ke, upper triangles */
-    double *kglob;        /* [nnz(K)] the elastic K (build_elastic_K), NULL until built */
-    unsigned char *eplastic; /* [nelem] plastic at the last assembly with K */
     unsigned char *fixed;         /* [ndof] Dirichlet flag */
     double *ubc;                  /* [ndof] prescribed values of the fixed DOFs */
     double *cvec;                 /* [ndof] scratch: constraint defect */
-    int nthr;                     /* assembly threads */
     int k_fresh;                  /* K holds the unconstrained tangent at u */
 
     int ncand;                    /* contact candidates, sorted by distance from the axis */
@@ -84,7 +75,6 @@ struct asp_solver {
     double t_start;
     double *hd, *hP;              /* history of converged increments: δ, P */
     int nh, caph;
-    int n_asm;                    /* element-loop evaluations (cumulative) */
 
     /* tangential step (shear.c) */
     int shear;                    /* 1 during the ramp: contact nodes keep u_z only,
@@ -130,6 +120,18 @@ stc_status asp_mesh_axisym_nl(const asp_mesh_spec *spec, double a_min, double n,
 /* mesh.c: asp_options.surface_layers with -1 (automatic) resolved. */
 int asp_surface_layers(const asp_options *o);
 
+/* assemble.c: asp_asm_create indexes the hanging nodes and colours the
+ * elements (s->as); asp_asm_pattern gives the CSC pattern of K, Kp
+ * [ndof + 1] and Ki returned new; asp_asm_maps the scatter maps once
+ * s->ls holds it; asp_assemble: fint, sig, st_new (and K, Kd, W into
+ * s->ls if want_K) at s->u from st_old, STC_ENOCONV if an element
+ * inverted; asp_asm_work: element loops and their wall time so far. */
+stc_status asp_asm_create(asp_solver *s);
+stc_status asp_asm_pattern(const asp_solver *s, int **Kp, int **Ki);
+stc_status asp_asm_maps(asp_solver *s);
+stc_status asp_assemble(asp_solver *s, int want_K);
+void asp_asm_work(const asp_asm *a, int *evaluations, double *wall_s);
+void asp_asm_destroy(asp_asm **a);
 /* Displacement of node n from the DOF vector u (dim components into out):
  * a hanging node's is the weighted average of its masters' (solver.c). */
 void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
