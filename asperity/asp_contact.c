@@ -1,5 +1,14 @@
-/* Results at a converged state: load, contact radius resolved below the
- * element size, penetration, per-layer von Mises maxima, first yield.
+/* Contact of the asperity with the rigid flat: the candidate nodes, the
+ * active set (node-to-analytic-plane, exact: an active node has u_z
+ * prescribed onto the flat, its reaction is the contact force; a node
+ * whose reaction turns tensile is released unless no_separation, a node
+ * that penetrates is added), the Dirichlet values of the base, the axis or
+ * symmetry plane and the contact, and the results at a converged state:
+ * load, contact radius resolved below the element size, penetration,
+ * per-layer von Mises maxima, first yield, the smoothed load.  Under stick
+ * the tangential DOFs of a node are frozen where it touched.  Separate from
+ * the Newton iteration (newton.c), which iterates the active set through
+ * these functions, and from the ramp's footprint (shear.c).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -7,6 +16,125 @@
 
 #include "solver_impl.h"
 #include "stc_check.h"
+
+/* ---- candidates, active set, Dirichlet values ------------------------------ */
+
+static double node_z(const asp_solver *s, int n) { return s->mesh->x[s->dim * n + s->dim - 1]; }
+
+/* Mark the fixed DOFs and store their prescribed values in ubc.  u is not
+ * touched: the Newton step carries the jump (newton.c), so a node that
+ * enters the contact moves its neighbours with it instead of straining
+ * one ring of elements (which, past yield, turns them plastic and costs
+ * line-search halvings). */
+void asp_contact_dirichlet(asp_solver *s, double delta)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim;
+    memset(s->fixed, 0, (size_t)s->ndof);
+    for (int n = 0; n < m->nnode; n++) {
+        unsigned f = m->flags[n];
+        if (f & ASP_NODE_BASE)
+            for (int c = 0; c < d; c++) s->fixed[d * n + c] = 1, s->ubc[d * n + c] = 0.0;
+        if (d == 2 && (f & ASP_NODE_AXIS)) s->fixed[d * n] = 1, s->ubc[d * n] = 0.0;
+        if (d == 3 && (f & ASP_NODE_SYM)) s->fixed[d * n + 1] = 1, s->ubc[d * n + 1] = 0.0;
+    }
+    /* hanging nodes are not unknowns: identity rows, u kept at 0 (their
+     * displacement is the masters' average, asp_node_u) */
+    for (int k = 0; k < m->nhang; k++)
+        for (int c = 0; c < d; c++) {
+            int i = d * m->hang[k] + c;
+            s->fixed[i] = 1, s->ubc[i] = 0.0;
+        }
+    for (int k = 0; k < s->ncand; k++) {
+        if (s->cs[k] == ASP_CS_OPEN) continue;
+        int n = s->cand[k];
+        s->fixed[d * n + d - 1] = 1;
+        s->ubc[d * n + d - 1] = s->Rp - delta - node_z(s, n);
+        /* the tangential ramp: stick/slip is the friction law's (shear.c) */
+        if (s->cs[k] != ASP_CS_STICK || s->shear) continue;
+        for (int c = 0; c < d - 1; c++)
+            if (!s->fixed[d * n + c])
+                s->fixed[d * n + c] = 1, s->ubc[d * n + c] = s->cstick[(d - 1) * k + c];
+    }
+}
+
+/* Update the active set from the converged state; returns the number of
+ * changes. */
+int asp_contact_update(asp_solver *s, double delta, int add_only)
+{
+    int d = s->dim, changes = 0;
+    double fref = 0.0;
+    for (int k = 0; k < s->ncand; k++)
+        if (s->cs[k] != ASP_CS_OPEN) fref = fmax(fref, fabs(s->fint[d * s->cand[k] + d - 1]));
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        if (s->cs[k] != ASP_CS_OPEN) {
+            /* reaction = fint; the flat can only push down: fint_z <= 0 */
+            if (!add_only && !s->opt.no_separation && s->fint[d * n + d - 1] > 1e-9 * fref)
+                s->cs[k] = ASP_CS_OPEN, changes++;
+        } else {
+            double gap = s->Rp - delta - (node_z(s, n) + s->u[d * n + d - 1]);
+            if (gap < -1e-9 * delta) {
+                /* stick where it touched: interpolate between the converged
+                 * state (gap g0 >= 0 at s->delta) and this one (gap < 0) */
+                double g0 = s->Rp - s->delta - (node_z(s, n) + s->u_conv[d * n + d - 1]);
+                double lam = g0 > 0.0 ? g0 / (g0 - gap) : 0.0;
+                s->cs[k] = s->opt.contact == ASP_CONTACT_STICK ? ASP_CS_STICK : ASP_CS_SLIP;
+                for (int c = 0; c < d - 1; c++)
+                    s->cstick[(d - 1) * k + c] =
+                        s->u_conv[d * n + c] + lam * (s->u[d * n + c] - s->u_conv[d * n + c]);
+                if (s->shear) { /* ramp: touches stuck, slip s = g there (shear.c) */
+                    s->cs[k] = ASP_CS_STICK;
+                    s->cstick[2 * k] -= s->ux_conv + lam * (s->ux - s->ux_conv);
+                }
+                changes++;
+            }
+        }
+    }
+    return changes;
+}
+
+/* Initial active set from nothing: the candidates inside the Hertz radius. */
+void asp_contact_hertz(asp_solver *s, double delta)
+{
+    const asp_mesh *m = s->mesh;
+    int d = s->dim;
+    for (int k = 0; k < s->ncand; k++) {
+        int n = s->cand[k];
+        double r2 = 0.0;
+        for (int c = 0; c < d - 1; c++) r2 += m->x[d * n + c] * m->x[d * n + c];
+        if (k > 0 && r2 > s->Rp * delta) continue;
+        s->cs[k] = s->opt.contact == ASP_CONTACT_STICK ? ASP_CS_STICK : ASP_CS_SLIP;
+        for (int c = 0; c < d - 1; c++) s->cstick[(d - 1) * k + c] = 0.0;
+    }
+}
+
+/* The contact candidates (the mesh's ASP_NODE_TOP nodes), sorted by
+ * distance from the axis, all open. */
+stc_status asp_contact_setup(asp_solver *s)
+{
+    const asp_mesh *m = s->mesh;
+    int n = 0;
+    for (int i = 0; i < m->nnode; i++) n += !!(m->flags[i] & ASP_NODE_TOP);
+    s->cand = malloc((size_t)n * sizeof *s->cand);
+    s->cs = calloc((size_t)n, 1);
+    s->cstick = calloc((size_t)n * 2, sizeof *s->cstick);
+    STC_CHECK(s->cand && s->cs && s->cstick, STC_ENOMEM, "solver: out of memory");
+    n = 0;
+    for (int i = 0; i < m->nnode; i++)
+        if (m->flags[i] & ASP_NODE_TOP) s->cand[n++] = i;
+    /* sort by height, highest first = by distance from the axis */
+    for (int a = 1; a < n; a++)
+        for (int k = a; k > 0 && node_z(s, s->cand[k]) > node_z(s, s->cand[k - 1]); k--) {
+            int t = s->cand[k];
+            s->cand[k] = s->cand[k - 1], s->cand[k - 1] = t;
+        }
+    s->ncand = n;
+    STC_CHECK(n >= 3, STC_EINVAL, "mesh has %d contact candidate nodes (< 3)", n);
+    return STC_OK;
+}
+
+/* ---- results at a converged state ------------------------------------------ */
 
 /* Pressure shape of the edge fit, relative to Hertz: p = sqrt(a² - r²) f,
  * f = sqrt((1 - x^2n) / (1 - x²)), x = r/a, i.e. p ∝ sqrt(1 - x^2n).  n = 1

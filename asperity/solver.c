@@ -169,98 +169,6 @@ static stc_status check_options(const asp_options *o)
     return STC_OK;
 }
 
-/* ---- constraints and contact -------------------------------------------- */
-
-static double node_z(const asp_solver *s, int n) { return s->mesh->x[s->dim * n + s->dim - 1]; }
-
-/* Mark the fixed DOFs and store their prescribed values in ubc.  u is not
- * touched: the Newton step carries the jump (see newton), so a node that
- * enters the contact moves its neighbours with it instead of straining
- * one ring of elements (which, past yield, turns them plastic and costs
- * line-search halvings). */
-static void set_dirichlet(asp_solver *s, double delta)
-{
-    const asp_mesh *m = s->mesh;
-    int d = s->dim;
-    memset(s->fixed, 0, (size_t)s->ndof);
-    for (int n = 0; n < m->nnode; n++) {
-        unsigned f = m->flags[n];
-        if (f & ASP_NODE_BASE)
-            for (int c = 0; c < d; c++) s->fixed[d * n + c] = 1, s->ubc[d * n + c] = 0.0;
-        if (d == 2 && (f & ASP_NODE_AXIS)) s->fixed[d * n] = 1, s->ubc[d * n] = 0.0;
-        if (d == 3 && (f & ASP_NODE_SYM)) s->fixed[d * n + 1] = 1, s->ubc[d * n + 1] = 0.0;
-    }
-    /* hanging nodes are not unknowns: identity rows, u kept at 0 (their
-     * displacement is the masters' average, asp_node_u) */
-    for (int k = 0; k < m->nhang; k++)
-        for (int c = 0; c < d; c++) {
-            int i = d * m->hang[k] + c;
-            s->fixed[i] = 1, s->ubc[i] = 0.0;
-        }
-    for (int k = 0; k < s->ncand; k++) {
-        if (s->cs[k] == ASP_CS_OPEN) continue;
-        int n = s->cand[k];
-        s->fixed[d * n + d - 1] = 1;
-        s->ubc[d * n + d - 1] = s->Rp - delta - node_z(s, n);
-        /* the tangential ramp: stick/slip is the friction law's (shear.c) */
-        if (s->cs[k] != ASP_CS_STICK || s->shear) continue;
-        for (int c = 0; c < d - 1; c++)
-            if (!s->fixed[d * n + c])
-                s->fixed[d * n + c] = 1, s->ubc[d * n + c] = s->cstick[(d - 1) * k + c];
-    }
-}
-
-/* Update the active set from the converged state; returns the number of
- * changes. */
-static int update_active_set(asp_solver *s, double delta, int add_only)
-{
-    int d = s->dim, changes = 0;
-    double fref = 0.0;
-    for (int k = 0; k < s->ncand; k++)
-        if (s->cs[k] != ASP_CS_OPEN) fref = fmax(fref, fabs(s->fint[d * s->cand[k] + d - 1]));
-    for (int k = 0; k < s->ncand; k++) {
-        int n = s->cand[k];
-        if (s->cs[k] != ASP_CS_OPEN) {
-            /* reaction = fint; the flat can only push down: fint_z <= 0 */
-            if (!add_only && !s->opt.no_separation && s->fint[d * n + d - 1] > 1e-9 * fref)
-                s->cs[k] = ASP_CS_OPEN, changes++;
-        } else {
-            double gap = s->Rp - delta - (node_z(s, n) + s->u[d * n + d - 1]);
-            if (gap < -1e-9 * delta) {
-                /* stick where it touched: interpolate between the converged
-                 * state (gap g0 >= 0 at s->delta) and this one (gap < 0) */
-                double g0 = s->Rp - s->delta - (node_z(s, n) + s->u_conv[d * n + d - 1]);
-                double lam = g0 > 0.0 ? g0 / (g0 - gap) : 0.0;
-                s->cs[k] = s->opt.contact == ASP_CONTACT_STICK ? ASP_CS_STICK : ASP_CS_SLIP;
-                for (int c = 0; c < d - 1; c++)
-                    s->cstick[(d - 1) * k + c] =
-                        s->u_conv[d * n + c] + lam * (s->u[d * n + c] - s->u_conv[d * n + c]);
-                if (s->shear) { /* ramp: touches stuck, slip s = g there (shear.c) */
-                    s->cs[k] = ASP_CS_STICK;
-                    s->cstick[2 * k] -= s->ux_conv + lam * (s->ux - s->ux_conv);
-                }
-                changes++;
-            }
-        }
-    }
-    return changes;
-}
-
-/* Initial active set from nothing: the candidates inside the Hertz radius. */
-static void hertz_active_set(asp_solver *s, double delta)
-{
-    const asp_mesh *m = s->mesh;
-    int d = s->dim;
-    for (int k = 0; k < s->ncand; k++) {
-        int n = s->cand[k];
-        double r2 = 0.0;
-        for (int c = 0; c < d - 1; c++) r2 += m->x[d * n + c] * m->x[d * n + c];
-        if (k > 0 && r2 > s->Rp * delta) continue;
-        s->cs[k] = s->opt.contact == ASP_CONTACT_STICK ? ASP_CS_STICK : ASP_CS_SLIP;
-        for (int c = 0; c < d - 1; c++) s->cstick[(d - 1) * k + c] = 0.0;
-    }
-}
-
 /* ---- Newton ---------------------------------------------------------------- */
 
 /* Work and exit of one increment's Newton solves. */
@@ -490,8 +398,8 @@ static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
      * state the geometric overlap r < sqrt(2 R' δ) is twice the Hertz
      * contact area, so start from the Hertz radius sqrt(R' δ) instead
      * (Johnson 1985 §4.2; saves two passes, i.e. factorizations) */
-    if (s->delta <= 0.0) hertz_active_set(s, delta);
-    else update_active_set(s, delta, 1);
+    if (s->delta <= 0.0) asp_contact_hertz(s, delta);
+    else asp_contact_update(s, delta, 1);
     double loose = fmin(1e4, 1e-4 / s->opt.rtol);
     for (int pass = 0;; pass++) {
         ns->passes++;
@@ -503,13 +411,13 @@ static stc_status increment(asp_solver *s, double delta, double pred, nstat *ns)
         }
         /* settle the active set on loosely converged states first, then
          * converge fully and check it once more */
-        set_dirichlet(s, delta);
+        asp_contact_dirichlet(s, delta);
         STC_CALL_GOTO(newton(s, delta, ns, du, u0, loose, pass == 0), st, done);
-        int ch = update_active_set(s, delta, 0);
+        int ch = asp_contact_update(s, delta, 0);
         if (ch == 0 && loose > 1.0) {
             loose = 1.0;
             STC_CALL_GOTO(newton(s, delta, ns, du, u0, loose, 0), st, done);
-            ch = update_active_set(s, delta, 0);
+            ch = asp_contact_update(s, delta, 0);
         }
         if (ch == 0) break;
     }
@@ -518,29 +426,6 @@ done:
 }
 
 /* ---- create / destroy ---------------------------------------------------- */
-
-static stc_status setup_candidates(asp_solver *s)
-{
-    const asp_mesh *m = s->mesh;
-    int n = 0;
-    for (int i = 0; i < m->nnode; i++) n += !!(m->flags[i] & ASP_NODE_TOP);
-    s->cand = malloc((size_t)n * sizeof *s->cand);
-    s->cs = calloc((size_t)n, 1);
-    s->cstick = calloc((size_t)n * 2, sizeof *s->cstick);
-    STC_CHECK(s->cand && s->cs && s->cstick, STC_ENOMEM, "solver: out of memory");
-    n = 0;
-    for (int i = 0; i < m->nnode; i++)
-        if (m->flags[i] & ASP_NODE_TOP) s->cand[n++] = i;
-    /* sort by height, highest first = by distance from the axis */
-    for (int a = 1; a < n; a++)
-        for (int k = a; k > 0 && node_z(s, s->cand[k]) > node_z(s, s->cand[k - 1]); k--) {
-            int t = s->cand[k];
-            s->cand[k] = s->cand[k - 1], s->cand[k - 1] = t;
-        }
-    s->ncand = n;
-    STC_CHECK(n >= 3, STC_EINVAL, "mesh has %d contact candidate nodes (< 3)", n);
-    return STC_OK;
-}
 
 static stc_status alloc_state(asp_solver *s)
 {
@@ -657,7 +542,7 @@ stc_status asp_solver_create(const stc_params *p, const asp_options *o, double d
                    "delta = %g mm: must be in (0, 0.01 R] (small-strain model)", delta_max);
     s->delta_max = delta_max;
     STC_CALL_GOTO(make_mesh(s, delta_max), st, fail);
-    STC_CALL_GOTO(setup_candidates(s), st, fail);
+    STC_CALL_GOTO(asp_contact_setup(s), st, fail);
     STC_CALL_GOTO(alloc_state(s), st, fail);
     /* Threads: measured on the 4.6k-DOF axisymmetric level-1 mesh, a load
      * curve to 60 ωc took 2.6 s with CHOLMOD simplicial, 1.7 s supernodal

@@ -136,6 +136,16 @@ void asp_asm_destroy(asp_asm **a);
  * a hanging node's is the weighted average of its masters' (solver.c). */
 void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
 
+/* asp_contact.c: the candidates (asp_contact_setup, once); the fixed DOFs
+ * and their values at δ (asp_contact_dirichlet); the active set updated
+ * from the current state (asp_contact_update: returns the changes; add_only
+ * keeps every active node) or started from the Hertz radius
+ * (asp_contact_hertz). */
+stc_status asp_contact_setup(asp_solver *s);
+void asp_contact_dirichlet(asp_solver *s, double delta);
+int asp_contact_update(asp_solver *s, double delta, int add_only);
+void asp_contact_hertz(asp_solver *s, double delta);
+
 /* asp_contact.c: results at the converged state; the contact footprint of
  * the tangential step (shear.c). */
 void asp_contact_results(asp_solver *s, asp_point *pt);
