@@ -525,10 +525,10 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
      * 249 -> 19 factorizations, 8 -> 0 cut-backs; 24 ωc 864 -> 101 and
      * 367 -> 29; 12 ωc 237 -> 78 and 67 -> 21 (μs within 1.4 %). */
     double pred = s->ux_dlast > 0.0 ? (ux - s->ux_conv) / s->ux_dlast : 0.0;
-    int passes = 0;
-    stc_status st = asp_solver_increment_here(s, pred, &r->res->newton_iterations,
-                                              &r->res->factorizations, &passes);
-    s->pt.active_set_passes += passes;
+    asp_nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
+    stc_status st = asp_newton_increment(s, s->delta, pred, &ns); /* Δδ = 0 */
+    r->res->newton_iterations += ns.iters, r->res->factorizations += ns.facts;
+    s->pt.active_set_passes += ns.passes;
     if (st == STC_OK) return STC_OK;
     memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
     memcpy(s->cs, r->cs0, (size_t)s->ncand);

@@ -162,11 +162,15 @@ void asp_history_push(asp_solver *s, double delta, double P);
 void asp_shear_assemble(asp_solver *s, int want_K);
 void asp_shear_release(asp_solver *s);
 
-/* solver.c entry points for shear.c: one increment at the current δ and
- * the trial s->ux, started from u_conv + pred du_last (active set
- * iterated), with its Newton iterations, factorizations and active-set
- * passes added to the counters.  On failure the caller restores the state. */
-stc_status asp_solver_increment_here(asp_solver *s, double pred, int *iters, int *facts,
-                                     int *passes);
+/* newton.c: one increment to `delta`, started from the predictor u_conv +
+ * pred du_last (pred: this increment over the last accepted one, in the
+ * caller's load parameter), the active set iterated to consistency; its
+ * Newton iterations, factorizations and active-set passes are added to ns.
+ * On failure the caller restores the converged state. */
+typedef struct asp_nstat {
+    int iters, facts, passes;
+    asp_outcome why; /* how the last Newton solve or active-set loop ended */
+} asp_nstat;
+stc_status asp_newton_increment(asp_solver *s, double delta, double pred, asp_nstat *ns);
 
 #endif
