@@ -1,101 +1,36 @@
-/* Implicit static FE solver of a coated sphere pressed by a rigid flat.
+/* Set-up of the implicit static FE solver of a coated sphere pressed by a
+ * rigid flat: options, mesh sizing, create / destroy, info.
  *
- * Structure (PETSc/SUNDIALS style): create() meshes, builds the fixed CSC
- * sparsity pattern (upper triangle) and the element → matrix scatter map,
- * and runs cholmod_analyze ONCE; every Newton iteration only refills the
- * values, factorizes numerically and solves.  Boundary conditions and
- * contact are imposed WITHOUT changing the pattern: a constrained DOF keeps
- * its prescribed value and gets an identity row/column in K (values
- * only), so the symbolic analysis stays valid.  A prescribed value that
- * changes (the flat advancing, a node entering the contact) is not written
- * into u directly: the Newton step carries it (du = ubc - u on the fixed
- * DOFs, -K_fc du_c on the free ones), so the neighbours of a node that
- * enters follow it instead of a ring of elements being strained and
- * turned plastic (this halved the element evaluations of a load curve).
- *
- * Contact: node-to-analytic-plane, exact (zero penetration for an active
- * node) by an active set iterated to consistency inside each increment:
- * an active node has u_z prescribed onto the flat; its reaction is the
- * contact force; a node whose reaction turns tensile is released (unless
- * no_separation), a node that penetrates is added.  Stick: tangential DOFs
- * of a node are frozen at their value when it touched.
- *
- * Loading: increments in δ; while all is elastic under slip they jump to
- * the predicted first yield and just past it; past yield at least four per
- * surface node entering the contact (so the sawtooth of P(δ) is sampled
- * evenly for asp_solver_P_smooth), stick at most one element of contact
- * growth; grown after easy convergence and halved on failure (cut-back).
- * Predictor: the last converged increment, scaled; nodes the predicted
- * surface pushes through the flat are all made active before the first
- * solve.  Every failure ends with a reason in the message.
- *
- * Tangent: under the midpoint return (j2.c) the consistent tangent is not
- * symmetric.  K holds an SPD approximation of it (factorized: the
- * pattern, the analysis and CHOLMOD's LLᵀ stay), Kd and Kk the rest
- * (symmetric, skew); Newton stays quadratic through corrections / GMRES
- * against K + Kd + Kk (skew_correct, gmres).
+ * Structure (PETSc/SUNDIALS style): create() sizes and builds the mesh
+ * for the largest δ to be reached, has the fixed CSC sparsity pattern and
+ * the element → matrix scatter map built (assemble.c) and the pattern
+ * analysed ONCE by the linear solver (linsolve.c); every Newton iteration
+ * (newton.c) only refills the values, factorizes numerically and solves.
+ * One job per file, each calling the ones below it and none above:
+ *   placements.c  the node-placement ensemble of ramps
+ *   load.c        load stepping in δ, the tail, load control to a P
+ *   shear.c       the tangential ramp (its state: struct asp_shear)
+ *   newton.c      one increment: active-set passes, Newton, line search
+ *   asp_contact.c candidates, active set, Dirichlet values, results
+ *   assemble.c    pattern, scatter maps, colours, elastic K, element loop
+ *   linsolve.c    CHOLMOD, direct and Krylov steps (precond.c: kernels)
+ *   solver.c      options, mesh sizing, create / destroy, info
+ * The ramp's stick-law springs reach the element loop through the solver's
+ * hooks (solver_impl.h), not by a call back into shear.c.
  *
  * Cost: the element loop and the factorization are each ~1-5 ms on an
  * axisymmetric mesh, so the work is the NUMBER of evaluations; small
  * axisymmetric systems run on one thread (see create).
- * Target for the axisymmetric slip curve to 60 ωc: P_smooth within 0.5 % of
- * the level-3 curve in < 1 s.  The P_smooth error is set by how the
- * node-entry sawtooth is sampled, not monotone in n, and has three parts
- * (curve3d helper, against level 3, n = 6..12):
- *   - a mid-curve (22-38 ωc) bias, the same for every n and ~1/steps per
- *     node (-1.1 | -0.55 | -0.35 | -0.2 % at 2 | 4 | 6 | 8): the radial
- *     return's first-order error in the increment, not the sampling; the
- *     midpoint return (the default, j2.c) leaves -0.15 .. -0.2 %;
- *   - the end point, -0.8 .. +1.9 % at 60 ωc whatever the steps with a
- *     one-sided window: loading on to 1.5 δ_max (asp_solver_load_tail, the
- *     CLI does it for axisymmetric curves) gives it a two-sided one (against
- *     a level-3 curve loaded to 120 ωc, 60 ωc: +0.21 .. +0.32 %);
- *   - 1 ωc, +0.46 .. +0.80 % without the next two measures: first yield,
- *     ~6 elements across that contact (+0.33 % on a mesh sized to it alone)
- *     plus where its edge falls.  The elastic node entries are sampled
- *     before a curve point (asp_options.sample_elastic, step_limit) and the
- *     surface between a_min and a_max is sized to arc length / n (mesh.c).
- * With all of them the max error over the 12 points for n = 6..12 is 0.29
- * 0.46 0.26 0.22 0.23 0.16 0.24 % (1 ωc +0.10 .. +0.26 %), level 0 in 0.6 s:
- * the target is met (docs/design.md §2.3, §3.3).  Tried and not robust:
- * windows 1.5x and 3x, loading 15 % past the end (0.37-0.86 %), dithered
- * steps (0.52-1.37 %).
- * 3D (speed3d): a factorization costs ~50 triangular solves there, so the
- * Newton steps are solved by PCG preconditioned with the last factor
- * (Newton-Krylov, see linear_step); level-0 slip curve to 60 ωc: the same
- * 160 Newton iterations and answers, 160 -> 15 factorizations + 1334 PCG
- * iterations, 91 -> 38 s on the shared machine (CPU 96 -> 37 s).  With 2
- * increments per node entry in 3D (steps_per_node): 31 increments, 126
- * Newton, 15 factorizations, 1113 PCG, 157 element loops, 33 s wall, 32 s
- * CPU (OMP_WAIT_POLICY=passive: 29-31 s, the idle thread stops spinning
- * during the serial PCG).  The level-0 3D curve is 1.2-6 % below the
- * converged one (4 elements across the final contact, no small-δ grading;
- * 1 contact node at 1 ωc: -33 %).
  */
-#include <limits.h>
 #include <math.h>
 #include <omp.h>
-#include <stdarg.h>
 #include <stdlib.h>
-#include <stdio.h>
 #include <string.h>
 
 #include "solver_impl.h"
 #include "stc_check.h"
 #include "stiction/formulas.h"
 
-
-/* Increments per surface node entering the contact past yield (step_limit;
- * asp_options.steps_per_node overrides).  Stick: 1 (P at 10 ωc, t/R 0.025,
- * Eco/Esu 2, level 1 moved 0.27 % from 1 to 4 per node, at 1.8x the cost).
- * Slip, 3D: 2.  Level-0 curve 1:60:12 ωc against the axisymmetric level-3
- * P_smooth, steps/node 4 | 2 | 1.5: 49 | 31 | 20 increments, 37 | 31 | 21 s
- * CPU on the shared 2-core machine; max |P_smooth| shift from 4 to 2 is
- * 0.55 % (6 ωc; 0.3-0.4 % elsewhere), to 1.5 2.1 %, against a level-0
- * discretization error of -1.2 % (60 ωc) to -6 % (6 ωc) (curve3d helper). */
-#define ASP_STEPS_PER_NODE 4.0
-#define ASP_STEPS_PER_NODE_3D 2.0
-#define ASP_STEPS_PER_NODE_STICK 1.0
 
 /* Below this size an axisymmetric model runs on one thread (see create). */
 enum { ASP_SERIAL_MAX_DOF = 40000 };
@@ -344,194 +279,4 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
 void asp_solver_yield(const asp_solver *s, int layer, asp_yield *y)
 {
     *y = s->yt[layer ? 1 : 0].y;
-}
-
-/* ---- load stepping ------------------------------------------------------- */
-
-/* Increment that lands just below (σvm/Y < 0.97) or just past the first
- * yield of layer k predicted by its elastic trend σvm ∝ δ^m: m = ½ exactly
- * for a homogeneous elastic sphere (Hertz; Johnson, Contact Mechanics,
- * 1985, §4.2), otherwise the local exponent of the last two elastic
- * increments.  Brackets the yield within about 2.5 % in two increments
- * instead of creeping up on it. */
-static double yield_aim(const asp_solver *s, int k)
-{
-    const asp_ytrack *t = &s->yt[k];
-    double f = s->pt.vm_over_Y[k];
-    if (t->y.reached || f <= 0.0 || s->delta <= 0.0) return INFINITY;
-    double m = 0.5;
-    if (t->n == 2 && t->f[1] > t->f[0] && t->d[1] > t->d[0])
-        m = fmin(fmax(log(t->f[1] / t->f[0]) / log(t->d[1] / t->d[0]), 0.25), 1.0);
-    double dy = s->delta * pow(1.0 / f, 1.0 / m);
-    if (f < 0.97) return 0.985 * dy - s->delta;
-    return fmax(1.01 * dy - s->delta, 0.005 * s->delta);
-}
-
-/* Largest increment from δ.  Elastic frictionless contact is path
- * independent, so while everything is elastic it jumps (the active set does
- * the rest): first to half the closed-form first-yield estimate, then to the
- * predicted yield (yield_aim).  Otherwise the contact may grow by about one
- * surface element per increment under stick (a node's stick position is
- * taken when it touches) and three under slip. */
-static double steps_per_node(const asp_solver *s)
-{
-    if (s->opt.steps_per_node > 0.0) return s->opt.steps_per_node;
-    if (s->opt.contact == ASP_CONTACT_STICK) return ASP_STEPS_PER_NODE_STICK;
-    return s->dim == 3 ? ASP_STEPS_PER_NODE_3D : ASP_STEPS_PER_NODE;
-}
-
-/* Element size at the contact edge of radius a: two zones (axisymmetric),
- * or growing with the distance (graded 3D shells). */
-static double edge_size(const asp_solver *s, double a)
-{
-    return s->graded ? fmin(fmax(a * s->h / s->a_max, s->h0), s->h) : a < s->a_min ? s->h0 : s->h;
-}
-
-/* target: the δ asp_solver_load is loading to. */
-static double step_limit(const asp_solver *s, double target, int *aimed)
-{
-    int elastic = s->pt.plastic_points == 0;
-    double lim = INFINITY;
-    for (int k = 0; k < 2; k++) lim = fmin(lim, yield_aim(s, k));
-    *aimed = lim < INFINITY;
-    if (s->opt.contact == ASP_CONTACT_SLIP && elastic) {
-        /* sample_elastic: from the start of the target's P_smooth window on,
-         * steps_per_node increments per node entry (Hertz: a² = R' δ, a node
-         * enters every Δδ = 2 a h / R') */
-        if (s->delta <= 0.0) {
-            double first = 0.5 * s->omega_est;
-            return s->opt.sample_elastic ? fmin(first, target / (1.05 * ASP_SMOOTH_W)) : first;
-        }
-        if (s->opt.sample_elastic) {
-            double w0 = target / (1.05 * ASP_SMOOTH_W);
-            double a = s->pt.a > 0.0 ? s->pt.a : sqrt(s->Rp * s->delta);
-            lim = fmin(lim, s->delta < w0 * (1 - 1e-9)
-                                ? w0 - s->delta
-                                : 2.0 * a * edge_size(s, a) / (steps_per_node(s) * s->Rp));
-        }
-        /* at most x4 per step: the trend is unreliable on a few-node contact */
-        return fmax(fmin(lim, 3.0 * s->delta), 0.005 * s->delta);
-    }
-    /* past yield: P(δ) is a sawtooth with one tooth per surface node that
-     * enters (asp_contact.c); a node enters every Δδ ≈ a h / R' (a² ∝ R' δ).
-     * steps_per_node() increments per tooth sample it evenly for
-     * asp_solver_P_smooth (fewer, landing just after the entries where
-     * Newton is slow, biased it by -1.5 % on mesh level 0; with 4: within
-     * 0.4 % of the finest mesh at level 1) */
-    double a = fmin(fmax(s->pt.a, 0.0), sqrt(2.0 * s->Rp * s->delta));
-    double hc = edge_size(s, a);
-    double spn = steps_per_node(s);
-    if (!elastic) lim = fmin(lim, a * hc / (spn * s->Rp));
-    /* stick: the contact grows by at most about one surface element */
-    if (s->opt.contact == ASP_CONTACT_STICK) {
-        double ag = sqrt(2.0 * s->Rp * s->delta);
-        lim = fmin(lim, ((ag + hc) * (ag + hc) - ag * ag) / (2.0 * s->Rp));
-    }
-    return lim;
-}
-
-static void commit(asp_solver *s, double delta, const asp_nstat *ns)
-{
-    size_t nq = (size_t)s->mesh->nelem * s->nqp;
-    for (int i = 0; i < s->ndof; i++) s->du_last[i] = s->u[i] - s->u_conv[i];
-    memcpy(s->u_conv, s->u, (size_t)s->ndof * sizeof *s->u);
-    memcpy(s->st_old, s->st_new, nq * sizeof *s->st_old);
-    s->dlast = delta - s->delta;
-    s->delta = delta;
-    s->pt.increments++;
-    s->pt.newton_iterations += ns->iters;
-    s->pt.factorizations += ns->facts;
-    s->pt.active_set_passes += ns->passes;
-    asp_contact_results(s, &s->pt);
-    asp_yield_track(s, &s->pt);
-    asp_history_push(s, delta, s->pt.P);
-}
-
-stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
-{
-    STC_CHECK(delta >= s->delta && delta <= s->delta_max * (1 + 1e-12), STC_EINVAL,
-              "delta = %g mm: must be in [%g, %g] (current, meshed maximum)", delta, s->delta,
-              s->delta_max);
-    unsigned char *cs0 = malloc((size_t)s->ncand);
-    double *cst0 = malloc((size_t)s->ncand * 2 * sizeof *cst0);
-    if (!cs0 || !cst0) {
-        free(cs0), free(cst0);
-        return STC_FAIL(STC_ENOMEM, "solver: out of memory");
-    }
-    double t0 = omp_get_wtime();
-    stc_status st = STC_OK;
-    int cuts = 0;
-    while (s->delta < delta * (1 - 1e-14)) {
-        int aimed;
-        double lim = step_limit(s, delta, &aimed);
-        if (s->step <= 0.0) s->step = lim;
-        double dnew = fmin(delta, s->delta + fmin(s->step, lim));
-        /* no sliver steps, unless the step brackets a first yield */
-        int at_yield = aimed && lim < s->step;
-        if (delta - dnew < 0.2 * fmin(s->step, lim) && !at_yield) dnew = delta;
-        asp_nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
-        memcpy(cs0, s->cs, (size_t)s->ncand);
-        memcpy(cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *cst0);
-        /* predictor: the last increment scaled to this Δδ */
-        st = asp_newton_increment(s, dnew, s->dlast > 0.0 ? (dnew - s->delta) / s->dlast : 0.0, &ns);
-        if (st == STC_OK) {
-            commit(s, dnew, &ns);
-            /* a step shortened to bracket a yield does not shrink the next */
-            if (!at_yield) s->step = ns.iters <= 6 ? 1.5 * s->dlast : s->dlast;
-            cuts = 0;
-            continue;
-        }
-        /* cut back: restore the converged state and halve */
-        s->pt.newton_iterations += ns.iters;
-        s->pt.factorizations += ns.facts;
-        s->pt.active_set_passes += ns.passes;
-        memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
-        memcpy(s->cs, cs0, (size_t)s->ncand);
-        memcpy(s->cstick, cst0, (size_t)s->ncand * 2 * sizeof *cst0);
-        s->step = 0.5 * (dnew - s->delta);
-        s->pt.cutbacks++;
-        if (++cuts > s->opt.max_cutbacks) {
-            char why[512];
-            snprintf(why, sizeof why, "%s", stc_errmsg());
-            st = STC_FAIL(STC_ENOCONV, "%s (%d halvings) reached at δ = %g mm: %s",
-                          asp_outcome_str(ASP_OUTCOME_CUTBACK_LIMIT), s->opt.max_cutbacks,
-                          s->delta, why);
-            break;
-        }
-        st = STC_OK;
-    }
-    free(cs0), free(cst0);
-    s->pt.wall_s += omp_get_wtime() - t0;
-    double t_asm;
-    asp_asm_work(s->as, &s->pt.assemblies, &t_asm);
-    asp_ls_stats ls;
-    asp_ls_get_stats(s->ls, &ls);
-    s->pt.krylov_iterations = ls.krylov_iterations;
-    if (out) *out = s->pt;
-    return st;
-}
-
-/* How far asp_solver_load_tail loads past the meshed maximum.  At the end of
- * a curve the P_smooth window (δ/2 .. 2 δ) is one-sided and its estimate
- * takes the phase of the last node-entry tooth.  Measured on the slip curve
- * 1:60:12 ωc, level 0 (n = 6), against level 3 loaded to 120 ωc (two level-3
- * meshes agree within 0.06 %): error at 60 / 54.6 ωc +0.69 / +0.56 % without
- * a tail; with a tail to 1.25 / 1.5 / 1.75 / 2 x: -0.31 / +0.31 / +0.14 /
- * +0.15 % at 60 ωc, 42 -> 46 / 49 / 51 / 54 increments.  1.5 keeps the
- * contact inside the fine zone (a ~ 1.22 a(δ_max) < 1.25 a_max axisymmetric)
- * and the tooth phase averaged (n = 6..12: +0.19 .. +0.35 % at 60 ωc). */
-#define ASP_SMOOTH_TAIL 1.5
-
-stc_status asp_solver_load_tail(asp_solver *s, asp_point *out)
-{
-    double target = fmin(ASP_SMOOTH_TAIL * s->delta_max, 0.01 * s->par.R);
-    if (!(target > s->delta)) {
-        if (out) *out = s->pt;
-        return STC_OK;
-    }
-    double meshed = s->delta_max;
-    s->delta_max = target;
-    stc_status st = asp_solver_load(s, target, out);
-    s->delta_max = meshed;
-    return st;
 }
