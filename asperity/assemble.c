@@ -530,7 +530,8 @@ stc_status asp_assemble(asp_solver *s, int want_K)
     }
     s->as->t_asm += omp_get_wtime() - t0;
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
-    if (s->shear) asp_shear_assemble(s, want_K); /* stick-law springs (shear.c) */
+    if (s->hooks && s->hooks->forces) /* e.g. the ramp's stick-law springs (shear.c) */
+        s->hooks->forces(s->hooks->ctx, s, want_K);
     if (want_K) asp_ls_end_tangent(s->ls);
     s->k_fresh = want_K;
     return STC_OK;

@@ -359,7 +359,7 @@ stc_status asp_solver_load_to_P(asp_solver *s, double P_target, double rel_tol, 
               "load = %g N: target normal load must be > 0", P_target);
     STC_CHECK(rel_tol > 0.0 && rel_tol < 0.1, STC_EINVAL,
               "load tolerance = %g: must be in (0, 0.1)", rel_tol);
-    STC_CHECK(!s->shear, STC_EINVAL, "load control: not after a tangential ramp");
+    STC_CHECK(!s->hooks, STC_EINVAL, "load control: not after a tangential ramp");
     STC_CHECK(s->pt.P < P_target, STC_EINVAL,
               "load = %g N: the solver is already at P = %g N (it loads forward only)",
               P_target, s->pt.P);

@@ -14,9 +14,11 @@
  *     fraction counts nodes that slip or whose traction has saturated
  *     (mark_saturated);
  *   - the first Newton iteration of each increment keeps stuck nodes stuck
- *     (asp_shear_assemble), the elastic predictor of the increment;
- *   - load control (asp_solver_load_to_P) drives asp_find_delta with a
- *     checkpoint of the largest δ whose load is below the target.
+ *     (springs), the elastic predictor of the increment.
+ * The ramp's state is a struct of its own (asp_shear, s->sh); it reaches
+ * the Newton loop through the solver's hooks (springs: the stick-law
+ * forces and tangent after the element loop; touch: a node that touches
+ * sticks), so newton.c, assemble.c and asp_contact.c never call in here.
  */
 #include <hdf5.h>
 #include <math.h>
@@ -25,6 +27,7 @@
 #include <string.h>
 #include <stdio.h>
 
+#include "footprint.h"
 #include "solver_impl.h"
 #include "stc_check.h"
 #include "stiction/formulas.h"
@@ -47,6 +50,33 @@ typedef struct asp_shear_snap {
     asp_qp_state *st;    /* [nelem][nqp] */
 } asp_shear_snap;
 
+/* The ramp's state (s->sh), beside the solver's displacement and contact
+ * state, which the ramp shares with the normal step. */
+struct asp_shear {
+    asp_hooks hooks;              /* the stick law in the Newton loop (s->hooks) */
+    double ux, ux_conv;           /* flat displacement along x: trial, converged, mm */
+    double ux_dlast;              /* last accepted ux increment, mm (0: none yet) */
+    asp_fric_law fric;            /* τc and penalty k_t */
+    double *carea;                /* [ncand] tributary area, mm² */
+    double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
+    double *carea_prev, *carea_tgt; /* [ncand] areas of the converged state and the reading
+                                       after it (the increment's target; try_ux) */
+    unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
+    double foot[3];               /* contact extent +x, -x, +y during the ramp, mm */
+    asp_foot fp;                  /* node lines across the edge (footprint.c) */
+    double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
+    double rate_sat;              /* d|t|/dux below which a stuck node is saturated, MPa/mm */
+    unsigned char *cyield;        /* [ncand] 1: stuck but saturated in the last increment
+                                     (the junction shears in the body; mark_saturated) */
+    double *cslip_new;            /* [ncand][2] trial slip; s->cstick holds the converged one */
+    double *cfric;                /* [ncand][2] friction force on the flat at u, N */
+    unsigned char *cfst;          /* [ncand] trial ASP_CS_STICK / ASP_CS_SLIP */
+    int *cpos;                    /* [ncand][3] positions of (x,x), (x,y), (y,y) in K */
+    int fric_frozen;              /* next assembly: converged stick nodes stay stuck
+                                     (first iteration of an increment, springs) */
+    asp_shear_snap *snap;         /* [ASP_SHEAR_NSNAP] kept field snapshots */
+};
+
 void asp_shear_options_default(asp_shear_options *o)
 {
     o->criterion = ASP_SHEAR_CRIT_SHEAR;
@@ -61,7 +91,7 @@ void asp_shear_options_default(asp_shear_options *o)
     o->foot_rows = 0.0;
 }
 
-/* ---- the stick-law springs (called from assemble) ------------------------ */
+/* ---- the stick-law springs (hooks called from the Newton loop) ----------- */
 
 /* The first assembly of an increment (fric_frozen) keeps the nodes that
  * stuck at the converged state stuck (linear springs, no cap): otherwise
@@ -74,31 +104,32 @@ void asp_shear_options_default(asp_shear_options *o)
  * assembly on, the usual treatment of frictional increments (Wriggers,
  * Computational Contact Mechanics, 2006, §10.3: state of the last
  * converged step in the first iteration). */
-void asp_shear_assemble(asp_solver *s, int want_K)
+static void springs(void *ctx, asp_solver *s, int want_K)
 {
+    asp_shear *sh = ctx;
     double *Kx, *Kd, *Kk;
     asp_ls_values(s->ls, &Kx, &Kd, &Kk);
-    asp_fric_law stuck = s->fric;
+    asp_fric_law stuck = sh->fric;
     stuck.tau_c = HUGE_VAL;
-    int frozen = s->fric_frozen;
-    s->fric_frozen = 0;
+    int frozen = sh->fric_frozen;
+    sh->fric_frozen = 0;
     for (int k = 0; k < s->ncand; k++) {
-        double *f = s->cfric + 2 * k;
+        double *f = sh->cfric + 2 * k;
         f[0] = f[1] = 0.0;
-        s->cfst[k] = s->cs[k];
-        if (s->cs[k] == ASP_CS_OPEN || !(s->carea[k] > 0.0)) continue;
+        sh->cfst[k] = s->cs[k];
+        if (s->cs[k] == ASP_CS_OPEN || !(sh->carea[k] > 0.0)) continue;
         int n = s->cand[k];
-        double g[2] = {s->u[3 * n] - s->ux, s->u[3 * n + 1]}, Kc[4];
-        const asp_fric_law *law = frozen && s->cs[k] == ASP_CS_STICK ? &stuck : &s->fric;
-        s->cfst[k] = (unsigned char)asp_fric_update(law, s->carea[k], g, s->cstick + 2 * k,
-                                                    s->cslip_new + 2 * k, f, Kc, NULL);
+        double g[2] = {s->u[3 * n] - sh->ux, s->u[3 * n + 1]}, Kc[4];
+        const asp_fric_law *law = frozen && s->cs[k] == ASP_CS_STICK ? &stuck : &sh->fric;
+        sh->cfst[k] = (unsigned char)asp_fric_update(law, sh->carea[k], g, s->cstick + 2 * k,
+                                                    sh->cslip_new + 2 * k, f, Kc, NULL);
         /* the node feels -f: residual fint + f = 0 */
         s->fint[3 * n] += f[0];
         s->fint[3 * n + 1] += f[1];
         if (!want_K) continue;
-        Kx[s->cpos[3 * k]] += Kc[0];
-        Kx[s->cpos[3 * k + 1]] += Kc[1];
-        Kx[s->cpos[3 * k + 2]] += Kc[3];
+        Kx[sh->cpos[3 * k]] += Kc[0];
+        Kx[sh->cpos[3 * k + 1]] += Kc[1];
+        Kx[sh->cpos[3 * k + 2]] += Kc[3];
     }
 }
 
@@ -108,48 +139,60 @@ static void snap_free(asp_shear_snap *p)
     memset(p, 0, sizeof *p);
 }
 
-void asp_shear_release(asp_solver *s)
+/* A node that touches the flat during the ramp sticks there: its slip is
+ * its tangential displacement relative to the flat, s = g. */
+static void touch(void *ctx, asp_solver *s, int k, double lam)
 {
-    free(s->carea), free(s->carea_full), free(s->cslip_new), free(s->cfric), free(s->cfst);
-    free(s->carea_prev), free(s->carea_tgt);
-    s->carea_prev = s->carea_tgt = NULL;
-    free(s->cpos), free(s->cnew), free(s->ctrac), free(s->cyield);
-    asp_contact_foot_free(s);
-    s->cnew = s->cyield = NULL;
-    s->ctrac = NULL;
-    s->carea = s->carea_full = s->cslip_new = s->cfric = NULL;
-    s->cfst = NULL, s->cpos = NULL;
-    if (s->snap)
-        for (int i = 0; i < ASP_SHEAR_NSNAP; i++) snap_free(&s->snap[i]);
-    free(s->snap);
-    s->snap = NULL;
+    const asp_shear *sh = ctx;
+    s->cs[k] = ASP_CS_STICK;
+    s->cstick[2 * k] -= sh->ux_conv + lam * (sh->ux - sh->ux_conv);
+}
+
+void asp_shear_destroy(asp_shear **shp)
+{
+    asp_shear *sh = *shp;
+    if (!sh) return;
+    free(sh->carea), free(sh->carea_full), free(sh->cslip_new), free(sh->cfric), free(sh->cfst);
+    free(sh->carea_prev), free(sh->carea_tgt);
+    free(sh->cpos), free(sh->cnew), free(sh->ctrac), free(sh->cyield);
+    asp_foot_free(&sh->fp);
+    if (sh->snap)
+        for (int i = 0; i < ASP_SHEAR_NSNAP; i++) snap_free(&sh->snap[i]);
+    free(sh->snap);
+    free(sh);
+    *shp = NULL;
 }
 
 /* ---- set-up ------------------------------------------------------------ */
 
+/* The ramp's state s->sh with its arrays and the K positions of the
+ * contact nodes' 2x2 blocks. */
 static stc_status alloc_shear(asp_solver *s)
 {
     size_t n = (size_t)s->ncand;
-    if (!s->carea) {
-        s->carea = calloc(n, sizeof *s->carea), s->carea_full = calloc(n, sizeof *s->carea);
-        s->cslip_new = calloc(2 * n, sizeof *s->carea), s->cfric = calloc(2 * n, sizeof *s->carea);
-        s->carea_prev = calloc(n, sizeof *s->carea), s->carea_tgt = calloc(n, sizeof *s->carea);
-        s->cfst = calloc(n, 1), s->cpos = calloc(3 * n, sizeof *s->cpos);
-        s->cnew = calloc(n, 1), s->cyield = calloc(n, 1);
-        s->ctrac = calloc(n, sizeof *s->ctrac);
-        s->snap = calloc(ASP_SHEAR_NSNAP, sizeof *s->snap);
+    if (!s->sh) s->sh = calloc(1, sizeof *s->sh);
+    asp_shear *sh = s->sh;
+    STC_CHECK(sh, STC_ENOMEM, "shear: out of memory");
+    if (!sh->carea) {
+        sh->carea = calloc(n, sizeof *sh->carea), sh->carea_full = calloc(n, sizeof *sh->carea);
+        sh->cslip_new = calloc(2 * n, sizeof *sh->carea), sh->cfric = calloc(2 * n, sizeof *sh->carea);
+        sh->carea_prev = calloc(n, sizeof *sh->carea), sh->carea_tgt = calloc(n, sizeof *sh->carea);
+        sh->cfst = calloc(n, 1), sh->cpos = calloc(3 * n, sizeof *sh->cpos);
+        sh->cnew = calloc(n, 1), sh->cyield = calloc(n, 1);
+        sh->ctrac = calloc(n, sizeof *sh->ctrac);
+        sh->snap = calloc(ASP_SHEAR_NSNAP, sizeof *sh->snap);
     }
-    STC_CHECK(s->carea && s->carea_full && s->carea_prev && s->carea_tgt && s->cslip_new &&
-                  s->cfric && s->cfst && s->cpos &&
-                  s->cnew && s->cyield && s->ctrac && s->snap,
+    STC_CHECK(sh->carea && sh->carea_full && sh->carea_prev && sh->carea_tgt && sh->cslip_new &&
+                  sh->cfric && sh->cfst && sh->cpos && sh->cnew && sh->cyield && sh->ctrac &&
+                  sh->snap,
               STC_ENOMEM, "shear: out of memory");
     for (int k = 0; k < s->ncand; k++) {
-        int n3 = 3 * s->cand[k];
-        s->cpos[3 * k] = asp_ls_pos(s->ls, n3, n3);
-        s->cpos[3 * k + 1] = asp_ls_pos(s->ls, n3, n3 + 1);
-        s->cpos[3 * k + 2] = asp_ls_pos(s->ls, n3 + 1, n3 + 1);
-        STC_CHECK(s->cpos[3 * k] >= 0 && s->cpos[3 * k + 1] >= 0 && s->cpos[3 * k + 2] >= 0,
-                  STC_ESOLVER, "shear: node %d's 2x2 block is not in the pattern", s->cand[k]);
+        int n3 = 3 * s->cand[k], *pos = sh->cpos + 3 * k;
+        pos[0] = asp_ls_pos(s->ls, n3, n3);
+        pos[1] = asp_ls_pos(s->ls, n3, n3 + 1);
+        pos[2] = asp_ls_pos(s->ls, n3 + 1, n3 + 1);
+        STC_CHECK(pos[0] >= 0 && pos[1] >= 0 && pos[2] >= 0, STC_ESOLVER,
+                  "shear: node %d's 2x2 block is not in the pattern", s->cand[k]);
     }
     return STC_OK;
 }
@@ -164,7 +207,8 @@ static stc_status alloc_shear(asp_solver *s)
  * The full areas carea_full are set once (full_areas). */
 static stc_status node_areas(asp_solver *s, const double ext[3])
 {
-    double *Ad = malloc((size_t)s->mesh->nnode * sizeof *Ad), *Af = s->carea_full;
+    asp_shear *sh = s->sh;
+    double *Ad = malloc((size_t)s->mesh->nnode * sizeof *Ad), *Af = sh->carea_full;
     stc_status st = STC_OK;
     STC_CHECK_GOTO(Ad, st, done, STC_ENOMEM, "shear: out of memory");
     STC_CALL_GOTO(asp_surface_node_areas_foot(s->mesh, s->Rp, ext[0], ext[1], ext[2], Ad), st,
@@ -174,10 +218,10 @@ static stc_status node_areas(asp_solver *s, const double ext[3])
         int n = s->cand[k];
         if (s->cs[k] == ASP_CS_OPEN) {
             lost += Ad[n];
-            s->carea[k] = 0.0;
+            sh->carea[k] = 0.0;
             continue;
         }
-        s->carea[k] = Ad[n];
+        sh->carea[k] = Ad[n];
         all += Ad[n];
         if (Ad[n] < 0.999 * Af[k]) edge += Ad[n];
     }
@@ -189,7 +233,7 @@ static stc_status node_areas(asp_solver *s, const double ext[3])
     double base = whole ? all : edge, scale = (base + lost) / base;
     for (int k = 0; k < s->ncand; k++) {
         int n = s->cand[k];
-        if (s->cs[k] != ASP_CS_OPEN && (whole || Ad[n] < 0.999 * Af[k])) s->carea[k] *= scale;
+        if (s->cs[k] != ASP_CS_OPEN && (whole || Ad[n] < 0.999 * Af[k])) sh->carea[k] *= scale;
     }
 done:
     free(Ad);
@@ -203,14 +247,14 @@ static stc_status full_areas(asp_solver *s)
     double *Af = malloc((size_t)s->mesh->nnode * sizeof *Af);
     STC_CHECK(Af, STC_ENOMEM, "shear: out of memory");
     stc_status st = asp_surface_node_areas(s->mesh, s->Rp, Af);
-    for (int k = 0; st == STC_OK && k < s->ncand; k++) s->carea_full[k] = Af[s->cand[k]];
+    for (int k = 0; st == STC_OK && k < s->ncand; k++) s->sh->carea_full[k] = Af[s->cand[k]];
     free(Af);
     return st;
 }
 
 /* Junction growth, rule ASP_JUNCTION_FOOTPRINT (docs/design.md
  * §4.2): after each accepted increment the contact's extent along +x, -x
- * and +y is read from the gaps ahead of its edges (asp_contact_footprint),
+ * and +y is read from the gaps ahead of its edges (asp_foot_extent),
  * never shrinking, and the areas are the hat integrals over the two
  * half-ellipses it spans, so the junction grows by fractions of an element
  * instead of a node ring at a time.  The areas are fixed within an
@@ -222,10 +266,11 @@ static stc_status full_areas(asp_solver *s)
  * way: the two bracket the converged answer. */
 static stc_status foot_areas(asp_solver *s)
 {
+    asp_shear *sh = s->sh;
     double ext[3];
-    asp_contact_footprint(s, s->pt0_a, ext);
-    for (int i = 0; i < 3; i++) s->foot[i] = fmax(s->foot[i], ext[i]);
-    return node_areas(s, s->foot);
+    asp_foot_extent(&sh->fp, s, ext);
+    for (int i = 0; i < 3; i++) sh->foot[i] = fmax(sh->foot[i], ext[i]);
+    return node_areas(s, sh->foot);
 }
 
 /* τc: the option, or Y/√3 of the contacting layer (von Mises shear yield;
@@ -244,12 +289,13 @@ static double tau_c_default(const asp_solver *s, double tau_opt, stc_material *l
  * traction is zero, s = g (docs/design.md §4.1). */
 static void initial_slip(asp_solver *s)
 {
+    asp_shear *sh = s->sh;
     const asp_mesh *m = s->mesh;
     int stick = s->opt.contact == ASP_CONTACT_STICK;
     for (int k = 0; k < s->ncand; k++) {
         if (s->cs[k] == ASP_CS_OPEN) continue;
         int n = s->cand[k], sym = !!(m->flags[n] & ASP_NODE_SYM);
-        double ka = s->carea[k] * s->fric.kt;
+        double ka = sh->carea[k] * sh->fric.kt;
         for (int c = 0; c < 2; c++) {
             double r = stick && ka > 0.0 && !(c == 1 && sym) ? s->fint[3 * n + c] / ka : 0.0;
             s->cstick[2 * k + c] = s->u_conv[3 * n + c] + r;
@@ -271,10 +317,11 @@ static void initial_slip(asp_solver *s)
  * after each accepted increment. */
 static void new_node_areas(asp_solver *s, double p_m)
 {
+    asp_shear *sh = s->sh;
     for (int k = 0; k < s->ncand; k++) {
-        if (!s->cnew[k] || s->cs[k] == ASP_CS_OPEN) continue;
+        if (!sh->cnew[k] || s->cs[k] == ASP_CS_OPEN) continue;
         double Fz = -s->fint[3 * s->cand[k] + 2];
-        s->carea[k] = fmin(s->carea_full[k], fmax(Fz, 0.0) / p_m);
+        sh->carea[k] = fmin(sh->carea_full[k], fmax(Fz, 0.0) / p_m);
     }
 }
 
@@ -293,51 +340,54 @@ static void new_node_areas(asp_solver *s, double p_m)
  * where the normal step already left the whole contact surface plastic. */
 static void mark_saturated(asp_solver *s)
 {
-    double dux = s->ux - s->ux_conv;
+    asp_shear *sh = s->sh;
+    double dux = sh->ux - sh->ux_conv;
     for (int k = 0; k < s->ncand; k++) {
-        double A = s->carea[k];
-        double t = A > 0.0 ? hypot(s->cfric[2 * k], s->cfric[2 * k + 1]) / A : 0.0;
-        s->cyield[k] = s->cs[k] != ASP_CS_OPEN && A > 0.0 && dux > 0.0 &&
-                       (t - s->ctrac[k]) / dux <= s->rate_sat;
-        s->ctrac[k] = t;
+        double A = sh->carea[k];
+        double t = A > 0.0 ? hypot(sh->cfric[2 * k], sh->cfric[2 * k + 1]) / A : 0.0;
+        sh->cyield[k] = s->cs[k] != ASP_CS_OPEN && A > 0.0 && dux > 0.0 &&
+                       (t - sh->ctrac[k]) / dux <= sh->rate_sat;
+        sh->ctrac[k] = t;
     }
 }
 
 static void commit_shear(asp_solver *s)
 {
+    asp_shear *sh = s->sh;
     size_t nq = (size_t)s->mesh->nelem * s->nqp;
     mark_saturated(s);
     for (int i = 0; i < s->ndof; i++) s->du_last[i] = s->u[i] - s->u_conv[i];
-    s->ux_dlast = s->ux - s->ux_conv;
+    sh->ux_dlast = sh->ux - sh->ux_conv;
     memcpy(s->u_conv, s->u, (size_t)s->ndof * sizeof *s->u);
     memcpy(s->st_old, s->st_new, nq * sizeof *s->st_old);
     for (int k = 0; k < s->ncand; k++) {
-        if (s->cs[k] == ASP_CS_OPEN || !(s->carea[k] > 0.0)) continue;
-        s->cstick[2 * k] = s->cslip_new[2 * k];
-        s->cstick[2 * k + 1] = s->cslip_new[2 * k + 1];
-        s->cs[k] = s->cfst[k];
+        if (s->cs[k] == ASP_CS_OPEN || !(sh->carea[k] > 0.0)) continue;
+        s->cstick[2 * k] = sh->cslip_new[2 * k];
+        s->cstick[2 * k + 1] = sh->cslip_new[2 * k + 1];
+        s->cs[k] = sh->cfst[k];
     }
-    s->ux_conv = s->ux;
+    sh->ux_conv = sh->ux;
     asp_contact_results(s, &s->pt);
 }
 
 /* Q, P, areas at the committed state (half-model sums x 2). */
 static void measure(const asp_solver *s, asp_shear_point *pt)
 {
+    asp_shear *sh = s->sh;
     const asp_mesh *m = s->mesh;
     double Q = 0.0, Qb = 0.0, A = 0.0, As = 0.0, Al = 0.0;
     int nc = 0;
     for (int k = 0; k < s->ncand; k++) {
         if (s->cs[k] == ASP_CS_OPEN) continue;
         nc++;
-        Q -= s->cfric[2 * k];
-        A += s->carea[k];
-        if (s->cs[k] == ASP_CS_STICK) As += s->carea[k];
-        if (s->cs[k] == ASP_CS_STICK && !s->cyield[k]) Al += s->carea[k];
+        Q -= sh->cfric[2 * k];
+        A += sh->carea[k];
+        if (s->cs[k] == ASP_CS_STICK) As += sh->carea[k];
+        if (s->cs[k] == ASP_CS_STICK && !sh->cyield[k]) Al += sh->carea[k];
     }
     for (int n = 0; n < m->nnode; n++)
         if (m->flags[n] & ASP_NODE_BASE) Qb -= s->fint[3 * n];
-    pt->ux = s->ux_conv;
+    pt->ux = sh->ux_conv;
     pt->Q = 2.0 * Q;
     pt->Q_base = 2.0 * Qb;
     pt->P = s->pt.P;
@@ -346,7 +396,7 @@ static void measure(const asp_solver *s, asp_shear_point *pt)
     pt->slip_frac = A > 0.0 ? 1.0 - As / A : 0.0;
     pt->limit_frac = A > 0.0 ? 1.0 - Al / A : 0.0;
     pt->n_contact = nc;
-    pt->a_lead = s->foot[0], pt->a_trail = s->foot[1], pt->a_side = s->foot[2];
+    pt->a_lead = sh->foot[0], pt->a_trail = sh->foot[1], pt->a_side = sh->foot[2];
 }
 
 /* ---- snapshots ------------------------------------------------------------ */
@@ -363,7 +413,7 @@ static stc_status snap_take(asp_solver *s, asp_shear_snap *p, double Q)
     memcpy(p->u, s->u_conv, (size_t)s->ndof * sizeof *p->u);
     memcpy(p->sig, s->sig, 6 * nq * sizeof *p->sig);
     memcpy(p->st, s->st_old, nq * sizeof *p->st);
-    p->kept = 1, p->Q = Q, p->P = s->pt.P, p->delta = s->delta, p->ux = s->ux_conv;
+    p->kept = 1, p->Q = Q, p->P = s->pt.P, p->delta = s->delta, p->ux = s->sh->ux_conv;
     return STC_OK;
 }
 
@@ -373,7 +423,7 @@ static stc_status snap_take(asp_solver *s, asp_shear_snap *p, double Q)
 static stc_status snap_update(asp_solver *s, const asp_shear_point *pt, double tau_c, int idx,
                               int latest_is_max)
 {
-    asp_shear_snap *sn = s->snap;
+    asp_shear_snap *sn = s->sh->snap;
     if (idx == 0) return snap_take(s, &sn[SNAP_Q0], pt->Q);
     if (latest_is_max || !sn[SNAP_QMAX].kept || pt->Q >= sn[SNAP_QMAX].Q)
         STC_CALL(snap_take(s, &sn[SNAP_QMAX], pt->Q));
@@ -394,12 +444,13 @@ static stc_status snap_update(asp_solver *s, const asp_shear_point *pt, double t
 static stc_status ramp_attrs(const asp_solver *s, const char *prefix, const asp_shear_snap *p,
                              double Qmax)
 {
+    asp_shear *sh = s->sh;
     char path[4096];
     snprintf(path, sizeof path, "%s.h5", prefix);
     hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
     STC_CHECK(f >= 0, STC_EIO, "fields: cannot reopen '%s'", path);
     const char *name[5] = {"ux_mm", "Q_N", "Q_over_Q_max", "tau_c_MPa", "friction_kt_MPa_per_mm"};
-    double v[5] = {p->ux, p->Q, Qmax > 0.0 ? p->Q / Qmax : NAN, s->fric.tau_c, s->fric.kt};
+    double v[5] = {p->ux, p->Q, Qmax > 0.0 ? p->Q / Qmax : NAN, sh->fric.tau_c, sh->fric.kt};
     int bad = 0;
     for (int i = 0; i < 5; i++) {
         hid_t sp = H5Screate(H5S_SCALAR);
@@ -416,18 +467,19 @@ static stc_status ramp_attrs(const asp_solver *s, const char *prefix, const asp_
 stc_status asp_solver_write_shear_fields(asp_solver *s, int which, const char *prefix,
                                          double *Q_over_Qmax)
 {
+    asp_shear *sh = s->sh;
     STC_CHECK(which >= 0 && which <= 2, STC_EINVAL,
               "which = %d: must be 0 (Q = 0), 1 (0.8 Qmax) or 2 (Qmax)", which);
-    STC_CHECK(s->snap && s->snap[SNAP_QMAX].kept, STC_EINVAL,
+    STC_CHECK(s->sh && sh->snap && sh->snap[SNAP_QMAX].kept, STC_EINVAL,
               "shear fields: no ramp with keep_fields was run");
-    double Qmax = s->snap[SNAP_QMAX].Q;
-    asp_shear_snap *p = which == 0 ? &s->snap[SNAP_Q0] : &s->snap[SNAP_QMAX];
+    double Qmax = sh->snap[SNAP_QMAX].Q;
+    asp_shear_snap *p = which == 0 ? &sh->snap[SNAP_Q0] : &sh->snap[SNAP_QMAX];
     if (which == 1) {
         p = NULL;
         for (int i = SNAP_C0; i < ASP_SHEAR_NSNAP; i++)
-            if (i != SNAP_QMAX && s->snap[i].kept &&
-                (!p || fabs(s->snap[i].Q - 0.8 * Qmax) < fabs(p->Q - 0.8 * Qmax)))
-                p = &s->snap[i];
+            if (i != SNAP_QMAX && sh->snap[i].kept &&
+                (!p || fabs(sh->snap[i].Q - 0.8 * Qmax) < fabs(p->Q - 0.8 * Qmax)))
+                p = &sh->snap[i];
         STC_CHECK(p, STC_EINVAL, "shear fields: no ramp point kept for 0.8 Q_max");
     }
     STC_CHECK(p->kept, STC_EINVAL, "shear fields: snapshot %d not kept", which);
@@ -469,7 +521,7 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
               o->foot_rows);
     STC_CHECK(s->dim == 3, STC_EINVAL,
               "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
-    STC_CHECK(!s->shear, STC_EINVAL, "shear: a ramp was already run on this solver");
+    STC_CHECK(!s->hooks, STC_EINVAL, "shear: a ramp was already run on this solver");
     STC_CHECK(!s->graded, STC_EINVAL,
               "shear: grade-3d (the graded 3D core) is not validated for the tangential step "
               "(penalty size, footprint lines); run the ramp without it");
@@ -505,15 +557,16 @@ typedef struct ramp {
  * (docs/design.md §4.2). */
 static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
 {
+    asp_shear *sh = s->sh;
     /* lam = 1 is only the first try after an accept, which left carea at
      * the reading itself; a cut try overwrites it, so blend from the copies */
     if (lam < 1.0)
         for (int k = 0; k < s->ncand; k++)
-            s->carea[k] = s->carea_prev[k] + lam * (s->carea_tgt[k] - s->carea_prev[k]);
+            sh->carea[k] = sh->carea_prev[k] + lam * (sh->carea_tgt[k] - sh->carea_prev[k]);
     memcpy(r->cs0, s->cs, (size_t)s->ncand);
     memcpy(r->cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *r->cst0);
-    s->ux = ux;
-    s->fric_frozen = 1;
+    sh->ux = ux;
+    sh->fric_frozen = 1;
     /* predictor: the last accepted increment scaled to this Δux
      * (docs/design.md §4.3).  Without it the increment starts from
      * u_conv, whose trial state at every plastic Gauss point lies on the
@@ -524,7 +577,7 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
      * the WSP sphere, level 0: 6 ωc 651 -> 88 Newton iterations,
      * 249 -> 19 factorizations, 8 -> 0 cut-backs; 24 ωc 864 -> 101 and
      * 367 -> 29; 12 ωc 237 -> 78 and 67 -> 21 (μs within 1.4 %). */
-    double pred = s->ux_dlast > 0.0 ? (ux - s->ux_conv) / s->ux_dlast : 0.0;
+    double pred = sh->ux_dlast > 0.0 ? (ux - sh->ux_conv) / sh->ux_dlast : 0.0;
     asp_nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
     stc_status st = asp_newton_increment(s, s->delta, pred, &ns); /* Δδ = 0 */
     r->res->newton_iterations += ns.iters, r->res->factorizations += ns.facts;
@@ -533,7 +586,7 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
     memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
     memcpy(s->cs, r->cs0, (size_t)s->ncand);
     memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
-    s->ux = s->ux_conv;
+    sh->ux = sh->ux_conv;
     s->k_fresh = 0;
     return st;
 }
@@ -542,15 +595,16 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
 static stc_status accept(asp_solver *s, const asp_shear_options *o, asp_slide *det,
                          asp_shear_fn cb, void *ctx, ramp *r, int *stop)
 {
+    asp_shear *sh = s->sh;
     asp_shear_point pt;
     int idx = r->npt;
     commit_shear(s);
     measure(s, &pt);
     if (idx == 0) r->p_m = pt.P / pt.A;
-    memcpy(s->carea_prev, s->carea, (size_t)s->ncand * sizeof *s->carea); /* see try_ux */
+    memcpy(sh->carea_prev, sh->carea, (size_t)s->ncand * sizeof *sh->carea); /* see try_ux */
     if (o->junction == ASP_JUNCTION_NODES) new_node_areas(s, r->p_m); /* for the next increment */
     else STC_CALL(foot_areas(s));
-    memcpy(s->carea_tgt, s->carea, (size_t)s->ncand * sizeof *s->carea);
+    memcpy(sh->carea_tgt, sh->carea, (size_t)s->ncand * sizeof *sh->carea);
     if (r->npt == r->cap) {
         int cap = r->cap ? 2 * r->cap : 64;
         asp_shear_point *p = realloc(r->pts, (size_t)cap * sizeof *p);
@@ -560,7 +614,7 @@ static stc_status accept(asp_solver *s, const asp_shear_options *o, asp_slide *d
     r->pts[r->npt++] = pt;
     if (det) asp_slide_push(det, pt.ux, pt.Q, pt.P, pt.limit_frac, pt.n_contact);
     if (o->keep_fields)
-        STC_CALL(snap_update(s, &pt, s->fric.tau_c, idx,
+        STC_CALL(snap_update(s, &pt, sh->fric.tau_c, idx,
                              o->criterion == ASP_SHEAR_CRIT_STIFFNESS));
     if (cb && cb(ctx, &pt)) *stop = 1;
     return STC_OK;
@@ -575,18 +629,19 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     res->a0 = s->pt.a;
     res->P0 = s->pt.P;
     STC_CALL(alloc_shear(s));
-    STC_CALL(asp_fric_law_init(&s->fric, tau_c, lay.E, lay.nu, s->h, o->kappa));
-    s->pt0_a = s->pt.a;
-    for (int i = 0; i < 3; i++) s->foot[i] = s->pt.a;
-    STC_CALL(asp_contact_foot_init(s, o->foot_rows));
-    for (int k = 0; k < s->ncand; k++) s->cnew[k] = s->cs[k] == ASP_CS_OPEN;
+    asp_shear *sh = s->sh;
+    STC_CALL(asp_fric_law_init(&sh->fric, tau_c, lay.E, lay.nu, s->h, o->kappa));
+    for (int i = 0; i < 3; i++) sh->foot[i] = s->pt.a;
+    STC_CALL(asp_foot_init(&sh->fp, s, s->pt.a, o->foot_rows));
+    for (int k = 0; k < s->ncand; k++) sh->cnew[k] = s->cs[k] == ASP_CS_OPEN;
     STC_CALL(full_areas(s));
-    STC_CALL(node_areas(s, s->foot));
+    STC_CALL(node_areas(s, sh->foot));
     initial_slip(s);
-    s->shear = 1;
+    sh->hooks = (asp_hooks){sh, springs, touch, 1};
+    s->hooks = &sh->hooks;
     s->opt.no_separation = 1; /* thesis §3.2.3.3: the contact stays closed */
     for (int k = 0; k < 2; k++) s->mat[k].map = o->return_map;
-    s->ux = s->ux_conv = 0.0;
+    sh->ux = sh->ux_conv = 0.0;
     s->k_fresh = 0;
     asp_slide_params sp;
     asp_slide_params_default(&sp);
@@ -604,7 +659,7 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
      * rising at KT/KT_1 ≈ 0.05-0.1 as P relaxes and the contact grows. */
     sp.full_tol = 0.5;
     asp_slide_setup su = {lay.E / (2.0 * (1.0 + lay.nu)), lay.nu, s->pt.a, tau_c, s->pt.P};
-    s->rate_sat = 0.1 * tau_c / asp_slide_ux_elastic(&su);
+    sh->rate_sat = 0.1 * tau_c / asp_slide_ux_elastic(&su);
     return asp_slide_create(&sp, &su, det);
 }
 
@@ -654,7 +709,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
     int cuts = 0;
     double du = asp_slide_next(det), du0 = du;
     while (du > 0.0 && !stop) {
-        stc_status t = try_ux(s, &r, s->ux_conv + du, du / du0);
+        stc_status t = try_ux(s, &r, s->sh->ux_conv + du, du / du0);
         if (t == STC_OK) {
             STC_CALL_GOTO(accept(s, o, det, cb, ctx, &r, &stop), st, done);
             du = du0 = asp_slide_next(det);
@@ -668,7 +723,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
             if (asp_slide_mechanism(det, msg)) break; /* sliding in the material */
             why = ASP_OUTCOME_CUTBACK_LIMIT;
             st = STC_FAIL(STC_ENOCONV, "shear: %s (%d halvings) reached at ux = %g mm: %s",
-                          asp_outcome_str(why), s->opt.max_cutbacks, s->ux_conv, msg);
+                          asp_outcome_str(why), s->opt.max_cutbacks, s->sh->ux_conv, msg);
             goto done;
         }
         du *= 0.5;
@@ -676,7 +731,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
     fill_result(&r, det, res);
     if (stop) {
         why = ASP_OUTCOME_STOPPED;
-        st = STC_FAIL(STC_ENOCONV, "shear: %s at ux = %g mm", asp_outcome_str(why), s->ux_conv);
+        st = STC_FAIL(STC_ENOCONV, "shear: %s at ux = %g mm", asp_outcome_str(why), s->sh->ux_conv);
     } else if (!res->converged) {
         why = res->outcome;
         st = STC_FAIL(STC_ENOCONV, "shear: %s", res->reason);

@@ -1,4 +1,6 @@
-/* Private layout of asp_solver (shared by solver.c, asp_contact.c, xdmf.c). */
+/* Private layout of asp_solver, shared by the solver's files (solver.c,
+ * load.c, newton.c, assemble.c, asp_contact.c, shear.c, footprint.c,
+ * placements.c, xdmf.c), and their internal prototypes. */
 #ifndef STICTION_SOLVER_IMPL_H
 #define STICTION_SOLVER_IMPL_H
 
@@ -20,21 +22,23 @@ typedef struct asp_ytrack {
     asp_yield y;
 } asp_ytrack;
 
-/* Surface nodes on one line from the axis (shear.c's contact footprint):
- * candidate index, distance from the axis (ascending), gap when the ramp
- * started, and room for the gaps now. */
-typedef struct asp_foot_line {
-    int dir;    /* extent it reads: 0 lead (+x), 1 trail (-x), 2 side (+y) */
-    double off; /* the line's offset across it: y (lead, trail) or x (side), mm */
-    int hold;   /* 1: the reading is at least the last node in contact (rows) */
-    int n;
-    int *k;
-    double *r, *g0, *g;
-} asp_foot_line;
-
-enum { ASP_FOOT_MAXLINES = 96 }; /* 32 per direction */
-
 typedef struct asp_asm asp_asm;
+typedef struct asp_shear asp_shear;
+
+/* Terms of another model in the Newton loop, so that the loop calls it
+ * without knowing it (shear.c installs the ramp's; the normal step has
+ * none).  ctx is the model's state. */
+typedef struct asp_hooks {
+    void *ctx;
+    /* after the element loop: add nodal forces to s->fint and, with want_K,
+     * their tangent to the linear solver's K, at s->u */
+    void (*forces)(void *ctx, asp_solver *s, int want_K);
+    /* candidate k touched the flat at the fraction lam of the increment
+     * (asp_contact_update has made it active, stuck where it touched) */
+    void (*touch)(void *ctx, asp_solver *s, int k, double lam);
+    int tangential; /* 1: the contact nodes' tangential DOFs stay free (forces
+                       holds them), even under stick */
+} asp_hooks;
 
 struct asp_solver {
     stc_params par;
@@ -72,37 +76,14 @@ struct asp_solver {
     double dlast;                 /* size of the last accepted increment */
     asp_point pt;                 /* response at the converged state */
     asp_ytrack yt[2];
-    double t_start;
     double *hd, *hP;              /* history of converged increments: δ, P */
     int nh, caph;
 
-    /* tangential step (shear.c) */
-    int shear;                    /* 1 during the ramp: contact nodes keep u_z only,
-                                     their tangential DOFs carry the stick law */
-    double ux, ux_conv;           /* flat displacement along x: trial, converged, mm */
-    double ux_dlast;              /* last accepted ux increment, mm (0: none yet) */
-    asp_fric_law fric;            /* τc and penalty k_t */
-    double *carea;                /* [ncand] tributary area, mm² */
-    double *carea_full;           /* [ncand] full (unclipped) tributary area, mm² */
-    double *carea_prev, *carea_tgt; /* [ncand] areas of the converged state and the reading
-                                       after it (the increment's target; shear.c try_ux) */
-    unsigned char *cnew;          /* [ncand] 1: not in contact when the ramp started */
-    double foot[3];               /* contact extent +x, -x, +y during the ramp, mm */
-    double pt0_a;                 /* contact radius at the start of the ramp, mm */
-    asp_foot_line fline[ASP_FOOT_MAXLINES]; /* node lines across the edge (footprint) */
-    int nfline;
-    double *ctrac;                /* [ncand] |traction| at the last accepted point, MPa */
     int graded;                   /* 3D: core sized to a_min, shells h ∝ distance */
-    double rate_sat;              /* d|t|/dux below which a stuck node is saturated, MPa/mm */
-    unsigned char *cyield;        /* [ncand] 1: stuck but saturated in the last increment
-                                     (the junction shears in the body; shear.c) */
-    double *cslip_new;            /* [ncand][2] trial slip; cstick holds the converged one */
-    double *cfric;                /* [ncand][2] friction force on the flat at u, N */
-    unsigned char *cfst;          /* [ncand] trial ASP_CS_STICK / ASP_CS_SLIP */
-    int *cpos;                    /* [ncand][3] K->x positions of (x,x), (x,y), (y,y) */
-    int fric_frozen;              /* next assembly: converged stick nodes stay stuck
-                                     (first iteration of an increment, see shear.c) */
-    struct asp_shear_snap *snap;  /* [ASP_SHEAR_NSNAP] kept field snapshots (shear.c) */
+
+    const asp_hooks *hooks;       /* terms of another model in the Newton loop (the
+                                     ramp's stick law), NULL for the normal step */
+    asp_shear *sh;                /* the ramp's state (shear.c), NULL until a ramp */
 };
 
 /* asp_solver_P_smooth's window: increments within a factor ASP_SMOOTH_W of δ
@@ -146,21 +127,14 @@ void asp_contact_dirichlet(asp_solver *s, double delta);
 int asp_contact_update(asp_solver *s, double delta, int add_only);
 void asp_contact_hertz(asp_solver *s, double delta);
 
-/* asp_contact.c: results at the converged state; the contact footprint of
- * the tangential step (shear.c). */
+/* asp_contact.c: results at the converged state, first-yield tracking and
+ * the history of P_smooth. */
 void asp_contact_results(asp_solver *s, asp_point *pt);
-/* the node lines across the edge within rows a0 of the axis, their gaps at ux = 0 */
-stc_status asp_contact_foot_init(asp_solver *s, double rows);
-void asp_contact_foot_free(asp_solver *s);
-/* contact extent along +x, -x, +y from a0 and the gaps ahead of the edges, mm */
-void asp_contact_footprint(const asp_solver *s, double a0, double ext[3]);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
 void asp_history_push(asp_solver *s, double delta, double P);
 
-/* shear.c: friction springs of the contact nodes added to fint (and K) at
- * s->u, s->ux (called by assemble() when s->shear); frees the shear arrays. */
-void asp_shear_assemble(asp_solver *s, int want_K);
-void asp_shear_release(asp_solver *s);
+/* shear.c: frees the ramp's state (*sh = NULL). */
+void asp_shear_destroy(asp_shear **sh);
 
 /* newton.c: one increment to `delta`, started from the predictor u_conv +
  * pred du_last (pred: this increment over the last accepted one, in the

@@ -98,7 +98,7 @@ stc_status asp_surface_node_areas_foot(const asp_mesh *m, double R_outer, double
 /* Contact edge on a line of nodes at increasing distances r[0..nr-1]
  * during the ramp, from the preload radius a0 and the gap of the first open
  * node now (g) against the ramp's start (g0), for a profile g ∝ (r - a)^(3/2)
- * translating with the edge (asp_contact.c).  Nodes in contact: g <= 0. */
+ * translating with the edge (footprint.c).  Nodes in contact: g <= 0. */
 double asp_contact_edge_advance(const double *r, const double *g0, const double *g, int nr,
                                 double a0);
 
