@@ -30,11 +30,7 @@
 
 #include "linsolve_impl.h"
 #include "stc_check.h"
-
-/* OpenBLAS extension (cblas.h of OpenBLAS is not on the default include
- * path here). */
-void openblas_set_num_threads(int num_threads);
-int openblas_get_num_threads(void);
+#include "threads.h"
 
 /* ---- create / destroy ------------------------------------------------------ */
 
@@ -192,33 +188,20 @@ static void apply_constraints(asp_linsolve *ls)
         }
 }
 
-/* The Krylov kernels (precond.c) call OpenBLAS from their own threads, on
- * one right-hand side: OpenBLAS itself must run on the calling thread (its
- * threads only spun there: 3D level 0, loaded machine, 55 ms per threaded
- * solve against 13.5 ms serial).  Returns the count to restore. */
-static int blas_serial_begin(void)
-{
-    int bt = openblas_get_num_threads();
-    if (bt != 1) openblas_set_num_threads(1);
-    return bt;
-}
-
-static void blas_serial_end(int bt)
-{
-    if (bt != 1) openblas_set_num_threads(bt);
-}
-
 static stc_status factorize(asp_linsolve *ls)
 {
     apply_constraints(ls);
-    /* small systems: CHOLMOD's OpenMP regions (4 threads compiled in) and
-     * OpenBLAS threads only spin; max-active-levels 0 serializes them */
-    int lv = omp_get_max_active_levels(), bt = openblas_get_num_threads();
-    if (ls->opt.serial_factor) omp_set_max_active_levels(0), openblas_set_num_threads(1);
     double t0 = omp_get_wtime();
-    cholmod_factorize(ls->K, ls->L, &ls->cc);
+    if (ls->opt.serial_factor) {
+        /* small systems: CHOLMOD's OpenMP regions (4 threads compiled in)
+         * and OpenBLAS's threads only spin (threads.c) */
+        asp_blas_serial_enter();
+        ASP_OMP_SERIAL(cholmod_factorize(ls->K, ls->L, &ls->cc));
+        asp_blas_serial_leave();
+    } else {
+        cholmod_factorize(ls->K, ls->L, &ls->cc);
+    }
     ls->t_fact += omp_get_wtime() - t0;
-    if (ls->opt.serial_factor) omp_set_max_active_levels(lv), openblas_set_num_threads(bt);
     ls->n_fact++;
     ls->have_factor = ls->cc.status == CHOLMOD_OK;
     if (ls->have_factor) STC_CALL(asp_prec_update(ls));
@@ -500,9 +483,9 @@ static stc_status skew_correct(asp_linsolve *ls, double *du, double eta)
 {
     if (!ls->skew) return STC_OK;
     STC_CALL(krylov_alloc(ls));
-    int bt = blas_serial_begin();
+    asp_blas_serial_enter(); /* the Krylov kernels' OpenBLAS calls (threads.c) */
     stc_status st = skew_sweeps(ls, du, eta);
-    blas_serial_end(bt);
+    asp_blas_serial_leave();
     return st;
 }
 
@@ -521,17 +504,17 @@ static int krylov_pays(const asp_linsolve *ls)
     return ls->cc.fl > 320.0 * (ls->cc.lnz + nnzk);
 }
 
-/* Krylov with the last factor; 0 when it converged. */
+/* Krylov with the last factor; *ok: it converged. */
 static stc_status krylov_step(asp_linsolve *ls, double *du, double tol, double eta, int *ok)
 {
     STC_CALL(krylov_alloc(ls));
     if (ls->skew) STC_CALL(gmres_alloc(ls));
-    int bt = blas_serial_begin();
+    asp_blas_serial_enter(); /* the Krylov kernels' OpenBLAS calls (threads.c) */
     double t0 = omp_get_wtime();
     int k = ls->skew ? gmres(ls, ls->b->x, du, tol, eta, ls->opt.krylov_max)
                      : pcg(ls, ls->b->x, du, tol, eta, ls->opt.krylov_max);
     ls->t_pcg += omp_get_wtime() - t0;
-    blas_serial_end(bt);
+    asp_blas_serial_leave();
     ls->k_last = k;
     ls->n_kits += k >= 0 ? k : ls->opt.krylov_max;
     *ok = k >= 0;

@@ -20,10 +20,7 @@
 
 #include "solver_impl.h"
 #include "stc_check.h"
-
-/* OpenBLAS extension (see linsolve.c) */
-void openblas_set_num_threads(int num_threads);
-int openblas_get_num_threads(void);
+#include "threads.h"
 
 /* Normal step of one member (its solver is kept for the ramp). */
 static void member_load(const stc_params *p, const asp_options *o, double delta,
@@ -79,14 +76,20 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
     int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
     if (nt > k) nt = k;
-    int bt = openblas_get_num_threads();
-    if (nt > 1) openblas_set_num_threads(1);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-    for (int j = 0; j < k; j++) {
-        if (j > 0) member_load(p, o, delta, &m[j], &sv[j]);
-        member_shear(so, &m[j], &sv[j]);
+    /* one BLAS thread per member (threads.c); CHOLMOD's regions on the
+     * member's thread, whatever the caller's max-active-levels (this
+     * team's own setting, threads.h) */
+    if (nt > 1) asp_blas_serial_enter();
+#pragma omp parallel num_threads(nt)
+    {
+        omp_set_max_active_levels(0);
+#pragma omp for schedule(dynamic, 1)
+        for (int j = 0; j < k; j++) {
+            if (j > 0) member_load(p, o, delta, &m[j], &sv[j]);
+            member_shear(so, &m[j], &sv[j]);
+        }
     }
-    if (nt > 1) openblas_set_num_threads(bt);
+    if (nt > 1) asp_blas_serial_leave();
     out->mu_s_min = INFINITY, out->mu_s_max = -INFINITY;
     for (int j = 0; j < k; j++) {
         if (m[j].status != STC_OK || !m[j].res.converged) continue;

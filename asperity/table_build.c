@@ -30,9 +30,7 @@
 
 #include "stc_check.h"
 #include "table_impl.h"
-
-void openblas_set_num_threads(int num_threads);
-int openblas_get_num_threads(void);
+#include "threads.h"
 
 static const char JOURNAL_MAGIC[8] = {'S', 'T', 'C', 'T', 'B', 'L', 'J', '2'};
 #define POINT_MAGIC 0x50544254u /* "TBTP" */
@@ -232,11 +230,33 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
     return STC_OK;
 }
 
+/* tbl_point_compute's arguments, for asp_run_serial. */
+typedef struct {
+    const tbl_table *t;
+    double w, tR, E;
+    tbl_point *p;
+} point_job;
+
+static stc_status point_run(void *ctx)
+{
+    const point_job *j = ctx;
+    return tbl_point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->p);
+}
+
+/* One point on the calling thread alone, whichever path runs it (the
+ * serial threads, rank 0's compute threads, the other ranks): the
+ * solver's own regions on one thread (tbl_point_compute sets threads 1),
+ * CHOLMOD's OpenMP regions serial in a region of this call's own
+ * (threads.h; inside a team of one thread they would be the first active
+ * level, and creating a nested team that often made a point 3x slower,
+ * 1.33 -> 4.0 s, same numbers), OpenBLAS on one thread (threads.c), so
+ * that the table's numbers do not depend on jobs, shards or ranks. */
 stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
 {
     double w, tR, E;
     tbl_coords(t, i, &w, &tR, &E);
-    return tbl_point_compute(&t->fam, &t->num, w, tR, E, p);
+    point_job j = {t, w, tR, E, p};
+    return asp_run_serial(point_run, &j);
 }
 
 /* Report to the caller (holding the build's lock); nonzero: stop. */
@@ -327,18 +347,8 @@ static stc_status run_items(tbl_build_state *b, const int *todo, int n)
     int jobs = b->o->jobs > 0 ? b->o->jobs : omp_get_num_procs();
     if (jobs > n) jobs = n > 0 ? n : 1;
     int nw = tbl_curves(b->t) > 0 ? b->t->nrm.n[0] : 1;
-    /* one thread per point: the solver's own OpenMP regions (CHOLMOD's)
-     * run on that thread.  Two or more points at once: one active level,
-     * the points'.  One at a time: none, since inside a team of one thread
-     * the solver's regions would be the first active level, and creating a
-     * nested team that often made a point 3x slower (1.33 -> 4.0 s, same
-     * numbers) */
-    int levels = omp_get_max_active_levels();
-    omp_set_max_active_levels(jobs > 1 ? 1 : 0);
-    /* OpenBLAS on one thread too: the table's numbers then do not depend on
-     * jobs, shards or ranks (both restored below) */
-    int bt = openblas_get_num_threads();
-    openblas_set_num_threads(1);
+    /* one thread per item, its OpenMP regions and OpenBLAS on it
+     * (tbl_build_compute, tbl_build_curve) */
     stc_status bad = STC_OK;
     char why[512] = "";
 #pragma omp parallel num_threads(jobs)
@@ -363,8 +373,6 @@ static stc_status run_items(tbl_build_state *b, const int *todo, int n)
         free(P);
         free(A);
     }
-    openblas_set_num_threads(bt);
-    omp_set_max_active_levels(levels);
     if (bad != STC_OK) return STC_FAIL(bad, "%s", why);
     return STC_OK;
 }

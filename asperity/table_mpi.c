@@ -75,9 +75,6 @@
 #include "stiction/table_mpi.h"
 #include "table_impl.h"
 
-void openblas_set_num_threads(int num_threads);
-int openblas_get_num_threads(void);
-
 /* Message tags: worker -> rank 0, rank 0 -> worker. */
 enum { TAG_UP = 1, TAG_DOWN = 2 };
 /* Kinds of a worker's message. */
@@ -319,11 +316,8 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
     int jobs = 0; /* compute threads besides the serving one */
     if (f->b && m->threads) jobs = f->b->o->jobs > 0 ? f->b->o->jobs : 1;
     if (jobs > f->n) jobs = f->n;
-    /* one active level, this team's: the solver's own regions run on the
-     * point's thread, as in the serial path (table_build.c, run_points) */
-    int levels = omp_get_max_active_levels(), bt = openblas_get_num_threads();
-    omp_set_max_active_levels(1);
-    openblas_set_num_threads(1); /* as in the serial path */
+    /* a point's OpenMP regions and OpenBLAS run on its compute thread, as
+     * in the serial path (table_build.c, tbl_build_compute) */
 #pragma omp parallel num_threads(1 + jobs)
     {
         if (omp_get_thread_num() == 0) { /* the thread that called MPI_Init */
@@ -332,8 +326,6 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
             farm_compute(f);
         }
     }
-    openblas_set_num_threads(bt);
-    omp_set_max_active_levels(levels);
     free(f->given);
     f->given = NULL;
     omp_destroy_lock(&f->lock);
@@ -378,12 +370,9 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
     u.hash = tbl_build_hash(t);
     u.shard = o->shard, u.shards = o->shards;
     for (int i = o->shard; i < tbl_points(t); i += o->shards) share += !o->only || o->only[i];
-    /* one thread per point, its OpenMP regions (CHOLMOD's) on it too, as on
-     * the writer's threads (measured: CHOLMOD's own threads made no
-     * difference to the numbers) */
-    int levels = omp_get_max_active_levels(), bt = openblas_get_num_threads();
-    omp_set_max_active_levels(0);
-    openblas_set_num_threads(1);
+    /* one thread per point, its OpenMP regions (CHOLMOD's) and OpenBLAS on
+     * it too, as on the writer's threads (tbl_build_compute; measured:
+     * CHOLMOD's own threads made no difference to the numbers) */
     for (;;) {
         MPI_Status ms;
         MPI_Send(&u, (int)sizeof u, MPI_BYTE, 0, TAG_UP, MPI_COMM_WORLD);
@@ -409,8 +398,6 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
         failed += u.p.state == TBL_FAILED;
         cpu += u.p.cpu_s;
     }
-    openblas_set_num_threads(bt);
-    omp_set_max_active_levels(levels);
     if (st == STC_OK && d.code != STC_OK) {
         d.why[WHY_MAX - 1] = '\0';
         st = STC_FAIL(d.code > STC_OK && d.code < STC_NSTATUS ? (stc_status)d.code : STC_EINVAL,

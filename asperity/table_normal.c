@@ -19,6 +19,7 @@
 #include "stiction/formulas.h"
 #include "stc_check.h"
 #include "table_impl.h"
+#include "threads.h"
 
 /* Samples per factor 2 of each axis: a Steffen cubic through P(δ) in ln–ln
  * at 4 per octave, or through P(t/R) at fixed δ, is well below the curves'
@@ -318,11 +319,28 @@ stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, do
     return STC_OK;
 }
 
+/* tbl_curve_compute's arguments, for asp_run_serial. */
+typedef struct {
+    const tbl_table *t;
+    int c;
+    tbl_curve *out;
+    double *P, *A;
+} curve_job;
+
+static stc_status curve_run(void *ctx)
+{
+    const curve_job *j = ctx;
+    const tbl_normal *g = &j->t->nrm;
+    return tbl_curve_compute(&j->t->fam, g->level, g->ax[1][j->c % g->n[1]],
+                             g->ax[2][j->c / g->n[1]], g->ax[0], g->n[0], j->P, j->A, j->out);
+}
+
+/* On the calling thread alone (asp_run_serial, as a point: tbl_build_compute),
+ * so the curves' numbers do not depend on how many run at once either. */
 stc_status tbl_build_curve(const tbl_table *t, int c, tbl_curve *out, double *P, double *A)
 {
-    const tbl_normal *g = &t->nrm;
     STC_CHECK(c >= 0 && c < tbl_curves(t), STC_EINVAL, "curve %d: must be in [0, %d)", c,
               tbl_curves(t));
-    return tbl_curve_compute(&t->fam, g->level, g->ax[1][c % g->n[1]], g->ax[2][c / g->n[1]],
-                             g->ax[0], g->n[0], P, A, out);
+    curve_job j = {t, c, out, P, A};
+    return asp_run_serial(curve_run, &j);
 }

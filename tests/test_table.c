@@ -8,6 +8,7 @@
  * full table. */
 #include <dirent.h>
 #include <math.h>
+#include <omp.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -1154,6 +1155,66 @@ static void test_normal_grid(void **state)
     assert_true(eA < 0.02);
 }
 
+/* ---- 9. the caller's settings ------------------------------------------- */
+
+int openblas_get_num_threads(void); /* OpenBLAS extension */
+
+typedef struct {
+    int calls, lo, hi; /* progress reports; the least and most max-active-levels seen */
+} levels_seen;
+
+static int note_levels(void *ctx, const tbl_progress *p)
+{
+    (void)p;
+    levels_seen *l = ctx;
+    int v = omp_get_max_active_levels();
+    if (l->calls++ == 0 || v < l->lo) l->lo = v;
+    if (l->calls == 1 || v > l->hi) l->hi = v;
+    return 0;
+}
+
+/* A build leaves the caller's OpenMP settings alone: the progress callback
+ * (run on the build's thread, after the normal curves and the point) sees
+ * the caller's max-active-levels, and OpenBLAS's thread count is the
+ * caller's again afterwards.  The build used to set max-active-levels 0
+ * (one item at a time) or 1 around its items, so the callback saw 0 here. */
+static void test_caller_settings(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "settings", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/settings.h5", dir);
+    tbl_family f;
+    tbl_numerics num;
+    tbl_family_default(&f);
+    f.contact = ASP_CONTACT_SLIP;
+    tbl_numerics_default(&num);
+    num.elements_per_contact = 3.0;
+    num.placements = 1;
+    const double w[] = {0.5}, tr[] = {0.01}, er[] = {1.0};
+    tbl_table *t = NULL;
+    check_ok(tbl_create(&f, &num, w, 1, tr, 1, er, 1, &t), "tbl_create");
+    levels_seen seen = {0, -1, -1};
+    tbl_build_opts o;
+    tbl_build_opts_default(&o);
+    o.jobs = 1;
+    o.progress = note_levels, o.ctx = &seen;
+    int levels = omp_get_max_active_levels(), blas = openblas_get_num_threads();
+    omp_set_max_active_levels(3);
+    tbl_build_summary sum;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build");
+    printf("max-active-levels: caller 3, in the %d progress callbacks %d..%d, after %d; "
+           "OpenBLAS threads before %d, after %d\n", seen.calls, seen.lo, seen.hi,
+           omp_get_max_active_levels(), blas, openblas_get_num_threads());
+    assert_int_equal(sum.computed, 1);
+    assert_true(seen.calls >= 1);
+    assert_int_equal(seen.lo, 3);
+    assert_int_equal(seen.hi, 3);
+    assert_int_equal(omp_get_max_active_levels(), 3);
+    assert_int_equal(openblas_get_num_threads(), blas);
+    omp_set_max_active_levels(levels);
+    tbl_destroy(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1163,6 +1224,7 @@ int main(void)
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),
         cmocka_unit_test(test_t_over_R_at_axis_ends), cmocka_unit_test(test_retry_failed),
         cmocka_unit_test(test_normal_grid),
+        cmocka_unit_test(test_caller_settings),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

@@ -14,6 +14,15 @@
  *
  * Thread safety: one solver per thread; the solver itself uses OpenMP for
  * the element loop.
+ *
+ * Process-wide state: asp_solver_load, _load_tail, _load_to_P,
+ * asp_solver_shear and asp_shear_placements set OpenBLAS to one thread
+ * while a Krylov solve (3D), a small axisymmetric factorization or an
+ * ensemble's members run (openblas_set_num_threads: the linked pthread
+ * build of OpenBLAS has no per-call control), and restore the count they
+ * found when the last such section of the process ends.  No other
+ * process-wide or caller setting changes (CHOLMOD's OpenMP regions are
+ * serialized inside the library's own one-thread region).
  */
 #ifndef STICTION_ASPERITY_H
 #define STICTION_ASPERITY_H

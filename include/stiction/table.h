@@ -243,7 +243,9 @@ typedef struct tbl_build_summary {
  * written atomically and the journal removed.  The points of t that are not
  * pending stay as they are.  A journal or `path` of another build is refused
  * (STC_EINVAL, naming the difference).  Returns STC_OK when every point of the
- * share is done or failed (failed points are counted in the summary). */
+ * share is done or failed (failed points are counted in the summary).
+ * While a point is computed, OpenBLAS runs on one thread process-wide
+ * (restored after; see include/stiction/asperity.h, process-wide state). */
 STC_API stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opts *o,
                              tbl_build_summary *sum);
 
