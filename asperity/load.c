@@ -170,6 +170,46 @@ static void commit(asp_solver *s, double delta, const asp_nstat *ns)
     asp_history_push(s, delta, s->pt.P);
 }
 
+/* The next increment's end: the step (grown or halved so far) within the
+ * step limit, no sliver before the target unless the step brackets a
+ * first yield (*at_yield). */
+static double next_delta(asp_solver *s, double target, int *at_yield)
+{
+    int aimed;
+    double lim = step_limit(s, target, &aimed);
+    if (s->step <= 0.0) s->step = lim;
+    double dnew = fmin(target, s->delta + fmin(s->step, lim));
+    *at_yield = aimed && lim < s->step;
+    if (target - dnew < 0.2 * fmin(s->step, lim) && !*at_yield) dnew = target;
+    return dnew;
+}
+
+/* A failed increment to dnew: its work counted, the converged state and
+ * the active set (cs0, cst0) restored, the step halved. */
+static void cut_back(asp_solver *s, double dnew, const asp_nstat *ns, const unsigned char *cs0,
+                     const double *cst0)
+{
+    s->pt.newton_iterations += ns->iters;
+    s->pt.factorizations += ns->facts;
+    s->pt.active_set_passes += ns->passes;
+    memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
+    memcpy(s->cs, cs0, (size_t)s->ncand);
+    memcpy(s->cstick, cst0, (size_t)s->ncand * 2 * sizeof *cst0);
+    s->step = 0.5 * (dnew - s->delta);
+    s->pt.cutbacks++;
+}
+
+/* The cumulative counters of the element loop and the linear solver into
+ * the converged point. */
+static void count_work(asp_solver *s)
+{
+    double t_asm;
+    asp_asm_work(s->as, &s->pt.assemblies, &t_asm);
+    asp_ls_stats ls;
+    asp_ls_get_stats(s->ls, &ls);
+    s->pt.krylov_iterations = ls.krylov_iterations;
+}
+
 stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
 {
     STC_CHECK(delta >= s->delta && delta <= s->delta_max * (1 + 1e-12), STC_EINVAL,
@@ -185,18 +225,14 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
     stc_status st = STC_OK;
     int cuts = 0;
     while (s->delta < delta * (1 - 1e-14)) {
-        int aimed;
-        double lim = step_limit(s, delta, &aimed);
-        if (s->step <= 0.0) s->step = lim;
-        double dnew = fmin(delta, s->delta + fmin(s->step, lim));
-        /* no sliver steps, unless the step brackets a first yield */
-        int at_yield = aimed && lim < s->step;
-        if (delta - dnew < 0.2 * fmin(s->step, lim) && !at_yield) dnew = delta;
+        int at_yield;
+        double dnew = next_delta(s, delta, &at_yield);
         asp_nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
         memcpy(cs0, s->cs, (size_t)s->ncand);
         memcpy(cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *cst0);
         /* predictor: the last increment scaled to this Δδ */
-        st = asp_newton_increment(s, dnew, s->dlast > 0.0 ? (dnew - s->delta) / s->dlast : 0.0, &ns);
+        double pred = s->dlast > 0.0 ? (dnew - s->delta) / s->dlast : 0.0;
+        st = asp_newton_increment(s, dnew, pred, &ns);
         if (st == STC_OK) {
             commit(s, dnew, &ns);
             /* a step shortened to bracket a yield does not shrink the next */
@@ -204,15 +240,7 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
             cuts = 0;
             continue;
         }
-        /* cut back: restore the converged state and halve */
-        s->pt.newton_iterations += ns.iters;
-        s->pt.factorizations += ns.facts;
-        s->pt.active_set_passes += ns.passes;
-        memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
-        memcpy(s->cs, cs0, (size_t)s->ncand);
-        memcpy(s->cstick, cst0, (size_t)s->ncand * 2 * sizeof *cst0);
-        s->step = 0.5 * (dnew - s->delta);
-        s->pt.cutbacks++;
+        cut_back(s, dnew, &ns, cs0, cst0);
         if (++cuts > s->opt.max_cutbacks) {
             char why[512];
             snprintf(why, sizeof why, "%s", stc_errmsg());
@@ -225,11 +253,7 @@ stc_status asp_solver_load(asp_solver *s, double delta, asp_point *out)
     }
     free(cs0), free(cst0);
     s->pt.wall_s += omp_get_wtime() - t0;
-    double t_asm;
-    asp_asm_work(s->as, &s->pt.assemblies, &t_asm);
-    asp_ls_stats ls;
-    asp_ls_get_stats(s->ls, &ls);
-    s->pt.krylov_iterations = ls.krylov_iterations;
+    count_work(s);
     if (out) *out = s->pt;
     return st;
 }

@@ -150,46 +150,98 @@ static stc_status newton_exit(asp_nstat *ns, asp_outcome why, const char *fmt, .
     return STC_FAIL(STC_ENOCONV, "%s", msg);
 }
 
+/* Where a Newton solve stands between its iterations. */
+typedef struct ntrack {
+    double rtol, utol; /* this solve's tolerances (loosened or not) */
+    double r_first;    /* first residual without a constraint jump (-1: none yet) */
+    double r_best;     /* the best residual so far and its iteration */
+    int it_best;
+    double dun;        /* free-DOF norm of the last step taken */
+} ntrack;
+
+/* The exits at an iterate without a constraint jump: *done = 1 when it
+ * converged; a failure (diverged, stagnated) is returned with its reason. */
+static stc_status newton_test(const asp_solver *s, asp_nstat *ns, ntrack *t, int it, double rn,
+                              double ref, double delta, int *done)
+{
+    const asp_options *o = &s->opt;
+    double uscale = fmax(norm_sel(s, s->u, 0), delta);
+    *done = 0;
+    if (t->r_first < 0.0) t->r_first = rn;
+    /* diverged: 1e8 times the first residual, or, when that one is already
+     * converged (a predictor that hit the answer), past the reactions
+     * themselves; measured: a ramp increment of the coated t/R .025
+     * Eco/Esu 4 delta = 1 case started at ~1e-12 N and was cut back as
+     * "diverged" at 5e-4 N (P = 1.3 N) */
+    if (!(isfinite(rn) && rn <= 1e8 * fmax(t->r_first, o->rtol * ref)))
+        return newton_exit(ns, ASP_OUTCOME_DIVERGED, "Newton %s at δ = %g mm (residual %.3g N)",
+                           asp_outcome_str(ASP_OUTCOME_DIVERGED), delta, rn);
+    /* (rn <= 1e-300: nothing loads the body yet) */
+    if ((rn <= t->rtol * ref && (t->dun <= t->utol * uscale || rn <= 1e-3 * t->rtol * ref)) ||
+        rn <= 1e-300) {
+        *done = 1;
+        return newton_exit(ns, ASP_OUTCOME_CONVERGED, NULL);
+    }
+    /* stagnation: the residual has not halved its best in NEWTON_STALL
+     * iterations, so no linear rate gets it to the tolerance within
+     * max_newton; the caller cuts the increment back now instead */
+    if (rn < 0.5 * t->r_best) t->r_best = rn, t->it_best = it;
+    if (it - t->it_best >= NEWTON_STALL)
+        return newton_exit(ns, ASP_OUTCOME_STAGNATED, "Newton %s at δ = %g mm: residual %.3g, "
+                           "not below half of %.3g in %d iterations (tolerance %.3g)",
+                           asp_outcome_str(ASP_OUTCOME_STAGNATED), delta,
+                           rn / fmax(ref, 1e-300), t->r_best / fmax(ref, 1e-300), NEWTON_STALL,
+                           o->rtol);
+    return STC_OK;
+}
+
+/* Backtracking line search from u0 = u along du (at most four halvings),
+ * assembling with the tangent if want_K; a step that imposes a constraint
+ * jump (cn > 0) is taken whole, since the residual before it does not see
+ * the jump.  *alpha: the step length taken. */
+static stc_status line_search(asp_solver *s, asp_nstat *ns, const double *du, double *u0,
+                              double rn, double cn, int want_K, double delta, double *alpha)
+{
+    memcpy(u0, s->u, (size_t)s->ndof * sizeof *u0);
+    double a = 1.0;
+    for (int ls = 0;; ls++) {
+        for (int i = 0; i < s->ndof; i++) s->u[i] = u0[i] + a * du[i];
+        if (a == 1.0)
+            for (int i = 0; i < s->ndof; i++)
+                if (s->fixed[i]) s->u[i] = s->ubc[i];
+        stc_status st = asp_assemble(s, want_K);
+        double rt = st == STC_OK ? norm_sel(s, s->fint, 0) : INFINITY;
+        if ((cn > 0.0 && st == STC_OK) || rt <= (1.0 - 1e-4 * a) * rn || ls == 4) {
+            if (st != STC_OK)
+                return newton_exit(ns, ASP_OUTCOME_INVERTED, "line search: %s at δ = %g mm",
+                                   asp_outcome_str(ASP_OUTCOME_INVERTED), delta);
+            *alpha = a;
+            return STC_OK;
+        }
+        a *= 0.5;
+    }
+}
+
 /* Newton with backtracking line search for the current constraints.  With
- * need_asm = 0 the caller guarantees fint (and, if k_fresh, K) belong to u. */
+ * need_asm = 0 the caller guarantees fint (and, if k_fresh, K) belong to u.
+ * A fresh tangent every newton_reuse iterations and at a constraint jump
+ * (linear_step), the last factor in between (newton_solve). */
 static stc_status newton(asp_solver *s, double delta, asp_nstat *ns, double *du, double *u0,
                          double loose, int need_asm)
 {
     const asp_options *o = &s->opt;
-    double rtol = o->rtol * loose, utol = o->utol * loose;
-    double r_first = -1.0, dun = INFINITY, *c = s->cvec, r_best = INFINITY;
-    int age = o->newton_reuse, it_best = 0;
+    ntrack t = {o->rtol * loose, o->utol * loose, -1.0, INFINITY, 0, INFINITY};
+    double *c = s->cvec;
     double r_prev = -1.0; /* the last iteration's residual, for the forcing term */
+    int age = o->newton_reuse;
     if (need_asm || !s->k_fresh) STC_CALL(asp_assemble(s, 1));
     for (int it = 0;; it++) {
         double cn = constraint_defect(s, c);
         double rn = norm_sel(s, s->fint, 0), ref = norm_sel(s, s->fint, 1);
-        double uscale = fmax(norm_sel(s, s->u, 0), delta);
         if (cn == 0.0) {
-            if (r_first < 0.0) r_first = rn;
-            /* diverged: 1e8 times the first residual, or, when that one is
-             * already converged (a predictor that hit the answer), past the
-             * reactions themselves; measured: a ramp increment of the coated
-             * t/R .025 Eco/Esu 4 delta = 1 case started at ~1e-12 N and was
-             * cut back as "diverged" at 5e-4 N (P = 1.3 N) */
-            if (!(isfinite(rn) && rn <= 1e8 * fmax(r_first, o->rtol * ref)))
-                return newton_exit(ns, ASP_OUTCOME_DIVERGED, "Newton %s at δ = %g mm "
-                                   "(residual %.3g N)", asp_outcome_str(ASP_OUTCOME_DIVERGED),
-                                   delta, rn);
-            if (rn <= rtol * ref && (dun <= utol * uscale || rn <= 1e-3 * rtol * ref))
-                return newton_exit(ns, ASP_OUTCOME_CONVERGED, NULL);
-            if (rn <= 1e-300) /* nothing loads the body yet */
-                return newton_exit(ns, ASP_OUTCOME_CONVERGED, NULL);
-            /* stagnation: the residual has not halved its best in NEWTON_STALL
-             * iterations, so no linear rate gets it to the tolerance within
-             * max_newton; the caller cuts the increment back now instead */
-            if (rn < 0.5 * r_best) r_best = rn, it_best = it;
-            if (it - it_best >= NEWTON_STALL)
-                return newton_exit(ns, ASP_OUTCOME_STAGNATED, "Newton %s at δ = %g mm: "
-                                   "residual %.3g, not below half of %.3g in %d iterations "
-                                   "(tolerance %.3g)", asp_outcome_str(ASP_OUTCOME_STAGNATED),
-                                   delta, rn / fmax(ref, 1e-300), r_best / fmax(ref, 1e-300),
-                                   NEWTON_STALL, o->rtol);
+            int done;
+            STC_CALL(newton_test(s, ns, &t, it, rn, ref, delta, &done));
+            if (done) return STC_OK;
         }
         if (it >= o->max_newton)
             return newton_exit(ns, ASP_OUTCOME_MAX_ITERATIONS, "Newton: %d iterations at "
@@ -208,26 +260,9 @@ static stc_status newton(asp_solver *s, double delta, asp_nstat *ns, double *du,
         age++;
         ns->iters++;
         r_prev = cn == 0.0 ? rn : -1.0;
-        memcpy(u0, s->u, (size_t)s->ndof * sizeof *u0);
         double alpha = 1.0;
-        for (int ls = 0;; ls++) {
-            for (int i = 0; i < s->ndof; i++) s->u[i] = u0[i] + alpha * du[i];
-            if (alpha == 1.0)
-                for (int i = 0; i < s->ndof; i++)
-                    if (s->fixed[i]) s->u[i] = s->ubc[i];
-            stc_status st = asp_assemble(s, age >= o->newton_reuse);
-            double rt = st == STC_OK ? norm_sel(s, s->fint, 0) : INFINITY;
-            /* a step that imposes a constraint jump is taken whole: the
-             * residual before it does not see the jump */
-            if ((cn > 0.0 && st == STC_OK) || rt <= (1.0 - 1e-4 * alpha) * rn || ls == 4) {
-                if (st != STC_OK)
-                    return newton_exit(ns, ASP_OUTCOME_INVERTED, "line search: %s at δ = %g mm",
-                                       asp_outcome_str(ASP_OUTCOME_INVERTED), delta);
-                break;
-            }
-            alpha *= 0.5;
-        }
-        dun = alpha * norm_sel(s, du, 0);
+        STC_CALL(line_search(s, ns, du, u0, rn, cn, age >= o->newton_reuse, delta, &alpha));
+        t.dun = alpha * norm_sel(s, du, 0);
     }
 }
 
