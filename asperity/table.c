@@ -9,6 +9,7 @@
 #include "stiction/formulas.h"
 #include "stc_check.h"
 #include "table_impl.h"
+#include "threads.h"
 
 /* ---- family and numerics ------------------------------------------------- */
 
@@ -218,6 +219,35 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     free(e);
     stc_error_clear();
     return STC_OK;
+}
+
+/* tbl_point_compute's arguments, for asp_run_serial. */
+typedef struct {
+    const tbl_table *t;
+    double w, tR, E;
+    tbl_point *p;
+} point_job;
+
+static stc_status point_run(void *ctx)
+{
+    const point_job *j = ctx;
+    return tbl_point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->p);
+}
+
+/* One point on the calling thread alone, whichever path runs it (the
+ * serial threads, rank 0's compute threads, the other ranks): the
+ * solver's own regions on one thread (tbl_point_compute sets threads 1),
+ * CHOLMOD's OpenMP regions serial in a region of this call's own
+ * (threads.h; inside a team of one thread they would be the first active
+ * level, and creating a nested team that often made a point 3x slower,
+ * 1.33 -> 4.0 s, same numbers), OpenBLAS on one thread (threads.c), so
+ * that the table's numbers do not depend on jobs, shards or ranks. */
+stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
+{
+    double w, tR, E;
+    tbl_coords(t, i, &w, &tR, &E);
+    point_job j = {t, w, tR, E, p};
+    return asp_run_serial(point_run, &j);
 }
 
 /* ---- the handle ----------------------------------------------------------------- */

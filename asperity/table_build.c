@@ -30,7 +30,6 @@
 
 #include "stc_check.h"
 #include "table_impl.h"
-#include "threads.h"
 
 static const char JOURNAL_MAGIC[8] = {'S', 'T', 'C', 'T', 'B', 'L', 'J', '2'};
 #define POINT_MAGIC 0x50544254u /* "TBTP" */
@@ -230,35 +229,6 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
     return STC_OK;
 }
 
-/* tbl_point_compute's arguments, for asp_run_serial. */
-typedef struct {
-    const tbl_table *t;
-    double w, tR, E;
-    tbl_point *p;
-} point_job;
-
-static stc_status point_run(void *ctx)
-{
-    const point_job *j = ctx;
-    return tbl_point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->p);
-}
-
-/* One point on the calling thread alone, whichever path runs it (the
- * serial threads, rank 0's compute threads, the other ranks): the
- * solver's own regions on one thread (tbl_point_compute sets threads 1),
- * CHOLMOD's OpenMP regions serial in a region of this call's own
- * (threads.h; inside a team of one thread they would be the first active
- * level, and creating a nested team that often made a point 3x slower,
- * 1.33 -> 4.0 s, same numbers), OpenBLAS on one thread (threads.c), so
- * that the table's numbers do not depend on jobs, shards or ranks. */
-stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
-{
-    double w, tR, E;
-    tbl_coords(t, i, &w, &tR, &E);
-    point_job j = {t, w, tR, E, p};
-    return asp_run_serial(point_run, &j);
-}
-
 /* Report to the caller (holding the build's lock); nonzero: stop. */
 static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tbl_curve *cv)
 {
@@ -279,7 +249,7 @@ static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tb
 }
 
 /* After a point: journal first, then the table, then the caller. */
-void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p)
+static void build_finish(tbl_build_state *b, int i, const tbl_point *p)
 {
     omp_set_lock(&b->lock);
     {
@@ -331,7 +301,7 @@ static stc_status run_item(tbl_build_state *b, int item, double *P, double *A)
     if (item >= 0) {
         tbl_point p;
         STC_CALL(tbl_build_compute(b->t, item, &p));
-        tbl_build_finish(b, item, &p);
+        build_finish(b, item, &p);
     } else {
         tbl_curve cv;
         STC_CALL(tbl_build_curve(b->t, -item - 1, &cv, P, A));
@@ -411,7 +381,7 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
 static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
                              const tbl_build_opts *o, tbl_build_summary *sum)
 {
-    tbl_build_state b = {.t = t, .o = o, .fd = -1, .t0 = wall_now()};
+    tbl_build_state b = {.t = t, .o = o, .finish = build_finish, .fd = -1, .t0 = wall_now()};
     int from_file = 0, from_journal = 0, cf = 0, cj = 0; /* taken from an earlier run */
     int *todo = NULL;
     unsigned char *need = NULL;

@@ -76,11 +76,17 @@ int tbl_same_points(const tbl_table *a, const tbl_table *b);
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
 
 /* The writer's state: the table, its journal and the counts the progress
- * reports carry.  Shared by the writer's threads: tbl_build_finish
- * serialises them; stop is read and written atomically. */
+ * reports carry.  Shared by the writer's threads: finish serialises them;
+ * stop is read and written atomically. */
 typedef struct tbl_build_state {
     tbl_table *t;               /* borrowed */
     const tbl_build_opts *o;    /* borrowed */
+    /* a finished point: journal it (synced), store it in the table, report
+     * it.  Thread-safe (lock).  Sets stop on a journal error or when the
+     * progress callback asks to stop.  (A pointer, so that the farm of
+     * table_mpi.c reaches table_build.c's writer without a call back into
+     * that file.) */
+    void (*finish)(struct tbl_build_state *b, int i, const tbl_point *p);
     int fd;                     /* the journal, open for appending */
     int done, total, resumed, failed, computed; /* points, as in tbl_progress */
     int curves_done, curves_total, curves_computed, curves_failed; /* normal curves */
@@ -88,18 +94,13 @@ typedef struct tbl_build_state {
     int stop;                   /* nonzero: hand out no more points */
     int io_error;               /* errno of a failed journal append, else 0 */
     double t0, cpu;             /* start (monotonic s); CPU s of the computed points */
-    omp_lock_t lock;            /* serialises tbl_build_finish and the first-failure
+    omp_lock_t lock;            /* serialises finish and the first-failure
                                    record; initialised around the computing phase */
 } tbl_build_state;
 
-/* Point i of t computed on the calling thread: tbl_point_compute at the
- * point's coordinates.  The caller holds OpenBLAS at one thread. */
+/* Point i of t computed on the calling thread alone: tbl_point_compute at
+ * the point's coordinates (table.c). */
 stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p);
-
-/* A finished point: journal it (synced), store it in the table, report it.
- * Thread-safe (b->lock).  Sets b->stop on a journal error or
- * when the progress callback asks to stop. */
-void tbl_build_finish(tbl_build_state *b, int i, const tbl_point *p);
 
 /* ---- distributed builds: the MPI farm (table_mpi.c) ---- */
 

@@ -274,7 +274,7 @@ static void farm_handle(farm *f)
             if (!f->b || !f->given || u.index != f->given[src])
                 snprintf(msg, sizeof msg, "rank %d: sent point %d, which it was not given",
                          src, (int)u.index);
-            else tbl_build_finish(f->b, u.index, &u.p);
+            else f->b->finish(f->b, u.index, &u.p);
         } else if (u.kind == UP_FAIL) {
             u.why[WHY_MAX - 1] = '\0';
             if (u.code > STC_OK && u.code < STC_NSTATUS) bad = (stc_status)u.code;
@@ -302,7 +302,7 @@ static void farm_compute(farm *f)
             farm_fail(f, s, msg);
             return;
         }
-        tbl_build_finish(f->b, i, &p);
+        f->b->finish(f->b, i, &p);
     }
 }
 
@@ -317,7 +317,7 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
     if (f->b && m->threads) jobs = f->b->o->jobs > 0 ? f->b->o->jobs : 1;
     if (jobs > f->n) jobs = f->n;
     /* a point's OpenMP regions and OpenBLAS run on its compute thread, as
-     * in the serial path (table_build.c, tbl_build_compute) */
+     * in the serial path (table.c, tbl_build_compute) */
 #pragma omp parallel num_threads(1 + jobs)
     {
         if (omp_get_thread_num() == 0) { /* the thread that called MPI_Init */
@@ -371,7 +371,7 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
     u.shard = o->shard, u.shards = o->shards;
     for (int i = o->shard; i < tbl_points(t); i += o->shards) share += !o->only || o->only[i];
     /* one thread per point, its OpenMP regions (CHOLMOD's) and OpenBLAS on
-     * it too, as on the writer's threads (tbl_build_compute; measured:
+     * it too, as on the writer's threads (table.c, tbl_build_compute; measured:
      * CHOLMOD's own threads made no difference to the numbers) */
     for (;;) {
         MPI_Status ms;
