@@ -22,8 +22,6 @@
 
 #define SRF_PI 3.14159265358979323846
 #define SRF_LN10 2.30258509299404568402
-/* default λs in pixels: 16 points per shortest wavelength (well sampled) */
-#define SRF_DEFAULT_CUTOFF_PIXELS 16.0
 /* relative tolerance when a grid wavevector falls on a band edge */
 #define SRF_BAND_EDGE_RTOL 1e-9
 
@@ -38,39 +36,6 @@ struct srf_synth {
     int nthr;           /* threads used by run (params.threads resolved) */
     gsl_rng **rng;      /* [nthr] one generator per thread, reseeded per row */
 };
-
-void srf_synth_params_default(srf_synth_params *p)
-{
-    memset(p, 0, sizeof *p);
-    p->nx = p->ny = 256;
-    p->lx = p->ly = 1.0;
-    p->rms = 1e-3;
-    p->spectrum = SRF_SPECTRUM_EXPONENTIAL;
-    p->beta_x = p->beta_y = 0.05;
-    p->hurst = 0.8;
-    p->amplitude = SRF_AMP_EXACT;
-    p->skewness = 0.0;
-    p->kurtosis = 3.0;
-}
-
-const char *srf_spectrum_name(srf_spectrum s)
-{
-    switch (s) {
-    case SRF_SPECTRUM_EXPONENTIAL: return "exponential";
-    case SRF_SPECTRUM_SELF_AFFINE: return "self-affine";
-    case SRF_SPECTRUM_USER: return "user";
-    }
-    return "unknown";
-}
-
-/* Resolved self-affine band edges (the 0 = automatic defaults applied). */
-void srf_band(const srf_synth_params *p, double *lL, double *lr, double *ls)
-{
-    double dx = p->lx / p->nx, dy = p->ly / p->ny;
-    *lL = p->lambda_long > 0 ? p->lambda_long : p->lx;
-    *lr = p->lambda_rolloff > 0 ? p->lambda_rolloff : *lL;
-    *ls = p->lambda_cutoff > 0 ? p->lambda_cutoff : SRF_DEFAULT_CUTOFF_PIXELS * fmin(dx, dy);
-}
 
 stc_status srf_synth_params_validate(const srf_synth_params *p)
 {
