@@ -429,7 +429,7 @@ void asp_contact_results(asp_solver *s, asp_point *pt)
  * and this one reaches Y, located at this increment's peak.  The load there
  * is interpolated log-log between the last elastic and the first yielded
  * increment; the location is the peak's at the last elastic increment.
- * The increments are refined near yield (solver.c: step_limit) so the
+ * The increments are refined near yield (load.c: step_limit) so the
  * extrapolation spans at most 3 % in δ. */
 void asp_yield_track(asp_solver *s, const asp_point *pt)
 {

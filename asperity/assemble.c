@@ -42,17 +42,18 @@ struct asp_asm {
  * 0 for an element with a hanging node until build_hang_map sets it. */
 static stc_status index_hanging(asp_solver *s)
 {
+    asp_asm *A = s->as;
     const asp_mesh *m = s->mesh;
     if (m->nhang == 0) return STC_OK;
-    s->as->hidx = malloc((size_t)m->nnode * sizeof *s->as->hidx);
-    s->as->hoff = malloc((size_t)m->nelem * sizeof *s->as->hoff);
-    STC_CHECK(s->as->hidx && s->as->hoff, STC_ENOMEM, "solver: out of memory");
-    for (int i = 0; i < m->nnode; i++) s->as->hidx[i] = -1;
-    for (int k = 0; k < m->nhang; k++) s->as->hidx[m->hang[k]] = k;
+    A->hidx = malloc((size_t)m->nnode * sizeof *A->hidx);
+    A->hoff = malloc((size_t)m->nelem * sizeof *A->hoff);
+    STC_CHECK(A->hidx && A->hoff, STC_ENOMEM, "solver: out of memory");
+    for (int i = 0; i < m->nnode; i++) A->hidx[i] = -1;
+    for (int k = 0; k < m->nhang; k++) A->hidx[m->hang[k]] = k;
     for (int e = 0; e < m->nelem; e++) {
-        s->as->hoff[e] = -1;
+        A->hoff[e] = -1;
         for (int a = 0; a < m->nen; a++)
-            if (s->as->hidx[m->conn[m->nen * e + a]] >= 0) s->as->hoff[e] = 0;
+            if (A->hidx[m->conn[m->nen * e + a]] >= 0) A->hoff[e] = 0;
     }
     return STC_OK;
 }
@@ -149,30 +150,31 @@ static void hang_expand(const asp_solver *s, int e, int gi[24][4], double gw[24]
  * order (-1 below the diagonal), looked up once per mesh. */
 static stc_status build_hang_map(asp_solver *s)
 {
+    asp_asm *A = s->as;
     int gi[24][4], gn[24], nde = s->nde;
     double gw[24][4];
     size_t n = 0;
     for (int e = 0; e < s->mesh->nelem; e++) {
-        if (s->as->hoff[e] < 0) continue;
+        if (A->hoff[e] < 0) continue;
         hang_expand(s, e, gi, gw, gn);
         int t = 0;
         for (int a = 0; a < nde; a++) t += gn[a];
         n += (size_t)t * t;
     }
     STC_CHECK(n <= INT_MAX, STC_ENOMEM, "solver: %zu hanging-node terms", n);
-    s->as->hpos = malloc((n ? n : 1) * sizeof *s->as->hpos);
-    STC_CHECK(s->as->hpos, STC_ENOMEM, "solver: out of memory for the hanging-node map");
+    A->hpos = malloc((n ? n : 1) * sizeof *A->hpos);
+    STC_CHECK(A->hpos, STC_ENOMEM, "solver: out of memory for the hanging-node map");
     n = 0;
     for (int e = 0; e < s->mesh->nelem; e++) {
-        if (s->as->hoff[e] < 0) continue;
-        s->as->hoff[e] = (int)n;
+        if (A->hoff[e] < 0) continue;
+        A->hoff[e] = (int)n;
         hang_expand(s, e, gi, gw, gn);
         for (int a = 0; a < nde; a++)
             for (int b = 0; b < nde; b++)
                 for (int ka = 0; ka < gn[a]; ka++)
                     for (int kb = 0; kb < gn[b]; kb++) {
                         int I = gi[a][ka], J = gi[b][kb];
-                        s->as->hpos[n++] = I <= J ? asp_ls_pos(s->ls, I, J) : -1;
+                        A->hpos[n++] = I <= J ? asp_ls_pos(s->ls, I, J) : -1;
                     }
     }
     return STC_OK;
@@ -215,27 +217,29 @@ stc_status asp_asm_pattern(const asp_solver *s, int **Kp_out, int **Ki_out)
  * solver's value arrays. */
 stc_status asp_asm_maps(asp_solver *s)
 {
+    asp_asm *A = s->as;
     const asp_mesh *m = s->mesh;
     int d = s->dim;
     size_t nmap = (size_t)m->nelem * s->nde * s->nde;
-    s->as->emap = malloc(nmap * sizeof *s->as->emap);
-    STC_CHECK(s->as->emap, STC_ENOMEM, "solver: out of memory");
+    A->emap = malloc(nmap * sizeof *A->emap);
+    STC_CHECK(A->emap, STC_ENOMEM, "solver: out of memory");
     for (int e = 0; e < m->nelem; e++)
         for (int a = 0; a < s->nde; a++)
             for (int b = 0; b < s->nde; b++) {
                 int I = m->conn[s->nen * e + a / d] * d + a % d;
                 int J = m->conn[s->nen * e + b / d] * d + b % d;
                 size_t at = ((size_t)e * s->nde + a) * s->nde + b;
-                s->as->emap[at] = I <= J && !(s->as->hoff && s->as->hoff[e] >= 0) ? asp_ls_pos(s->ls, I, J) : -1;
+                A->emap[at] = I <= J && !(A->hoff && A->hoff[e] >= 0) ? asp_ls_pos(s->ls, I, J) : -1;
             }
-    return s->as->hoff ? build_hang_map(s) : STC_OK;
+    return A->hoff ? build_hang_map(s) : STC_OK;
 }
 
 /* ---- assembly -------------------------------------------------------------- */
 
 void asp_node_u(const asp_solver *s, const double *u, int n, double *out)
 {
-    int d = s->dim, h = s->as->hidx ? s->as->hidx[n] : -1;
+    const asp_asm *A = s->as;
+    int d = s->dim, h = A->hidx ? A->hidx[n] : -1;
     if (h < 0) {
         for (int i = 0; i < d; i++) out[i] = u[d * n + i];
         return;
@@ -279,6 +283,7 @@ static int element(asp_solver *s, int e, int want_K, double *fe, double *Ke, dou
 static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
                          const double *Kp, int atomic)
 {
+    asp_asm *A = s->as;
     int nde = s->nde, gi[24][4], gn[24];
     double gw[24][4], *Kx, *Kk, *Kd, *f = s->fint;
     asp_ls_values(s->ls, &Kx, &Kd, &Kk);
@@ -294,7 +299,7 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
             }
         }
     if (!want_K) return;
-    const int *pos = s->as->hpos + s->as->hoff[e];
+    const int *pos = A->hpos + A->hoff[e];
     for (int a = 0; a < nde; a++)
         for (int b = 0; b < nde; b++)
             for (int ka = 0; ka < gn[a]; ka++)
@@ -324,13 +329,14 @@ static void scatter_hang(asp_solver *s, int e, int want_K, const double *fe, con
 static void scatter(asp_solver *s, int e, int want_K, const double *fe, const double *Ke,
                     const double *Kp, int atomic, int elastic)
 {
+    asp_asm *A = s->as;
     int nde = s->nde, d = s->dim;
-    if (s->as->hoff && s->as->hoff[e] >= 0) {
+    if (A->hoff && A->hoff[e] >= 0) {
         scatter_hang(s, e, want_K, fe, Ke, Kp, atomic);
         return;
     }
     const int *c = s->mesh->conn + (size_t)s->nen * e;
-    const int *map = s->as->emap + (size_t)e * nde * nde;
+    const int *map = A->emap + (size_t)e * nde * nde;
     double *Kx, *Kk, *Kd, *f = s->fint;
     asp_ls_values(s->ls, &Kx, &Kd, &Kk);
     if (!atomic) {
@@ -376,9 +382,10 @@ static void scatter(asp_solver *s, int e, int want_K, const double *fe, const do
  * lowest colour none of its nodes (a hanging node's masters included) has
  * yet; a node's colours are a 64-bit mask, so a mesh needing more keeps the
  * atomic scatter (ncolor 0).  Measured on the 3D graded level-0 load curve
- * to 60 ωc (30.6k DOFs, 2 threads): see create. */
+ * to 60 ωc (30.6k DOFs, 2 threads): docs/design.md §3.6. */
 static stc_status build_colors(asp_solver *s)
 {
+    asp_asm *A = s->as;
     const asp_mesh *m = s->mesh;
     int ne = m->nelem, en[40], *col = malloc((size_t)ne * sizeof *col);
     unsigned long long *used = calloc((size_t)m->nnode, sizeof *used);
@@ -388,7 +395,7 @@ static stc_status build_colors(asp_solver *s)
     }
     int nc = 0;
     for (int e = 0; e < ne && nc >= 0; e++) {
-        int k = eff_nodes(m, s->as->hidx, e, en);
+        int k = eff_nodes(m, A->hidx, e, en);
         for (int a = 0; a < m->nen; a++) en[k++] = m->conn[(size_t)m->nen * e + a];
         unsigned long long taken = 0;
         for (int a = 0; a < k; a++) taken |= used[en[a]];
@@ -407,32 +414,32 @@ static stc_status build_colors(asp_solver *s)
         free(col);
         return STC_OK;
     }
-    s->as->cptr = calloc((size_t)nc + 1, sizeof *s->as->cptr);
-    s->as->celem = malloc((size_t)ne * sizeof *s->as->celem);
-    if (!s->as->cptr || !s->as->celem) {
+    A->cptr = calloc((size_t)nc + 1, sizeof *A->cptr);
+    A->celem = malloc((size_t)ne * sizeof *A->celem);
+    if (!A->cptr || !A->celem) {
         free(col);
         return STC_FAIL(STC_ENOMEM, "solver: out of memory");
     }
-    for (int e = 0; e < ne; e++) s->as->cptr[col[e] + 1]++;
-    for (int c = 0; c < nc; c++) s->as->cptr[c + 1] += s->as->cptr[c];
+    for (int e = 0; e < ne; e++) A->cptr[col[e] + 1]++;
+    for (int c = 0; c < nc; c++) A->cptr[c + 1] += A->cptr[c];
     int *fill = malloc((size_t)nc * sizeof *fill);
     if (!fill) {
         free(col);
         return STC_FAIL(STC_ENOMEM, "solver: out of memory");
     }
-    memcpy(fill, s->as->cptr, (size_t)nc * sizeof *fill);
-    for (int e = 0; e < ne; e++) s->as->celem[fill[col[e]]++] = e;
+    memcpy(fill, A->cptr, (size_t)nc * sizeof *fill);
+    for (int e = 0; e < ne; e++) A->celem[fill[col[e]]++] = e;
     free(fill), free(col);
-    s->as->ncolor = nc;
+    A->ncolor = nc;
     return STC_OK;
 }
 
 /* The elastic stiffness, once per mesh: every element's elastic Ke (its
- * upper triangle kept in s->as->kel) summed into s->as->kglob.  assemble() then
+ * upper triangle kept in kel) summed into kglob.  asp_assemble() then
  * starts K from kglob and adds, for the elements plastic in this
  * iteration only, their tangent minus their elastic Ke: the elastic ones
  * (most of the mesh) only evaluate their stresses and internal force.
- * Measured: see create. */
+ * Measured: docs/design.md §3.6. */
 static stc_status build_elastic_K(asp_solver *s)
 {
     const asp_mesh *m = s->mesh;
@@ -467,17 +474,18 @@ static stc_status build_elastic_K(asp_solver *s)
  * now with D) only if it turned out plastic. */
 static int element_share(asp_solver *s, int e, int want_K, int atomic)
 {
+    asp_asm *A = s->as;
     double fe[24], Ke[24 * 24], Kp[24 * 24];
-    int withK = want_K && s->as->eplastic[e];
+    int withK = want_K && A->eplastic[e];
     int np = element(s, e, withK, fe, Ke, withK ? Kp : NULL);
     if (np > 0 && want_K && !withK) np = element(s, e, 1, fe, Ke, Kp), withK = 1;
-    if (want_K && np >= 0) s->as->eplastic[e] = np > 0;
+    if (want_K && np >= 0) A->eplastic[e] = np > 0;
     if (np <= 0 || !withK) {
         if (np >= 0) scatter(s, e, 0, fe, NULL, NULL, atomic, 1);
         return np;
     }
     int nde = s->nde;
-    const double *k = s->as->kel + (size_t)e * (nde * (nde + 1) / 2);
+    const double *k = A->kel + (size_t)e * (nde * (nde + 1) / 2);
     for (int i = 0; i < nde; i++)
         for (int j = i; j < nde; j++, k++) {
             Ke[i * nde + j] -= *k, Kp[i * nde + j] -= *k;
@@ -493,17 +501,18 @@ static int element_share(asp_solver *s, int e, int want_K, int atomic)
  * of two threads was measured slower than one thread). */
 stc_status asp_assemble(asp_solver *s, int want_K)
 {
+    asp_asm *A = s->as;
     const asp_mesh *m = s->mesh;
     int bad = -1, nthr = s->nthr;
     double t0 = omp_get_wtime();
-    s->as->n_asm++;
+    A->n_asm++;
     memset(s->fint, 0, (size_t)s->ndof * sizeof *s->fint);
     s->k_fresh = 0;
     if (want_K) {
-        if (!s->as->kglob) STC_CALL(build_elastic_K(s));
-        asp_ls_begin_tangent(s->ls, s->as->kglob);
+        if (!A->kglob) STC_CALL(build_elastic_K(s));
+        asp_ls_begin_tangent(s->ls, A->kglob);
     }
-    if (s->as->ncolor > 0) {
+    if (A->ncolor > 0) {
         /* colour by colour: no two elements of a colour share a node, so
          * the scatter needs no atomics, and every entry of K and fint sums
          * its terms in colour order whatever the thread count: the same K
@@ -512,12 +521,12 @@ stc_status asp_assemble(asp_solver *s, int want_K)
          * elastic ones and cluster in the core; measured on the graded 3D
          * curve (n = 4, 16k DOFs, 2 threads): element loop 5.8 -> 3.7 s */
 #pragma omp parallel num_threads(nthr) if (nthr > 1)
-        for (int c = 0; c < s->as->ncolor; c++) {
+        for (int c = 0; c < A->ncolor; c++) {
 #pragma omp for schedule(dynamic, 8)
-            for (int l = s->as->cptr[c]; l < s->as->cptr[c + 1]; l++)
-                if (element_share(s, s->as->celem[l], want_K, 0) < 0) {
+            for (int l = A->cptr[c]; l < A->cptr[c + 1]; l++)
+                if (element_share(s, A->celem[l], want_K, 0) < 0) {
 #pragma omp critical
-                    bad = s->as->celem[l];
+                    bad = A->celem[l];
                 }
         }
     } else {
@@ -528,7 +537,7 @@ stc_status asp_assemble(asp_solver *s, int want_K)
                 bad = e;
             }
     }
-    s->as->t_asm += omp_get_wtime() - t0;
+    A->t_asm += omp_get_wtime() - t0;
     STC_CHECK(bad < 0, STC_ENOCONV, "element %d inverted at δ = %g mm", bad, s->delta);
     if (s->hooks && s->hooks->forces) /* e.g. the ramp's stick-law springs (shear.c) */
         s->hooks->forces(s->hooks->ctx, s, want_K);

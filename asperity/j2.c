@@ -26,7 +26,7 @@
  * at 60 ωc moved by 0.13 % from 4 to 16 steps per node entry.  The
  * tangent is not symmetric (n̂ ⊗ ∂x/∂ε is not its transpose); the solver
  * factorizes an SPD approximation of it (asp_j2_update_pc's Dp) and keeps
- * Newton quadratic with the remainder (solver.c: skew_correct, gmres).
+ * Newton quadratic with the remainder (linsolve.c: skew_correct, gmres).
  *
  * Exact integration: the closed-form solution of the elastic-perfectly
  * plastic von Mises law under a strain rate that is constant over the

@@ -50,14 +50,16 @@ struct asp_solver {
     double omega_est;     /* closed-form first-yield estimate (smaller layer ωc), mm */
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
     double n_contact;     /* elements across a_max (h = a_max / n_contact) */
+    int graded;           /* 3D: core sized to a_min, shells h ∝ distance */
 
     asp_linsolve *ls;     /* the linear solver (linsolve.c) on K's fixed pattern */
     asp_asm *as;          /* assembly: pattern, scatter maps, colours (assemble.c) */
     int nthr;             /* threads of the element loop and the Krylov kernels */
     int level;            /* mesh level in use (opt.mesh_level resolved) */
 
+    /* the FE state (newton.c, load.c, shear.c) */
     double *u, *u_conv, *du_last; /* [ndof] current, last converged, last increment */
-    double *du_scr, *u0_scr;      /* [ndof] scratch of increment(): step, line-search base */
+    double *du_scr, *u0_scr;      /* [ndof] scratch of newton.c: step, line-search base */
     double *fint;                 /* [ndof] internal force at u */
     double *sig;                  /* [nelem][nqp][6] stress at u */
     asp_qp_state *st_old, *st_new; /* [nelem][nqp] */
@@ -66,11 +68,13 @@ struct asp_solver {
     double *cvec;                 /* [ndof] scratch: constraint defect */
     int k_fresh;                  /* K holds the unconstrained tangent at u */
 
+    /* contact (asp_contact.c) */
     int ncand;                    /* contact candidates, sorted by distance from the axis */
     int *cand;                    /* node ids */
     unsigned char *cs;            /* [ncand] ASP_CS_* */
     double *cstick;               /* [ncand][dim - 1] tangential displacement when stuck */
 
+    /* loading (load.c) and the results (asp_contact.c) */
     double delta;                 /* current converged interference */
     double step;                  /* next increment, mm */
     double dlast;                 /* size of the last accepted increment */
@@ -79,15 +83,13 @@ struct asp_solver {
     double *hd, *hP;              /* history of converged increments: δ, P */
     int nh, caph;
 
-    int graded;                   /* 3D: core sized to a_min, shells h ∝ distance */
-
     const asp_hooks *hooks;       /* terms of another model in the Newton loop (the
                                      ramp's stick law), NULL for the normal step */
     asp_shear *sh;                /* the ramp's state (shear.c), NULL until a ramp */
 };
 
 /* asp_solver_P_smooth's window: increments within a factor ASP_SMOOTH_W of δ
- * (asp_contact.c; solver.c samples the elastic range from its start). */
+ * (asp_contact.c; load.c samples the elastic range from its start). */
 #define ASP_SMOOTH_W 2.0
 
 /* mesh.c: asp_mesh_axisym_graded with n elements across a_max instead of
@@ -114,7 +116,7 @@ stc_status asp_assemble(asp_solver *s, int want_K);
 void asp_asm_work(const asp_asm *a, int *evaluations, double *wall_s);
 void asp_asm_destroy(asp_asm **a);
 /* Displacement of node n from the DOF vector u (dim components into out):
- * a hanging node's is the weighted average of its masters' (solver.c). */
+ * a hanging node's is the weighted average of its masters' (assemble.c). */
 void asp_node_u(const asp_solver *s, const double *u, int n, double *out);
 
 /* asp_contact.c: the candidates (asp_contact_setup, once); the fixed DOFs

@@ -549,7 +549,7 @@ static void test_placements(void **state)
      * the members with one each, and OpenBLAS may sum in another order.
      * Equal to the bit with OMP_NUM_THREADS=1.  Otherwise measured 2-3e-16
      * while every Krylov solve went to 1e-6; since the solves stop at the
-     * inexact-Newton forcing term (up to 1e-2, solver.c), the rounding
+     * inexact-Newton forcing term (up to 1e-2, newton.c), the rounding
      * steers the iterates and the answers agree to the Newton tolerance's
      * scale instead: measured 1.3e-12 (rtol 1e-8; another mesh moves μs
      * by ~1e-2) */

@@ -463,7 +463,7 @@ static void test_3d_vs_axisym(void **state)
     assert_true(fabs(p3.P_base / p3.P - 1) < 1e-6);
 }
 
-/* Hanging nodes of the coarsened 3D shells (mesh3d.c, solver.c
+/* Hanging nodes of the coarsened 3D shells (mesh3d.c, assemble.c
  * scatter_hang): the default (one 2:1 step from 6 a_max) and two steps
  * against the uncoarsened mesh.  A force of a hanging node lost or put on
  * the wrong master breaks the equilibrium of the base reaction with the

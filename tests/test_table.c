@@ -946,14 +946,15 @@ static void test_t_over_R_at_axis_ends(void **state)
 
 /* ---- 8. failed points computed again ---------------------------------- */
 
-/* A failed point stays failed in a resumed build, and is computed again
- * with only_failed (one coarse point: about a second; retry_failed takes the
- * same path with the pending points besides). */
-static void test_retry_failed(void **state)
+/* A one-point coarse slip table (3 elements per contact, one placement) at
+ * delta w omega_c, t/R 0.01, Eco/Esu er, to be written to DIR/name.h5
+ * (path). */
+static tbl_table *coarse_point_table(void **state, const char *name, double w, double er,
+                                     char *path, size_t n)
 {
-    char dir[128], path[192];
-    scratch_sub(state, "retry", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/retry.h5", dir);
+    char dir[128];
+    scratch_sub(state, name, dir, sizeof dir);
+    snprintf(path, n, "%s/%s.h5", dir, name);
     tbl_family f;
     tbl_numerics num;
     tbl_family_default(&f);
@@ -961,9 +962,19 @@ static void test_retry_failed(void **state)
     tbl_numerics_default(&num);
     num.elements_per_contact = 3.0;
     num.placements = 1;
-    const double w[] = {1.0}, tr[] = {0.01}, er[] = {2.0};
+    const double tr[] = {0.01};
     tbl_table *t = NULL;
-    check_ok(tbl_create(&f, &num, w, 1, tr, 1, er, 1, &t), "tbl_create");
+    check_ok(tbl_create(&f, &num, &w, 1, tr, 1, &er, 1, &t), "tbl_create");
+    return t;
+}
+
+/* A failed point stays failed in a resumed build, and is computed again
+ * with only_failed (one coarse point: about a second; retry_failed takes the
+ * same path with the pending points besides). */
+static void test_retry_failed(void **state)
+{
+    char path[192];
+    tbl_table *t = coarse_point_table(state, "retry", 1.0, 2.0, path, sizeof path);
     tbl_point p;
     memset(&p, 0, sizeof p);
     p.state = TBL_FAILED;
@@ -1180,19 +1191,8 @@ static int note_levels(void *ctx, const tbl_progress *p)
  * (one item at a time) or 1 around its items, so the callback saw 0 here. */
 static void test_caller_settings(void **state)
 {
-    char dir[128], path[192];
-    scratch_sub(state, "settings", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/settings.h5", dir);
-    tbl_family f;
-    tbl_numerics num;
-    tbl_family_default(&f);
-    f.contact = ASP_CONTACT_SLIP;
-    tbl_numerics_default(&num);
-    num.elements_per_contact = 3.0;
-    num.placements = 1;
-    const double w[] = {0.5}, tr[] = {0.01}, er[] = {1.0};
-    tbl_table *t = NULL;
-    check_ok(tbl_create(&f, &num, w, 1, tr, 1, er, 1, &t), "tbl_create");
+    char path[192];
+    tbl_table *t = coarse_point_table(state, "settings", 0.5, 1.0, path, sizeof path);
     levels_seen seen = {0, -1, -1};
     tbl_build_opts o;
     tbl_build_opts_default(&o);

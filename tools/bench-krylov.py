@@ -5,7 +5,7 @@ bench-krylov.py CLI
 
 Runs the 3D half model (level 0) with --krylov off (CHOLMOD factorization of
 every tangent) and --krylov auto (PCG preconditioned with the last factor,
-asperity/solver.c) and prints, per case: wall time, Newton iterations,
+asperity/linsolve.c) and prints, per case: wall time, Newton iterations,
 factorizations, PCG iterations, element-loop evaluations, and the largest
 relative difference of P, a and the first-yield interferences between the
 two (they must agree: the PCG tolerance is below the Newton tests').

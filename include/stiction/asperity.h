@@ -98,7 +98,7 @@ typedef struct asp_options {
                                 contact past first yield (samples the P(δ)
                                 sawtooth for asp_solver_P_smooth), in
                                 [0.5, 16]; 0 = automatic: 4 slip axisymmetric,
-                                2 slip 3D, 1 stick (solver.c: step_limit);
+                                2 slip 3D, 1 stick (load.c: step_limit);
                                 default 0 */
     int max_active_set;      /* active-set passes per increment; default 40 */
     int max_cutbacks;        /* consecutive increment halvings; default 10 */
@@ -184,7 +184,7 @@ typedef struct asp_point {
 /* First yield of one layer (first = substrate/uncoated: layer 0, coating: 1). */
 typedef struct asp_yield {
     int reached;   /* 0 if the layer has not yielded up to the current δ */
-    double delta;  /* interference at first yield, mm (interpolated, see solver.c) */
+    double delta;  /* interference at first yield, mm (interpolated, see asp_contact.c) */
     double P;      /* load at that interference, N */
     double r, z;   /* location (axisymmetric r, z; 3D: x = r, z), mm */
 } asp_yield;
@@ -245,7 +245,7 @@ STC_API int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
 /* Load on past the meshed maximum δ_max (same mesh), to 1.5 δ_max (at most
  * the small-strain limit 0.01 R), so that asp_solver_P_smooth at the last
  * points of a curve averages increments on both sides of them instead of
- * one (at 60 ωc on mesh level 0 that halves its error, see solver.c).  Call
+ * one (at 60 ωc on mesh level 0 that halves its error, see load.c).  Call
  * it after the last point's results and fields are taken: the state is then
  * past the curve.  A failure is returned like asp_solver_load's; the
  * increments that converged before it stay in the estimate. */
