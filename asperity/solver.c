@@ -122,7 +122,11 @@ static stc_status alloc_state(asp_solver *s)
     return STC_OK;
 }
 
-static stc_status make_mesh(asp_solver *s, double delta_max)
+/* Contact sizes for a mesh loaded up to delta_max: the layers' material
+ * laws, R', a_max (the largest contact, with a safety factor), the
+ * first-yield estimate and a_min (the smallest contact a load curve past
+ * yield resolves). */
+static stc_status size_contact(asp_solver *s, double delta_max)
 {
     stc_material su, co;
     stc_critical c;
@@ -145,6 +149,15 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     s->omega_est = fmin(c.omega_c, t > 0.0 ? cc.omega_c : c.omega_c);
     double dres = 0.8 * s->omega_est;
     s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
+    return STC_OK;
+}
+
+/* The mesh for the sizes of size_contact: its level, the graded or uniform
+ * 3D core, the axisymmetric surface layers; the solver's dimensions. */
+static stc_status make_mesh(asp_solver *s, double delta_max)
+{
+    STC_CALL(size_contact(s, delta_max));
+    double t = stc_params_t(&s->par);
     /* default level: 1 axisymmetric, 0 in 3D.  A 3D level costs ~5-10x the
      * one below (3D Hertz point level 0: <= 0.2 %); the μs of a
      * combined-loading run moved by <= 1 % from 6 to 8.5 elements across
