@@ -52,6 +52,8 @@ stc_status tbl_normal_init_axes(tbl_table *t, double *const ax[3], const int n[3
 void tbl_normal_free(tbl_normal *g);
 /* Same level and axes (bitwise): curves of one may be taken into the other. */
 int tbl_same_normal(const tbl_table *a, const tbl_table *b);
+/* ---- the normal curves (table_curve.c) ---- */
+
 /* The curves a build restricted to the points only[] needs: those at the
  * t/R and Eco/Esu the chosen points span (need[c] = 1, else 0). */
 void tbl_normal_needed(const tbl_table *t, const unsigned char *only, unsigned char *need);
