@@ -119,14 +119,14 @@ void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_
     p->nu_co_set = 1;
 }
 
-static double cpu_now(void)
+double tbl_cpu_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-static double wall_now(void)
+double tbl_wall_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -205,7 +205,7 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     memset(out, 0, sizeof *out);
     asp_placement_result *e = malloc(sizeof *e);
     STC_CHECK(e, STC_ENOMEM, "tbl_point_compute: out of memory");
-    double t0 = wall_now(), c0 = cpu_now();
+    double t0 = tbl_wall_now(), c0 = tbl_cpu_now();
     stc_status st = asp_shear_placements(&p, &o, &so, delta, num->placements, e);
     if (st == STC_OK) {
         fill_done(&c, e, num, out);
@@ -214,8 +214,8 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
         out->members = e->n_ok;
         snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, stc_errmsg());
     }
-    out->wall_s = wall_now() - t0;
-    out->cpu_s = cpu_now() - c0;
+    out->wall_s = tbl_wall_now() - t0;
+    out->cpu_s = tbl_cpu_now() - c0;
     free(e);
     stc_error_clear();
     return STC_OK;

@@ -8,7 +8,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "stiction/formulas.h"
 #include "stc_check.h"
@@ -44,20 +43,6 @@ int tbl_curves_pending(const tbl_table *t, const unsigned char *only)
 }
 
 /* ---- one curve -------------------------------------------------------------------- */
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 /* The solver run of one curve (as `stiction asperity` runs a load curve):
  * out->state set, values written when done. */
@@ -134,12 +119,12 @@ stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, do
 
     memset(out, 0, sizeof *out);
     for (int k = 0; k < n_w; k++) P_Pc[k] = A_Ac[k] = NAN;
-    double t0 = wall_now(), c0 = cpu_now();
+    double t0 = tbl_wall_now(), c0 = tbl_cpu_now();
     run_curve(&p, &o, &c, w, n_w, P_Pc, A_Ac, out);
     if (out->state != TBL_DONE)
         for (int k = 0; k < n_w; k++) P_Pc[k] = A_Ac[k] = NAN;
-    out->wall_s = wall_now() - t0;
-    out->cpu_s = cpu_now() - c0;
+    out->wall_s = tbl_wall_now() - t0;
+    out->cpu_s = tbl_cpu_now() - c0;
     stc_error_clear();
     return STC_OK;
 }

@@ -61,6 +61,11 @@ void tbl_normal_needed(const tbl_table *t, const unsigned char *only, unsigned c
  * [n_w of the normal grid]. */
 stc_status tbl_build_curve(const tbl_table *t, int c, tbl_curve *out, double *P, double *A);
 
+/* The calling thread's CPU time and the monotonic wall clock, s (a point's
+ * and a curve's costs). */
+double tbl_cpu_now(void);
+double tbl_wall_now(void);
+
 /* Parameters of the reference sphere for a point of family f. */
 void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_params *p);
 
