@@ -495,19 +495,20 @@ void asp_yield_track(asp_solver *s, const asp_point *pt)
  * (end noise up to 3.2 %; curvature bias -0.8 %) (curve3d helper). */
 enum { ASP_SMOOTH_MIN = 5 };
 
-void asp_history_push(asp_solver *s, double delta, double P)
+void asp_history_push(asp_solver *s, double delta, double P, double A)
 {
     if (s->nh == s->caph) {
         int cap = s->caph ? 2 * s->caph : 64;
-        double *d = realloc(s->hd, (size_t)cap * sizeof *d);
-        if (!d) return; /* the estimate then uses fewer points */
-        s->hd = d;
-        double *q = realloc(s->hP, (size_t)cap * sizeof *q);
-        if (!q) return;
-        s->hP = q;
+        double *v[3] = {s->hd, s->hP, s->hA};
+        for (int k = 0; k < 3; k++) {
+            double *n = realloc(v[k], (size_t)cap * sizeof *n);
+            if (!n) return; /* the estimates then use fewer points */
+            v[k] = n;
+        }
+        s->hd = v[0], s->hP = v[1], s->hA = v[2];
         s->caph = cap;
     }
-    s->hd[s->nh] = delta, s->hP[s->nh] = P;
+    s->hd[s->nh] = delta, s->hP[s->nh] = P, s->hA[s->nh] = A;
     s->nh++;
 }
 
@@ -522,27 +523,43 @@ static double dx_weight(const asp_solver *s, int i)
     return 0.5 * (hi - lo);
 }
 
-int asp_solver_P_smooth(const asp_solver *s, double delta, double *P)
+/* The local linear regression above of ln y on ln δ at delta, y the history
+ * column hy (P or A); *out NaN and 0 returned without an estimate. */
+static int smooth_at(const asp_solver *s, const double *hy, double delta, double *out)
 {
     double x0 = log(delta), hw = log(ASP_SMOOTH_W);
-    *P = NAN;
+    *out = NAN;
     if (!(delta > 0.0)) return 0;
     for (int widen = 0; widen < 4; widen++, hw *= 1.5) {
-        /* weighted sums for ln P = c0 + c1 (ln δ_i - ln δ) */
+        /* weighted sums for ln y = c0 + c1 (ln δ_i - ln δ) */
         double S = 0.0, Sx = 0.0, Sxx = 0.0, Sy = 0.0, Sxy = 0.0;
         int n = 0, left = 0;
         for (int i = 0; i < s->nh; i++) {
-            if (!(s->hd[i] > 0.0 && s->hP[i] > 0.0)) continue;
+            if (!(s->hd[i] > 0.0 && hy[i] > 0.0)) continue;
             double x = log(s->hd[i]) - x0, u = fabs(x) / hw;
             if (u >= 1.0) continue;
-            double w = pow(1.0 - u * u * u, 3.0) * dx_weight(s, i), y = log(s->hP[i]);
+            double w = pow(1.0 - u * u * u, 3.0) * dx_weight(s, i), y = log(hy[i]);
             S += w, Sx += w * x, Sxx += w * x * x, Sy += w * y, Sxy += w * x * y;
             n++, left += x < 0.0;
         }
         double det = S * Sxx - Sx * Sx;
         if (n < ASP_SMOOTH_MIN || left < 2 || !(det > 1e-12 * S * S)) continue;
-        *P = exp((Sxx * Sy - Sx * Sxy) / det);
+        *out = exp((Sxx * Sy - Sx * Sxy) / det);
         return n;
     }
     return 0;
+}
+
+int asp_solver_P_smooth(const asp_solver *s, double delta, double *P)
+{
+    return smooth_at(s, s->hP, delta, P);
+}
+
+/* The contact area is quantized by the same node entries: the sub-element
+ * radius of asp_contact_results steps with them (level 1, stick, t/R 0.035,
+ * Eco/Esu 4: A/(Ac w) 1.2330, 1.2295, 1.2287, 1.2672, 1.3577 at 21-42 ωc),
+ * and the same regression averages the steps out. */
+int asp_solver_A_smooth(const asp_solver *s, double delta, double *A)
+{
+    return smooth_at(s, s->hA, delta, A);
 }

@@ -167,7 +167,7 @@ static void commit(asp_solver *s, double delta, const asp_nstat *ns)
     s->pt.active_set_passes += ns->passes;
     asp_contact_results(s, &s->pt);
     asp_yield_track(s, &s->pt);
-    asp_history_push(s, delta, s->pt.P);
+    asp_history_push(s, delta, s->pt.P, s->pt.A);
 }
 
 /* The next increment's end: the step (grown or halved so far) within the

@@ -75,7 +75,10 @@ stc_status asp_curve_run(const stc_params *p, const asp_options *o, const double
         if (res->tail != STC_OK)
             snprintf(res->tail_reason, sizeof res->tail_reason, "%s", stc_errmsg());
     }
-    for (int i = 0; i < res->n; i++) asp_solver_P_smooth(s, pts[i].pt.delta, &pts[i].P_smooth);
+    for (int i = 0; i < res->n; i++) {
+        asp_solver_P_smooth(s, pts[i].pt.delta, &pts[i].P_smooth);
+        asp_solver_A_smooth(s, pts[i].pt.delta, &pts[i].A_smooth);
+    }
     asp_solver_destroy(&s);
     if (st != STC_OK) return STC_FAIL(st, "%s", pts[res->n - 1].reason);
     return STC_OK;

@@ -263,7 +263,7 @@ void asp_solver_destroy(asp_solver **sp)
     asp_mesh_destroy(&s->mesh);
     asp_asm_destroy(&s->as);
     free(s->u), free(s->u_conv), free(s->du_last), free(s->fint), free(s->sig);
-    free(s->ubc), free(s->cvec), free(s->hd), free(s->hP);
+    free(s->ubc), free(s->cvec), free(s->hd), free(s->hP), free(s->hA);
     free(s->st_old), free(s->st_new), free(s->fixed), free(s->cand), free(s->cs), free(s->cstick);
     asp_shear_destroy(&s->sh);
     free(s);

@@ -80,7 +80,7 @@ struct asp_solver {
     double dlast;                 /* size of the last accepted increment */
     asp_point pt;                 /* response at the converged state */
     asp_ytrack yt[2];
-    double *hd, *hP;              /* history of converged increments: δ, P */
+    double *hd, *hP, *hA;         /* history of converged increments: δ, P, A */
     int nh, caph;
 
     const asp_hooks *hooks;       /* terms of another model in the Newton loop (the
@@ -133,7 +133,7 @@ void asp_contact_hertz(asp_solver *s, double delta);
  * the history of P_smooth. */
 void asp_contact_results(asp_solver *s, asp_point *pt);
 void asp_yield_track(asp_solver *s, const asp_point *pt);
-void asp_history_push(asp_solver *s, double delta, double P);
+void asp_history_push(asp_solver *s, double delta, double P, double A);
 
 /* shear.c: frees the ramp's state (*sh = NULL). */
 void asp_shear_destroy(asp_shear **sh);

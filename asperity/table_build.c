@@ -366,7 +366,8 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
     *n_curves = n;
     for (int i = o->shard; i < tbl_points(t); i += o->shards) {
         int st_i = t->pt[i].state;
-        if ((o->only && !o->only[i]) || (o->only_failed && st_i == TBL_PENDING)) continue;
+        if (o->curves_only || (o->only && !o->only[i]) || (o->only_failed && st_i == TBL_PENDING))
+            continue;
         b->total++;
         if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
             todo[n++] = i;

@@ -73,7 +73,7 @@ static void run_curve(const stc_params *p, const asp_options *o, const stc_criti
         out->newton_iterations = pts[n_w - 1].pt.newton_iterations;
         for (int k = 0; k < n_w; k++) {
             P_Pc[k] = pts[k].P_smooth / c->P_c;
-            A_Ac[k] = pts[k].pt.A / c->A_c;
+            A_Ac[k] = pts[k].A_smooth / c->A_c;
             if (!(isfinite(P_Pc[k]) && P_Pc[k] > 0 && isfinite(A_Ac[k]) && A_Ac[k] > 0)) {
                 out->state = TBL_FAILED;
                 snprintf(out->reason, sizeof out->reason, "at delta/omega_c = %g: no smoothed "

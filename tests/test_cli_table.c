@@ -392,6 +392,39 @@ static void test_fill(void **state)
 #undef FILL_RUN
 }
 
+/* --curves-only completes the normal grid of a table without computing a
+ * point; its curves equal those of the full build. */
+static void test_curves_only(void **state)
+{
+    (void)state;
+    char out[4096];
+    assert_int_equal(run("table build " BUILD_AXES " " BUILD_NUM " --out c.h5 --init", 1, out,
+                         sizeof out), 0);
+    assert_non_null(strstr(out, "normal grid: 3 curves, 0 done, 0 failed, 3 pending"));
+    assert_int_equal(run("table build " BUILD_AXES " " BUILD_NUM " --out c.h5 --curves-only "
+                         "--jobs 1", 1, out, sizeof out), 0);
+    printf("  %s", strstr(out, "this run"));
+    assert_non_null(strstr(out, "this run: 0 of 0 points of its share computed"));
+    assert_non_null(strstr(out, "normal grid: 3 curves, 3 done, 0 failed, 0 pending; this run "
+                                "computed 3"));
+    assert_non_null(strstr(out, "0 done, 0 failed, 4 pending"));
+    tbl_table *a = NULL, *b = NULL;
+    assert_int_equal(tbl_read(P("c.h5"), &a), STC_OK);
+    assert_int_equal(tbl_read(P("ref.h5"), &b), STC_OK);
+    const double *w;
+    int nw = tbl_normal_axis(a, 0, &w);
+    for (int c = 0; c < tbl_curves(a); c++)
+        for (int k = 0; k < nw; k++) {
+            double v[4];
+            tbl_curve_values(a, c, k, &v[0], &v[1]);
+            tbl_curve_values(b, c, k, &v[2], &v[3]);
+            assert_memory_equal(v, v + 2, 2 * sizeof *v);
+        }
+    printf("  its %d curves equal the full build's bit for bit\n", tbl_curves(a));
+    tbl_destroy(&a);
+    tbl_destroy(&b);
+}
+
 /* A table with failed points: the prediction runs over the done ones and
  * warns, naming how many failed and where the reasons are. */
 static void test_failed_points_warned(void **state)
@@ -438,6 +471,7 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_query_t_mm),
         cmocka_unit_test(test_fill),
+        cmocka_unit_test(test_curves_only),
         cmocka_unit_test(test_failed_points_warned),
     };
     return cmocka_run_group_tests_name("cli_table", tests, setup, teardown);

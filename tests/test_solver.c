@@ -261,7 +261,9 @@ static asp_solver *curve_solver(int level, double dmax, int sample, stc_critical
     return s;
 }
 
-static void curve_run(int level, int n, const double *d, double *P, double *Ps, int *incr)
+/* P, P_smooth, A, A_smooth (normalised) at d[0..n-1] of one curve. */
+static void curve_run(int level, int n, const double *d, double *P, double *Ps, double *A,
+                      double *As, int *incr)
 {
     stc_critical c;
     asp_point pt;
@@ -269,6 +271,7 @@ static void curve_run(int level, int n, const double *d, double *P, double *Ps, 
     for (int i = 0; i < n; i++) {
         assert_int_equal(asp_solver_load(s, d[i] * c.omega_c, &pt), STC_OK);
         P[i] = pt.P / c.P_c;
+        A[i] = pt.A / c.A_c;
         *incr = pt.increments;
     }
     /* as the CLI does for a curve: on past the end, so the last points'
@@ -276,31 +279,44 @@ static void curve_run(int level, int n, const double *d, double *P, double *Ps, 
     assert_int_equal(asp_solver_load_tail(s, NULL), STC_OK);
     for (int i = 0; i < n; i++) {
         assert_true(asp_solver_P_smooth(s, d[i] * c.omega_c, &Ps[i]) >= 5);
+        assert_true(asp_solver_A_smooth(s, d[i] * c.omega_c, &As[i]) >= 5);
         Ps[i] /= c.P_c;
+        As[i] /= c.A_c;
     }
     asp_solver_destroy(&s);
 }
 
 /* Load curve past yield (slip, homogeneous) on meshes 0 and 1: the raw P
  * is a sawtooth (one tooth per surface node entering the contact), the
- * smoothed load asp_solver_P_smooth agrees across the two meshes. */
+ * smoothed load asp_solver_P_smooth agrees across the two meshes; the
+ * contact area steps with the same entries and asp_solver_A_smooth brings
+ * the two meshes together too. */
 static void test_smooth_load(void **state)
 {
     (void)state;
     enum { N = 5 };
     const double d[N] = {6, 12, 18, 24, 30};
-    double P0[N], S0[N], P1[N], S1[N], raw = 0.0, sm = 0.0;
+    double P0[N], S0[N], P1[N], S1[N], A0[N], T0[N], A1[N], T1[N], raw = 0.0, sm = 0.0;
+    double raw_A = 0.0, sm_A = 0.0;
     int i0, i1;
-    curve_run(0, N, d, P0, S0, &i0);
-    curve_run(1, N, d, P1, S1, &i1);
+    curve_run(0, N, d, P0, S0, A0, T0, &i0);
+    curve_run(1, N, d, P1, S1, A1, T1, &i1);
     for (int i = 0; i < N; i++) {
-        printf("# delta/wc %4.0f: P/Pc %.3f | %.3f (levels 0 | 1), smoothed %.3f | %.3f\n", d[i],
-               P0[i], P1[i], S0[i], S1[i]);
+        printf("# delta/wc %4.0f: P/Pc %.3f | %.3f (levels 0 | 1), smoothed %.3f | %.3f; A/Ac "
+               "%.3f | %.3f, smoothed %.3f | %.3f\n", d[i], P0[i], P1[i], S0[i], S1[i], A0[i],
+               A1[i], T0[i], T1[i]);
         raw = fmax(raw, fabs(P0[i] / P1[i] - 1));
         sm = fmax(sm, fabs(S0[i] / S1[i] - 1));
-        /* the smoothed curve stays within the sawtooth's reach */
+        raw_A = fmax(raw_A, fabs(A0[i] / A1[i] - 1));
+        sm_A = fmax(sm_A, fabs(T0[i] / T1[i] - 1));
+        /* the smoothed curves stay within the steps' reach */
         assert_true(fabs(S1[i] / P1[i] - 1) < 0.06);
+        assert_true(fabs(T1[i] / A1[i] - 1) < 0.06);
     }
+    printf("# max level 0/1 difference of A: raw %.2f %%, smoothed %.2f %%\n", 100 * raw_A,
+           100 * sm_A);
+    /* measured: raw 5.34 %, smoothed 1.07 % */
+    assert_true(sm_A < 0.015 && sm_A < 0.5 * raw_A);
     printf("# max level 0/1 difference: raw %.2f %%, smoothed %.2f %% (%d, %d increments)\n",
            100 * raw, 100 * sm, i0, i1);
     /* measured: raw 3.7 %, smoothed 0.14 % with the tail (without it the

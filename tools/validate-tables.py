@@ -175,7 +175,7 @@ def axisym_point(cli, table, info, axis, pt):
               family_args(info)).stdout
     for r in json.loads(out):
         if abs(r["delta_over_omega_c_su"] - d) <= 1e-9 * d:
-            return r["P_smooth_over_P_c"], r["A_over_A_c"]
+            return r["P_smooth_over_P_c"], r["A_smooth_over_A_c"]
     sys.exit("no row at delta %g in the axisymmetric curve" % d)
 
 

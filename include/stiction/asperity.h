@@ -242,6 +242,14 @@ STC_API void asp_solver_info(const asp_solver *s, asp_info *info);
  * increments used (0: no estimate). */
 STC_API int asp_solver_P_smooth(const asp_solver *s, double delta, double *P);
 
+/* Contact area at `delta` (mm) with the node-entry steps removed: the same
+ * local regression as asp_solver_P_smooth on ln A (asp_point.A, the
+ * sub-element radius of each converged increment).  The radius steps with
+ * the node entries (axisymmetric level 1, stick, t/R 0.035, Eco/Esu 4:
+ * A/(Ac δ/ωc) 1.2330, 1.2295, 1.2287, 1.2672, 1.3577 at 21-42 ωc).  Writes
+ * *A (mm²; NaN if not enough increments) and returns the increments used. */
+STC_API int asp_solver_A_smooth(const asp_solver *s, double delta, double *A);
+
 /* Load on past the meshed maximum δ_max (same mesh), to 1.5 δ_max (at most
  * the small-strain limit 0.01 R), so that asp_solver_P_smooth at the last
  * points of a curve averages increments on both sides of them instead of
@@ -452,6 +460,7 @@ typedef struct asp_curve_point {
     asp_point pt;          /* the response (delta in mm) */
     double P_smooth;       /* N, NaN without an estimate (asp_solver_P_smooth after the
                               whole curve and its tail) */
+    double A_smooth;       /* mm², likewise (asp_solver_A_smooth) */
     asp_yield yield[2];    /* first yield of substrate [0] and coating [1] up to here */
     double time_assembly_s, time_factorize_s, time_pcg_s; /* cumulative since create */
     stc_status status;     /* STC_OK, or why the point failed (the curve stops there) */

@@ -126,7 +126,8 @@ typedef struct tbl_curve {
  * the axisymmetric model at mesh `level` loaded through w[0..n_w-1]
  * (δ/ωc_su, increasing) and on past the last one (asp_solver_load_tail), one
  * thread.  P_Pc[k] is the load with the node-entry sawtooth removed
- * (asp_solver_P_smooth) / Pc_su, A_Ac[k] the contact area / Ac_su (both
+ * (asp_solver_P_smooth) / Pc_su, A_Ac[k] the contact area with its node-entry
+ * steps removed (asp_solver_A_smooth) / Ac_su (both
  * [n_w], written; NaN when not done).  Never fails for a curve that does not
  * converge: out->state is TBL_FAILED with the reason; STC_EINVAL for bad
  * arguments only. */
@@ -221,6 +222,9 @@ typedef struct tbl_build_opts {
     int retry_failed;   /* compute the failed points of the share again (after a change
                            to the solver, say); default 0: they stay failed */
     int only_failed;    /* compute the failed points again and no pending one; default 0 */
+    int curves_only;    /* compute the normal grid's pending curves and no point (a table
+                           without a normal grid, or from before a change to the curves,
+                           completed); default 0 */
     tbl_progress_fn progress; /* nullable */
     void *ctx;
 } tbl_build_opts;

@@ -249,6 +249,13 @@ static void json_row(cli_json *j, const asp_curve_point *r, const stc_critical *
     cj_num(j, "P_base_N", r->pt.P_base);
     cj_num(j, "A_mm2", r->pt.A);
     cj_num(j, "A_over_A_c", r->pt.A / c->A_c);
+    if (isfinite(r->A_smooth)) {
+        cj_num(j, "A_smooth_mm2", r->A_smooth);
+        cj_num(j, "A_smooth_over_A_c", r->A_smooth / c->A_c);
+    } else {
+        cj_null(j, "A_smooth_mm2");
+        cj_null(j, "A_smooth_over_A_c");
+    }
     cj_num(j, "a_mm", r->pt.a);
     cj_int(j, "nodes_in_contact", r->pt.n_contact);
     cj_num(j, "max_penetration_mm", r->pt.max_penetration);
@@ -335,14 +342,14 @@ static int write_csv(const char *dir, const asp_curve_point *rows, int n, const 
     FILE *f = cli_out_open(&o, dir, "curve.csv");
     if (!f) return -1;
     fprintf(f, "delta_mm,delta_over_omega_c_su,P_N,P_over_P_c,P_smooth_N,a_mm,A_mm2,A_over_A_c,"
-               "vm_over_Y_su,vm_over_Y_co,newton_iterations,wall_s\n");
+               "A_smooth_mm2,vm_over_Y_su,vm_over_Y_co,newton_iterations,wall_s\n");
     for (int i = 0; i < n; i++) {
         const asp_point *p = &rows[i].pt;
-        char sm[32];
-        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%.6g,%.6g,%d,%.4f\n", p->delta,
+        char sm[32], am[32];
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%s,%.6g,%.6g,%d,%.4f\n", p->delta,
                 p->delta / c->omega_c, p->P, p->P / c->P_c,
                 cli_num(sm, sizeof sm, "%.9g", rows[i].P_smooth, ""), p->a, p->A,
-                p->A / c->A_c,
+                p->A / c->A_c, cli_num(am, sizeof am, "%.9g", rows[i].A_smooth, ""),
                 p->vm_over_Y[0], p->vm_over_Y[1], p->newton_iterations, p->wall_s);
     }
     return cli_out_close(&o);

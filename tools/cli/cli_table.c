@@ -110,6 +110,8 @@ static const cli_opt build_opts[] = {
                      "merge); combines with mpirun"},
     {"retry-failed", NULL, "compute the table's failed points again (after a solver change)"},
     {"only-failed", NULL, "compute the table's failed points again and no pending one"},
+    {"curves-only", NULL, "compute the normal grid's pending curves and no point (completes "
+                          "the normal grid of a table that has none yet)"},
     {"init", NULL, "compute nothing: write FILE with the points it has (none for a new "
                    "table) for `surface predict --fill` or a later build"},
     {"quiet", NULL, "no progress lines"},
@@ -187,6 +189,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         s = cli_parse_flag(key, value, &a->bo.retry_failed);
     } else if (!strcmp(key, "only-failed")) {
         s = cli_parse_flag(key, value, &a->bo.only_failed);
+    } else if (!strcmp(key, "curves-only")) {
+        s = cli_parse_flag(key, value, &a->bo.curves_only);
     } else if (!strcmp(key, "init")) {
         s = cli_parse_flag(key, value, &a->init);
     } else {
