@@ -863,6 +863,22 @@ static void test_partial(void **state)
 
 /* ---- 7b. interpolation across t/R ---------------------------------------- */
 
+/* Point i done with these P, P at inception and A, and mu_s 0.4 +- 0.01. */
+static void set_point(tbl_table *t, int i, double P, double P_slide, double A)
+{
+    tbl_point p;
+    memset(&p, 0, sizeof p);
+    p.state = TBL_DONE;
+    p.P_Pc = P;
+    p.P_slide_Pc = P_slide;
+    p.A_Ac = A;
+    p.mu_s = p.mu_s_preload = p.mu_s_min = p.mu_s_max = 0.4;
+    p.mu_s_err = 0.01;
+    p.Q_max_Pc = 0.4 * P_slide;
+    p.members = 1;
+    check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+}
+
 /* A response curved in ln t/R (P = w^1.5 exp(0.2 ln²(t/R / 0.02)), on five
  * t/R columns doubling from 0.005): the monotone cubic across the columns
  * halves the straight line's error at the midpoints (1.21 % against 2.43 %;
@@ -882,17 +898,8 @@ static void test_interp_t_over_R(void **state)
     for (int i = 0; i < tbl_points(t); i++) {
         double wi, tR, E;
         tbl_coords(t, i, &wi, &tR, &E);
-        double l = log(tR / 0.02);
-        tbl_point p;
-        memset(&p, 0, sizeof p);
-        p.state = TBL_DONE;
-        p.P_Pc = p.P_slide_Pc = pow(wi, 1.5) * exp(0.2 * l * l);
-        p.A_Ac = wi;
-        p.mu_s = p.mu_s_preload = p.mu_s_min = p.mu_s_max = 0.4;
-        p.mu_s_err = 0.01;
-        p.Q_max_Pc = 0.4 * p.P_Pc;
-        p.members = 1;
-        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+        double l = log(tR / 0.02), P = pow(wi, 1.5) * exp(0.2 * l * l);
+        set_point(t, i, P, P, wi);
     }
     check_ok(tbl_fit(t), "tbl_fit");
     double worst = 0.0, worst_lin = 0.0, worst_ratio = 0.0;
@@ -1065,17 +1072,7 @@ static void test_normal_grid(void **state)
     for (int i = 0; i < tbl_points(t); i++) {
         double wi, tR, E;
         tbl_coords(t, i, &wi, &tR, &E);
-        tbl_point p;
-        memset(&p, 0, sizeof p);
-        p.state = TBL_DONE;
-        p.P_Pc = 2.0 * pow(wi, 1.5);
-        p.P_slide_Pc = 0.9 * p.P_Pc;
-        p.A_Ac = wi;
-        p.mu_s = p.mu_s_preload = p.mu_s_min = p.mu_s_max = 0.4;
-        p.mu_s_err = 0.01;
-        p.Q_max_Pc = 0.4 * p.P_slide_Pc;
-        p.members = 1;
-        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+        set_point(t, i, 2.0 * pow(wi, 1.5), 1.8 * pow(wi, 1.5), wi);
     }
     check_ok(tbl_fit(t), "tbl_fit");
     tbl_value v;
