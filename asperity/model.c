@@ -39,6 +39,7 @@ struct asp_model {
     asp_model_range range;
     const double *breaks;
     int nbreaks;
+    double ends[2];    /* a tabulated model's range ends: its breaks */
     /* tabulated models */
     int n_w, n_tR;
     double *tR;        /* [n_tR] */
@@ -248,13 +249,16 @@ static stc_status col_init(data_col *c, const asp_model_data *d, int j)
 }
 
 /* log-log value at lx: Steffen inside the grid, the end interval's power law
- * outside (exact continuation of Hertz-like data).  accel NULL: read-only,
- * so concurrent calls are safe. */
+ * outside (exact continuation of Hertz-like data).  Below the grid the
+ * exponent is held >= 0: no response grows as the interference falls, and an
+ * error band that narrows along the first interval (a table's Qmax band) would
+ * otherwise diverge as w -> 0.  accel NULL: read-only, so concurrent calls are
+ * safe. */
 static double col_eval(const data_col *c, const gsl_interp *ip, const double *ly, int n,
                        double lx)
 {
     const double *lw = c->lw;
-    if (lx < lw[0]) return ly[0] + (ly[1] - ly[0]) / (lw[1] - lw[0]) * (lx - lw[0]);
+    if (lx < lw[0]) return ly[0] + fmax((ly[1] - ly[0]) / (lw[1] - lw[0]), 0.0) * (lx - lw[0]);
     if (lx > lw[n - 1])
         return ly[n - 1] + (ly[n - 1] - ly[n - 2]) / (lw[n - 1] - lw[n - 2]) * (lx - lw[n - 1]);
     return gsl_interp_eval(ip, lw, ly, lx, NULL);
@@ -345,6 +349,12 @@ stc_status asp_model_create_data(const asp_model_data *d, asp_model **out)
                                  d->coating_aware ? d->tR[0] : 0.0,
                                  d->coating_aware ? d->tR[d->n_tR - 1] : INFINITY,
                                  d->coating_aware, d->Q_Pc != NULL};
+    /* past either end the response is extrapolated by another formula: it
+     * bends there, and a quadrature must split at the bend */
+    m->ends[0] = m->range.w_lo;
+    m->ends[1] = m->range.w_hi;
+    m->breaks = m->ends;
+    m->nbreaks = 2;
     return STC_OK;
 fail:
     asp_model_destroy(out);

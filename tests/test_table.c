@@ -951,6 +951,48 @@ static void test_t_over_R_at_axis_ends(void **state)
     tbl_destroy(&t);
 }
 
+/* The bundled thesis table summed over a Gaussian summit population whose
+ * lightest contacts fall below the table's first delta: the response bends
+ * where the table's range ends (the extrapolation below it is another
+ * formula), and the quadrature must be told, or it bisects into the bend
+ * until its pieces are too small (t/R 0.005, Eco/Esu 4, sigma_s 2e-6 mm at
+ * R 0.1 mm: "apparent singularity" at these three pressures). */
+static void test_bundled_table_range_bend(void **state)
+{
+    (void)state;
+    tbl_table *t = NULL;
+    check_ok(tbl_read(STC_DATA_DIR "/tables/thesis.h5", &t), "tbl_read");
+    stc_params p;
+    family_params(4.0, &p);
+    asp_model *tm[3] = {NULL, NULL, NULL};
+    srf_gw *g[3] = {NULL, NULL, NULL};
+    for (int k = 0; k < 3; k++) {
+        check_ok(tbl_model_create(t, &p, 0.0005, TBL_MODEL_PRELOAD + k, &tm[k]), "model");
+        check_ok(srf_gw_create_gaussian(tm[k], 1000.0, 0.1, 2e-6, NULL, &g[k]), "gw");
+    }
+    /* the preload's separation at each pressure, then P at inception and the
+     * error band at that separation, as surface predict --table sums them */
+    const double pressure[] = {0.02, 0.05, 0.1}; /* MPa */
+    for (int i = 0; i < 3; i++) {
+        srf_gw_point q, qs, qe;
+        check_ok(srf_gw_at_pressure(g[0], pressure[i], &q), "gw at pressure");
+        check_ok(srf_gw_at_separation(g[1], q.h, &qs), "gw at separation, slide");
+        check_ok(srf_gw_at_separation(g[2], q.h, &qe), "gw at separation, error band");
+        assert_true(q.Q_MPa > 0 && qs.Q_MPa > 0 && qe.Q_MPa > 0);
+    }
+    for (int k = 0; k < 3; k++) {
+        /* the bends are the model's range ends */
+        const double *w;
+        asp_model_range rg;
+        asp_model_get_range(tm[k], &rg);
+        assert_int_equal(asp_model_breaks(tm[k], &w), 2);
+        assert_true(w[0] == rg.w_lo && w[1] == rg.w_hi);
+        srf_gw_destroy(&g[k]);
+        asp_model_destroy(&tm[k]);
+    }
+    tbl_destroy(&t);
+}
+
 /* ---- 8. failed points computed again ---------------------------------- */
 
 /* A one-point coarse slip table (3 elements per contact, one placement) at
@@ -1219,7 +1261,8 @@ int main(void)
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_mu_smoothing),
         cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),
-        cmocka_unit_test(test_t_over_R_at_axis_ends), cmocka_unit_test(test_retry_failed),
+        cmocka_unit_test(test_t_over_R_at_axis_ends),
+        cmocka_unit_test(test_bundled_table_range_bend), cmocka_unit_test(test_retry_failed),
         cmocka_unit_test(test_normal_grid),
         cmocka_unit_test(test_caller_settings),
     };
