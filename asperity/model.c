@@ -39,7 +39,7 @@ struct asp_model {
     asp_model_range range;
     const double *breaks;
     int nbreaks;
-    double ends[2];    /* a tabulated model's range ends: its breaks */
+    double *knots;     /* a tabulated model's w values: its breaks (owned) */
     /* tabulated models */
     int n_w, n_tR;
     double *tR;        /* [n_tR] */
@@ -349,12 +349,14 @@ stc_status asp_model_create_data(const asp_model_data *d, asp_model **out)
                                  d->coating_aware ? d->tR[0] : 0.0,
                                  d->coating_aware ? d->tR[d->n_tR - 1] : INFINITY,
                                  d->coating_aware, d->Q_Pc != NULL};
-    /* past either end the response is extrapolated by another formula: it
-     * bends there, and a quadrature must split at the bend */
-    m->ends[0] = m->range.w_lo;
-    m->ends[1] = m->range.w_hi;
-    m->breaks = m->ends;
-    m->nbreaks = 2;
+    /* the interpolant is a cubic between the knots (its second derivative
+     * jumps there) and another formula past either end: a quadrature that
+     * splits at every knot integrates smooth pieces only */
+    m->knots = malloc((size_t)d->n_w * sizeof *m->knots);
+    STC_CHECK_GOTO(m->knots, st, fail, STC_ENOMEM, "asp_model: out of memory");
+    memcpy(m->knots, d->w, (size_t)d->n_w * sizeof *m->knots);
+    m->breaks = m->knots;
+    m->nbreaks = d->n_w;
     return STC_OK;
 fail:
     asp_model_destroy(out);
@@ -441,6 +443,7 @@ void asp_model_destroy(asp_model **pm)
         for (int j = 0; j < m->n_tR; j++) col_free(&m->cols[j]);
     free(m->cols);
     free(m->tR);
+    free(m->knots);
     free(m);
     *pm = NULL;
 }

@@ -34,7 +34,6 @@
 #define TABOR_H_OVER_Y 2.8 /* Tabor (1951): H = 2.8 Y; GW 1966 plasticity index */
 #define INV_SQRT_2PI 0.39894228040143267794
 #define KDE_SUPPORT 8.0    /* kernel cut at 8 bandwidths: exp(-32) ~ 1e-14 */
-#define MAX_BREAKS 64
 #define QUANTILE_PIECES 256 /* load quantile: cumulative on this many pieces ... */
 #define QUANTILE_GL 8       /* ... each by 8-point Gauss-Legendre */
 #define GAUSS_TOP 9.0       /* Gaussian heights: nothing above s = max(h,0) + 9 (phi ~ 1e-18) */
@@ -396,7 +395,7 @@ static stc_status quad(srf_gw *g, double h, int what, double a, double b, double
     *res = *err = 0.0;
     if (!(b > a)) return STC_OK;
     double lo = a;
-    for (int i = 0; i < nb && i < MAX_BREAKS; i++) {
+    for (int i = 0; i < nb; i++) {
         double sb = s_of_w(g, h, bw[i]);
         if (sb <= lo || sb >= b) continue;
         STC_CALL(quad_piece(g, &f, lo, sb, res, err));
