@@ -142,7 +142,12 @@ class Mesh:
 
 
 # ---------------------------------------------------------------- the deck
-def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair):
+def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair, Rin=None, Eco=None,
+               touch=None):
+    """touch (contact "touch"): {node: step at whose end it was first in contact};
+    one step per amplitude value, and a node's radial displacement is fixed
+    (*BOUNDARY, FIXED: at its value at the end of the previous step) from the step
+    after that on.  Frictionless contact carries the normal load."""
     """The ccx input deck; returns (apex node id, 2D node count, element count, centroids)."""
     ids, coords = {}, []
 
@@ -171,6 +176,8 @@ def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair):
         els.append((len(els) + 1, typ, nodes, (cx, cy), cs))
     R = m.R
     nn = len(coords)
+    # a coated sphere: an element is coating when its centroid lies outside rho = Rin
+    layer = {e[0]: "COAT" if Rin and math.hypot(*e[3]) > Rin else "SUB" for e in els}
     apex = ids[(0, 0)]
     probe = ids[(2, 2 * m.N)]            # ring 1 on the sphere: in contact from the start
     tol = 1e-12 * R
@@ -194,10 +201,12 @@ def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair):
                                                            nn + 2 * q + 2, x * LU, (R + H) * LU))
             fnodes += [nn + 2 * q + 1, nn + 2 * q + 2]
         for typ in ("CAX8", "CAX6"):
-            sel = [e for e in els if e[1] == typ]
-            f.write("*ELEMENT,TYPE=%s,ELSET=SPHERE\n" % typ)
-            for e in sel:
-                f.write("%d,%s\n" % (e[0], ",".join(map(str, e[2]))))
+            for lay in ("SUB", "COAT"):
+                sel = [e for e in els if e[1] == typ and layer[e[0]] == lay]
+                if sel:
+                    f.write("*ELEMENT,TYPE=%s,ELSET=%s\n" % (typ, lay))
+                    for e in sel:
+                        f.write("%d,%s\n" % (e[0], ",".join(map(str, e[2]))))
         ne = len(els)
         f.write("*ELEMENT,TYPE=CAX4,ELSET=FLAT\n")
         for q in range(nf):
@@ -207,6 +216,9 @@ def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair):
         writeset(f, "NSET", "AXIS", axis)
         writeset(f, "NSET", "APEX", [probe])
         writeset(f, "NSET", "FLATN", fnodes)
+        surfn = sorted(ids[k] for k in ids if (k[1] == 2 * m.N or k == (0, 0))
+                       and m.xy(*k)[0] < 0.8 * xf)
+        writeset(f, "NSET", "SURFN", surfn)
         eout = [e[0] for e in els if e[3][0] <= box[0] * amax and R - e[3][1] <= box[1] * amax]
         writeset(f, "ELSET", "EOUT", eout)
         # slave faces: element edges on the sphere (ray N) within x < xf
@@ -227,26 +239,40 @@ def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair):
         for q in range(nf):
             f.write("%d,S1\n" % (ne + q + 1))
         f.write("*MATERIAL,NAME=MSP\n*ELASTIC\n%.10g,%.10g\n" % (E, nu))
+        f.write("*MATERIAL,NAME=MCO\n*ELASTIC\n%.10g,%.10g\n" % (Eco or E, nu))
         f.write("*MATERIAL,NAME=MFL\n*ELASTIC\n%.10g,0.\n" % (1000 * E))
-        f.write("*SOLID SECTION,ELSET=SPHERE,MATERIAL=MSP\n")
+        f.write("*SOLID SECTION,ELSET=SUB,MATERIAL=MSP\n")
+        if "COAT" in layer.values():
+            f.write("*SOLID SECTION,ELSET=COAT,MATERIAL=MCO\n")
         f.write("*SOLID SECTION,ELSET=FLAT,MATERIAL=MFL\n")
         f.write("*SURFACE INTERACTION,NAME=SI\n*SURFACE BEHAVIOR,PRESSURE-OVERCLOSURE=LINEAR\n"
                 "%.6g\n" % (penalty / LU))
         if contact == "stick":
             f.write("*FRICTION\n1e4,%.6g\n" % (penalty / LU))
         f.write("*CONTACT PAIR,INTERACTION=SI,TYPE=%s\nSPH,FLS\n" % pair)
-        f.write("*AMPLITUDE,NAME=RAMP\n")
-        n = len(amp)
-        for k, v in enumerate(amp):
-            f.write("%.12g,%.12g\n" % (k / (n - 1), v))
         f.write("*BOUNDARY\nBASE,1,2\nAXIS,1\nFLATN,1\n")
-        inc = 1.0 / (n - 1)
-        f.write("*STEP,INC=100000\n*STATIC,DIRECT\n%.12g,1.\n" % inc)
-        f.write("*BOUNDARY,AMPLITUDE=RAMP\nFLATN,2,2,%.12g\n" % (-dmax * LU))
-        f.write("*NODE PRINT,NSET=APEX\nU\n*NODE PRINT,NSET=FLATN,TOTALS=ONLY\nRF\n")
-        f.write("*EL PRINT,ELSET=EOUT\nS\n*END STEP\n")
+        prints = ("*NODE PRINT,NSET=APEX\nU\n*NODE PRINT,NSET=FLATN,TOTALS=ONLY\nRF\n"
+                  "*NODE PRINT,NSET=SURFN\nU\n*EL PRINT,ELSET=EOUT\nS\n*END STEP\n")
+        if contact == "touch":
+            for k in range(1, len(amp)):
+                f.write("*STEP,INC=1000\n*STATIC\n1.,1.\n*BOUNDARY\nFLATN,2,2,%.12g\n"
+                        % (-dmax * amp[k] * LU))
+                new = sorted(nd for nd, s in touch.items() if s == k - 1 and nd not in axis)
+                if new:
+                    f.write("*BOUNDARY,FIXED\n")
+                    for nd in new:
+                        f.write("%d,1,1\n" % nd)
+                f.write(prints)
+        else:
+            f.write("*AMPLITUDE,NAME=RAMP\n")
+            n = len(amp)
+            for k, v in enumerate(amp):
+                f.write("%.12g,%.12g\n" % (k / (n - 1), v))
+            f.write("*STEP,INC=100000\n*STATIC,DIRECT\n%.12g,1.\n" % (1.0 / (n - 1)))
+            f.write("*BOUNDARY,AMPLITUDE=RAMP\nFLATN,2,2,%.12g\n" % (-dmax * LU))
+            f.write(prints)
     gap = R - coords[probe - 1][1]
-    return gap, nn, ne, {e[0]: e[3] for e in els}, nslave
+    return gap, nn, ne, {e[0]: e[3] for e in els}, layer, {k: coords[k - 1] for k in surfn}
 
 
 def writeset(f, kind, name, items):
@@ -256,9 +282,9 @@ def writeset(f, kind, name, items):
 
 
 # ---------------------------------------------------------------- results
-def parse_dat(path):
-    """Per increment (time): apex u_y, total flat reaction y, peak von Mises
-    with its element and integration point."""
+def parse_dat(path, layer):
+    """Per increment (time): the probe's u_y, the flat's total reaction, the
+    surface nodes' u_y, peak von Mises per layer with element and point."""
     inc = {}
     mode, t = None, None
     with open(path) as f:
@@ -267,7 +293,7 @@ def parse_dat(path):
             if not s:
                 continue
             if s.startswith("displacements"):
-                mode, t = "u", float(s.split()[-1])
+                mode, t = ("us" if "SURFN" in s else "u"), float(s.split()[-1])
                 continue
             if s.startswith("total force"):
                 mode, t = "rf", float(s.split()[-1])
@@ -278,28 +304,33 @@ def parse_dat(path):
             if s[0].isalpha():
                 mode = None
                 continue
-            r = inc.setdefault(t, {"peak": (0.0, 0, 0)})
+            r = inc.setdefault(t, {"peak": (0.0, 0, 0), "peaks": {}, "surf": {}})
             v = s.split()
             if mode == "u":
                 r["uy"] = float(v[2]) / LU
+            elif mode == "us":
+                r["surf"][int(v[0])] = float(v[2]) / LU
             elif mode == "rf":
                 r["P"] = -float(v[1]) * SECTOR / FU
             elif mode == "s":
                 sx, sy, sz, txy, txz, tyz = map(float, v[2:8])
                 vm = math.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
                                + 3 * (txy ** 2 + txz ** 2 + tyz ** 2))
+                e, lay = int(v[0]), layer[int(v[0])]
                 if vm > r["peak"][0]:
-                    r["peak"] = (vm, int(v[0]), int(v[1]))
+                    r["peak"] = (vm, e, int(v[1]))
+                if vm > r["peaks"].get(lay, (0.0,))[0]:
+                    r["peaks"][lay] = (vm, e, int(v[1]))
     return [dict(time=k, **v) for k, v in sorted(inc.items()) if "uy" in v and "P" in v]
 
 
-def first_yield(rows, Y):
+def first_yield(rows, Y, lay="SUB"):
     """delta (mm) where the peak von Mises reaches Y (power law between the
     bracketing increments), the load there (same), the element, the ratio of
     the bracketing deltas."""
     prev = None
     for r in rows:
-        d, s, P = -r["uy"], r["peak"][0], r["P"]
+        d, s, P = -r["uy"], r["peaks"].get(lay, (0.0,))[0], r["P"]
         if s >= Y:
             if prev is None or prev[1] <= 0 or prev[2] <= 0:
                 return None
@@ -307,7 +338,7 @@ def first_yield(rows, Y):
             n = math.log(s / s0) / math.log(d / d0)
             dy = d0 * (Y / s0) ** (1 / n)
             Py = P0 * (dy / d0) ** (math.log(P / P0) / math.log(d / d0))
-            return dy, Py, r["peak"][1], d / d0
+            return dy, Py, r["peaks"][lay][1], d / d0
         prev = (d, s, P)
     return None
 
@@ -324,19 +355,14 @@ def ramp(lo, knee, hi, q_lo, q_hi):
     return [0.0] + [x / hi for x in v]
 
 
-def run(a):
-    E, nu, R, Y = a.E, a.nu, a.R, a.E / a.E_over_Y
-    wc, Pc = omega_c(E, nu, Y, R)
-    dmax = a.delta_max * wc
-    amax = math.sqrt(R * dmax)
-    m = Mesh(R, a.N, amax)
-    amp = ramp(a.delta_min, a.knee, a.delta_max, a.ratio_lo, a.ratio_hi)
+def ccx_run(a, m, E, nu, dmax, amp, amax, Rin, Eco, touch):
+    """Write the deck, run ccx on one thread, read its .dat."""
     tmp = tempfile.mkdtemp(prefix="ccxyield.")
     try:
         deck = os.path.join(tmp, "sphere.inp")
-        gap, nn, ne, ecent, nslave = write_deck(deck, m, E, nu, dmax, amp, a.contact,
-                                                a.penalty, (a.box_r, a.box_d), amax,
-                                                PAIRS[a.pair])
+        gap, nn, ne, ecent, layer, surf = write_deck(
+            deck, m, E, nu, dmax, amp, a.contact, a.penalty, (a.box_r, a.box_d), amax,
+            PAIRS[a.pair], Rin, Eco, touch)
         if a.keep:
             shutil.copy(deck, a.keep + ".inp")
         env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
@@ -352,30 +378,73 @@ def run(a):
         if p.returncode != 0 or not os.path.exists(os.path.join(tmp, "sphere.dat")):
             sys.stderr.write(p.stdout[-3000:] + p.stderr[-2000:])
             raise RuntimeError("ccx failed")
-        rows = parse_dat(os.path.join(tmp, "sphere.dat"))
+        rows = parse_dat(os.path.join(tmp, "sphere.dat"), layer)
         for r in rows:                   # delta = the probe's descent + its initial gap
             r["uy"] -= gap
-        ninc = len(re.findall(r"increment\s+\d+\s+attempt", p.stdout)) or len(rows)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    Es = E / (1 - nu * nu)
-    out = {"case": "homogeneous", "contact": a.contact, "nu": nu, "N": a.N,
+    return rows, wall, gap, nn, ne, ecent, layer, surf
+
+
+def run(a):
+    """One ccx run; a dict of the CSV fields (and _checks, _rows for printing).
+    Coated: the sphere's outer radius is R + t, omega_c and P_c those of the
+    substrate with R (as the FE solver's tables), the coating Y = E_co/(E/Y)."""
+    E, nu, R, Y = a.E, a.nu, a.R, a.E / a.E_over_Y
+    t = a.t_over_R * R
+    Eco = E * a.E_ratio
+    wc, Pc = omega_c(E, nu, Y, R)
+    Ro = R + t
+    dmax = a.delta_max * wc
+    amax = math.sqrt(Ro * dmax)
+    m = Mesh(Ro, a.N, amax)
+    amp = ramp(a.delta_min, a.knee, a.delta_max, a.ratio_lo, a.ratio_hi)
+    touch, passes, wall, changed = {}, 0, 0.0, ""
+    while True:
+        rows, wall1, gap, nn, ne, ecent, layer, surf = ccx_run(
+            a, m, E, nu, dmax, amp, amax, R if t > 0 else None, Eco, touch)
+        wall += wall1
+        passes += 1
+        if a.contact != "touch":
+            break
+        # first step at whose end each surface node is in contact (zero or
+        # positive overclosure), from this pass; repeat until it does not change
+        new = {}
+        for r in rows:
+            k = round(r["time"])
+            if abs(r["time"] - k) > 1e-6:
+                continue
+            front = Ro - dmax * amp[k]
+            for nd, uy in r["surf"].items():
+                if nd not in new and surf[nd][1] + uy >= front:
+                    new[nd] = k
+        if new == touch or passes >= a.passes:
+            changed = sum(1 for nd in set(new) | set(touch) if new.get(nd) != touch.get(nd))
+            break
+        touch = new
+    # Hertz with the outer layer's modulus (homogeneous: the sphere's)
+    Es = (Eco if t > 0 else E) / (1 - nu * nu)
+    out = {"case": case_name(a),
+           "contact": a.contact, "nu": nu, "N": a.N,
            "h_yield_over_a": round(0.5 * math.pi / (2 * a.N), 4),
-           "nodes_2d": nn, "elements": ne, "increments": len(rows), "wall_s": round(wall, 1)}
+           "nodes_2d": nn, "elements": ne, "increments": len(rows), "wall_s": round(wall, 1),
+           "passes": passes, "touch_changed": changed}
     checks = []
     for r in rows:
         d = -r["uy"]
         if d > 0:
-            checks.append((d / wc, r["P"] / (4.0 / 3.0 * Es * math.sqrt(R) * d ** 1.5)))
-    fy = first_yield(rows, Y)
+            checks.append((d / wc, r["P"] / (4.0 / 3.0 * Es * math.sqrt(Ro) * d ** 1.5)))
+    # homogeneous: the sphere; coated: the coating (first yield delta_c1)
+    lay, Yl = ("COAT", Eco / a.E_over_Y) if t > 0 else ("SUB", Y)
+    fy = first_yield(rows, Yl, lay)
     if fy is None:
         out.update(delta_y_over_omega_c="", P_y_over_P_c="", yield_r_over_a="", yield_depth_over_a="")
     else:
         dy, Py, e, ratio = fy
         x, y = ecent[e]
-        ay = math.sqrt(R * dy)
+        ay = math.sqrt(Ro * dy)
         out.update(delta_y_over_omega_c=round(dy / wc, 5), P_y_over_P_c=round(Py / Pc, 5),
-                   yield_r_over_a=round(x / ay, 3), yield_depth_over_a=round((R - y) / ay, 3))
+                   yield_r_over_a=round(x / ay, 3), yield_depth_over_a=round((Ro - y) / ay, 3))
     # Hertz check: P / (4/3 E* R^1/2 delta^3/2) at the increment nearest 1 omega_c
     if checks:
         c = min(checks, key=lambda c: abs(c[0] - 1.0))
@@ -383,23 +452,38 @@ def run(a):
         out["P_over_Hertz_at"] = round(c[0], 3)
     out["_checks"] = checks
     out["_rows"] = rows
+    out["_Y"] = Yl
     return out
+
+
+def case_name(a):
+    return "homogeneous" if a.t_over_R == 0 else "coated t/R %g Eco/Esu %g" % (a.t_over_R, a.E_ratio)
+
+
+def ramp_text(a):
+    """first step, ratio up to the knee, knee, ratio beyond (omega_c)"""
+    return "%g,%g,%g,%g" % (a.delta_min, a.ratio_lo, a.knee, a.ratio_hi)
 
 
 PAIRS = {"n2s": "NODE TO SURFACE", "s2s": "SURFACE TO SURFACE"}
 
 FIELDS = ["case", "contact", "nu", "N", "h_yield_over_a", "nodes_2d", "elements", "increments",
           "delta_y_over_omega_c", "P_y_over_P_c", "yield_r_over_a", "yield_depth_over_a",
-          "P_over_Hertz", "P_over_Hertz_at", "ramp", "wall_s"]
+          "P_over_Hertz", "P_over_Hertz_at", "ramp", "passes", "touch_changed", "wall_s"]
 
 
 def add_args(ap):
-    ap.add_argument("--contact", default="slip", choices=["slip", "stick"])
+    ap.add_argument("--contact", default="slip", choices=["slip", "stick", "touch"],
+                    help="slip: frictionless; stick: ccx friction, mu 1e4; touch: frictionless, "
+                    "a node's radial displacement fixed from the step after it touched")
+    ap.add_argument("--passes", type=int, default=4, help="touch: at most this many runs")
     ap.add_argument("--N", type=int, default=32, help="angular intervals about the apex")
     ap.add_argument("--E", type=float, default=E_DEF)
     ap.add_argument("--nu", type=float, default=NU_DEF)
     ap.add_argument("--R", type=float, default=R_DEF)
     ap.add_argument("--E-over-Y", type=float, default=EY_DEF)
+    ap.add_argument("--t-over-R", type=float, default=0.0, help="coating thickness / R")
+    ap.add_argument("--E-ratio", type=float, default=1.0, help="E_coating / E_substrate")
     ap.add_argument("--delta-max", type=float, default=1.15, help="in omega_c")
     ap.add_argument("--delta-min", type=float, default=0.02, help="first increment, omega_c")
     ap.add_argument("--knee", type=float, default=0.7, help="omega_c where the ramp turns fine")
@@ -421,37 +505,49 @@ def main():
     a = ap.parse_args()
     if a.cmd == "run":
         out = run(a)
-        wc = omega_c(a.E, a.nu, a.E / a.E_over_Y, a.R)[0]
+        Yl = out.pop("_Y")
         for (d, c), r in zip(out.pop("_checks"), out.pop("_rows")):
-            print("delta/omega_c %.4f  P/Hertz %.5f  peak VM/Y %.4f (element %d point %d)"
-                  % (d, c, r["peak"][0] / (a.E / a.E_over_Y), r["peak"][1], r["peak"][2]))
+            pk = sorted(r["peaks"].items())
+            print("delta/omega_c %.4f  P/Hertz %.5f  peak VM/Y %s" % (d, c, "  ".join(
+                "%s %.4f (element %d point %d)" % (k, v[0] / Yl, v[1], v[2]) for k, v in pk)))
         for k, v in out.items():
             print("%s = %s" % (k, v))
         if a.out:
             append_csv(a.out, out)
         return 0
     out_path = a.out or "data/calculix/first-yield.csv"
-    if os.path.exists(out_path):
-        os.remove(out_path)
+    done = set()
+    if os.path.exists(out_path):      # runs already stored are kept (delete the file to redo)
+        with open(out_path) as f:
+            done = {(r["case"], r["contact"], float(r["nu"]), int(r["N"]), r["ramp"])
+                    for r in csv.DictReader(f)}
     for args in SWEEP:
         b = ap.parse_args(["run"] + args.split())
+        key = (case_name(b), b.contact, b.nu, b.N, ramp_text(b))
+        if key in done:
+            continue
         out = run(b)
-        out.pop("_checks"), out.pop("_rows")
-        out["ramp"] = "%g,%g,%g,%g" % (b.delta_min, b.ratio_lo, b.knee, b.ratio_hi)
+        out.pop("_checks"), out.pop("_rows"), out.pop("_Y")
+        out["ramp"] = ramp_text(b)
         append_csv(out_path, out)
         print(", ".join("%s=%s" % kv for kv in out.items()), flush=True)
     return 0
 
 
-# The stored study: slip needs few increments (frictionless contact has no
-# history); stick takes 15 % steps up to 0.85 omega_c, then 2.5 %.
+# The stored study, in the order it was run.  slip needs few increments
+# (frictionless contact has no history); stick and touch take 15 % steps up
+# to 0.85 omega_c, then 2.5 %; coated runs go to 2 omega_c_su.
 SLIP = "--contact slip --delta-min 0.3 --ratio-lo 1.4 --knee 0.85 --ratio-hi 1.025"
 STICK = "--contact stick --delta-min 0.05 --ratio-lo 1.15 --knee 0.85 --ratio-hi 1.025"
+TOUCH = STICK.replace("stick", "touch")
+FINE = lambda s: s.replace("1.15", "1.07").replace("1.025", "1.0125")
+COATED = " --t-over-R 0.005 --E-ratio 2 --delta-max 2.0 --knee 1.1"
 SWEEP = [SLIP + " --N 16", SLIP + " --N 32",
-         STICK + " --N 16", STICK + " --N 32",
-         STICK.replace("1.15", "1.07").replace("1.025", "1.0125") + " --N 16",
-         SLIP + " --N 64", STICK + " --N 64",
-         STICK + " --nu 0.25 --N 16", STICK + " --nu 0.25 --N 32"]
+         STICK + " --N 16", STICK + " --N 32", FINE(STICK) + " --N 16",
+         SLIP + " --N 64",
+         TOUCH + " --N 16", TOUCH + " --N 32", TOUCH + COATED + " --N 16",
+         FINE(TOUCH) + " --N 16", TOUCH + COATED + " --N 32",
+         TOUCH + " --nu 0.25 --N 16", STICK + " --N 64"]
 
 
 def append_csv(path, out):
