@@ -536,18 +536,19 @@ def main():
 
 # The stored study, in the order it was run.  slip needs few increments
 # (frictionless contact has no history); stick and touch take 15 % steps up
-# to 0.85 omega_c, then 2.5 %; coated runs go to 2 omega_c_su.
+# to 0.85 omega_c, then 2.5 %; coated runs go to 2 omega_c_su, and their yield
+# box reaches below the interface (t = 1.58 a_max).
 SLIP = "--contact slip --delta-min 0.3 --ratio-lo 1.4 --knee 0.85 --ratio-hi 1.025"
 STICK = "--contact stick --delta-min 0.05 --ratio-lo 1.15 --knee 0.85 --ratio-hi 1.025"
 TOUCH = STICK.replace("stick", "touch")
 FINE = lambda s: s.replace("1.15", "1.07").replace("1.025", "1.0125")
-COATED = " --t-over-R 0.005 --E-ratio 2 --delta-max 2.0 --knee 1.1"
+COATED = " --t-over-R 0.005 --E-ratio 2 --delta-max 2.0 --knee 1.1 --box-d 1.8"
 SWEEP = [SLIP + " --N 16", SLIP + " --N 32",
          STICK + " --N 16", STICK + " --N 32", FINE(STICK) + " --N 16",
          SLIP + " --N 64",
          TOUCH + " --N 16", TOUCH + " --N 32", TOUCH + COATED + " --N 16",
-         FINE(TOUCH) + " --N 16", TOUCH + COATED + " --N 32",
-         TOUCH + " --nu 0.25 --N 16", STICK + " --N 64"]
+         FINE(TOUCH) + " --N 16", TOUCH + " --nu 0.25 --N 16",
+         TOUCH + COATED + " --N 32", STICK + " --N 64"]
 
 
 def append_csv(path, out):
