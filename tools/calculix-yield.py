@@ -1,38 +1,43 @@
 #!/usr/bin/env python3
 """First yield of an elastic hemisphere pressed by a rigid flat, computed with
 CalculiX (ccx) as independent evidence for the first-yield numbers of the
-axisymmetric FE solver (docs/yield-discrepancies.md).
+axisymmetric FE solver (docs/yield-discrepancies.md; data/calculix/README.md).
 
-  calculix-yield.py run --contact slip|stick --N 32 [options]   one ccx run
-  calculix-yield.py sweep [--out data/calculix/first-yield.csv]  the stored study
+  calculix-yield.py run --contact slip|stick|touch --N 32 [options]   one case
+  calculix-yield.py sweep [--out data/calculix/first-yield.csv]        the stored study
 
-Model (docs/design.md §2.1): a hemisphere of radius R, fixed (u_x = u_y = 0)
-on its base plane through the centre, u_x = 0 on the axis, axisymmetric
-(CAX8 quadrilaterals, CAX6 triangles around the apex), linear elastic, pressed
-by a flat whose nodes all have prescribed displacements (so it is rigid).
-Contact: CalculiX face-to-face penalty contact, sphere surface the slave,
-the flat's lower face the master, linear pressure-overclosure (slope
---penalty, MPa/mm).  slip: frictionless; stick: friction coefficient 1e4 with
-the stick slope = the normal penalty, so a point that touches does not move
-along the flat afterwards.
+Model (docs/design.md §2.1): a hemisphere of radius R (coated: R + t, the
+coating outside rho = R), fixed (u_x = u_y = 0) on its base plane through the
+centre, u_x = 0 on the axis, axisymmetric (CAX8, CAX6 at the apex and the
+rim), linear elastic, pressed by a flat whose nodes all have prescribed
+displacements (so it is rigid).  Contact: node-to-surface penalty contact,
+sphere surface the slave, linear pressure-overclosure (slope --penalty,
+MPa/mm); face-to-face contact loses the contact next to the axis in ccx's
+expanded axisymmetric model.  slip: frictionless.  stick: ccx's friction,
+coefficient 1e4, stick slope = the normal penalty.  touch: stuck where it
+touched (see write_deck): frictionless contact, one step per increment, a
+node's radial displacement fixed from the step after it first touched, the
+touch steps iterated over whole runs until they repeat.
 
 Mesh (written here): polar around the apex.  Ring k is the circle of radius
 s_k about the apex; on it the nodes are spread uniformly in the angle psi
 (from the downward axis) between the axis (below the centre: the base plane)
 and the sphere surface, N intervals.  The rings grow geometrically with a
 ratio 1 + pi/(2N) (square elements) out to 3 a_max, then the ratio grows by
-4 % per ring up to 1 + 4 pi/(2N); the last ring collapses to the rim
-point (R, 0).  The innermost ring s_1 = a_max/20 is joined to the apex by a
-fan of triangles.  Element size at depth d below the apex on the axis:
-d pi/(2N).  Midside nodes lie on the same map, so edges on the sphere are
-on the sphere.
+4 % per ring up to 1 + 4 pi/(2N); the centre is a ring point and the last
+ring collapses to the rim point (R, 0).  The innermost ring s_1 = a_max/20
+is joined to the apex by a fan of triangles.  Element size at depth d below
+the apex on the axis: d pi/(2N).  Midside nodes lie on the same map, so
+edges on the sphere are on the sphere.  Coated: an element is coating when
+its centroid lies outside rho = R (the interface is stepped, not fitted).
 
-Interference delta: the descent of the apex node.  Load: the sum of the flat
-nodes' reactions (CalculiX gives axisymmetric forces for the whole
-circumference).  First yield: the peak von Mises stress over the integration
-points of the elements within --box-r a_max of the axis and --box-d a_max of
-the surface, per increment; delta_y where the power law through the two
-increments that bracket Y reaches it.
+Interference delta: the descent of the surface node of ring 1 plus its
+initial gap (the flat's descent less the penalty overclosure).  Load: the
+flat's total reaction times 180 (ccx prints its expanded 2-degree sector).
+First yield: the peak von Mises stress over the integration points of the
+elements within --box-r a_max of the axis and --box-d a_max of the surface,
+per increment (coated: the coating's elements against its own Y); delta_y
+where the power law through the two increments that bracket Y reaches it.
 """
 import argparse
 import csv
@@ -143,11 +148,15 @@ class Mesh:
 
 # ---------------------------------------------------------------- the deck
 def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair, Rin=None, Eco=None,
-               touch=None):
+               touch=None, anchor="end"):
     """touch (contact "touch"): {node: step at whose end it was first in contact};
     one step per amplitude value, and a node's radial displacement is fixed
     (*BOUNDARY, FIXED: at its value at the end of the previous step) from the step
-    after that on.  Frictionless contact carries the normal load."""
+    after that on (anchor "end": where it was at the end of the step in which it
+    touched, having slid frictionlessly for part of it) or from that step on
+    (anchor "start": where it was just before the step, before it touched).  The
+    two err by one step in opposite directions.  Frictionless contact carries
+    the normal load."""
     """The ccx input deck; returns (apex node id, 2D node count, element count, centroids)."""
     ids, coords = {}, []
 
@@ -257,7 +266,8 @@ def write_deck(path, m, E, nu, dmax, amp, contact, penalty, box, amax, pair, Rin
             for k in range(1, len(amp)):
                 f.write("*STEP,INC=1000\n*STATIC\n1.,1.\n*BOUNDARY\nFLATN,2,2,%.12g\n"
                         % (-dmax * amp[k] * LU))
-                new = sorted(nd for nd, s in touch.items() if s == k - 1 and nd not in axis)
+                lag = 1 if anchor == "end" else 0
+                new = sorted(nd for nd, s in touch.items() if s == k - lag and nd not in axis)
                 if new:
                     f.write("*BOUNDARY,FIXED\n")
                     for nd in new:
@@ -362,7 +372,7 @@ def ccx_run(a, m, E, nu, dmax, amp, amax, Rin, Eco, touch):
         deck = os.path.join(tmp, "sphere.inp")
         gap, nn, ne, ecent, layer, surf = write_deck(
             deck, m, E, nu, dmax, amp, a.contact, a.penalty, (a.box_r, a.box_d), amax,
-            PAIRS[a.pair], Rin, Eco, touch)
+            PAIRS[a.pair], Rin, Eco, touch, a.anchor)
         if a.keep:
             shutil.copy(deck, a.keep + ".inp")
         env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
@@ -469,7 +479,7 @@ PAIRS = {"n2s": "NODE TO SURFACE", "s2s": "SURFACE TO SURFACE"}
 
 FIELDS = ["case", "contact", "nu", "N", "h_yield_over_a", "nodes_2d", "elements", "increments",
           "delta_y_over_omega_c", "P_y_over_P_c", "yield_r_over_a", "yield_depth_over_a",
-          "P_over_Hertz", "P_over_Hertz_at", "ramp", "passes", "touch_changed", "wall_s"]
+          "P_over_Hertz", "P_over_Hertz_at", "ramp", "anchor", "passes", "touch_changed", "wall_s"]
 
 
 def add_args(ap):
@@ -477,6 +487,9 @@ def add_args(ap):
                     help="slip: frictionless; stick: ccx friction, mu 1e4; touch: frictionless, "
                     "a node's radial displacement fixed from the step after it touched")
     ap.add_argument("--passes", type=int, default=4, help="touch: at most this many runs")
+    ap.add_argument("--anchor", default="end", choices=["end", "start"],
+                    help="touch: a node is fixed where it was at the end of the step in which "
+                    "it touched, or at its start")
     ap.add_argument("--N", type=int, default=32, help="angular intervals about the apex")
     ap.add_argument("--E", type=float, default=E_DEF)
     ap.add_argument("--nu", type=float, default=NU_DEF)
@@ -519,16 +532,18 @@ def main():
     done = set()
     if os.path.exists(out_path):      # runs already stored are kept (delete the file to redo)
         with open(out_path) as f:
-            done = {(r["case"], r["contact"], float(r["nu"]), int(r["N"]), r["ramp"])
-                    for r in csv.DictReader(f)}
+            done = {(r["case"], r["contact"], float(r["nu"]), int(r["N"]), r["ramp"],
+                     r.get("anchor", "")) for r in csv.DictReader(f)}
     for args in SWEEP:
         b = ap.parse_args(["run"] + args.split())
-        key = (case_name(b), b.contact, b.nu, b.N, ramp_text(b))
+        key = (case_name(b), b.contact, b.nu, b.N, ramp_text(b),
+               b.anchor if b.contact == "touch" else "")
         if key in done:
             continue
         out = run(b)
         out.pop("_checks"), out.pop("_rows"), out.pop("_Y")
         out["ramp"] = ramp_text(b)
+        out["anchor"] = b.anchor if b.contact == "touch" else ""
         append_csv(out_path, out)
         print(", ".join("%s=%s" % kv for kv in out.items()), flush=True)
     return 0
@@ -541,6 +556,7 @@ def main():
 SLIP = "--contact slip --delta-min 0.3 --ratio-lo 1.4 --knee 0.85 --ratio-hi 1.025"
 STICK = "--contact stick --delta-min 0.05 --ratio-lo 1.15 --knee 0.85 --ratio-hi 1.025"
 TOUCH = STICK.replace("stick", "touch")
+START = TOUCH + " --anchor start"
 FINE = lambda s: s.replace("1.15", "1.07").replace("1.025", "1.0125")
 COATED = " --t-over-R 0.005 --E-ratio 2 --delta-max 2.0 --knee 1.1 --box-d 1.8"
 SWEEP = [SLIP + " --N 16", SLIP + " --N 32",
@@ -548,7 +564,11 @@ SWEEP = [SLIP + " --N 16", SLIP + " --N 32",
          SLIP + " --N 64",
          TOUCH + " --N 16", TOUCH + " --N 32", TOUCH + COATED + " --N 16",
          FINE(TOUCH) + " --N 16", TOUCH + " --nu 0.25 --N 16",
-         TOUCH + COATED + " --N 32", STICK + " --N 64"]
+         START + " --N 16", FINE(START) + " --N 16", START + COATED + " --N 16",
+         START + " --nu 0.25 --N 16",
+         FINE(TOUCH + COATED) + " --N 16", FINE(START + COATED) + " --N 16",
+         FINE(TOUCH) + " --nu 0.25 --N 16", FINE(START) + " --nu 0.25 --N 16",
+         TOUCH + COATED + " --N 32", START + COATED + " --N 32", STICK + " --N 64"]
 
 
 def append_csv(path, out):
