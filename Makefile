@@ -123,7 +123,8 @@ tables: all
 	@tools/tables.sh $(CLI) $(TABLES)
 
 validate: all
-	@ONLY=$(ONLY) tools/fragments.sh validate $(CLI)
+	@st=0; ONLY=$(ONLY) tools/fragments.sh validate $(CLI) || st=$$?; \
+	python3 tools/validate-report.py results docs/validation.md; exit $$st
 
 bench: all
 	@ONLY=$(ONLY) tools/fragments.sh bench $(CLI)

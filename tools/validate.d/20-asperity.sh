@@ -1,10 +1,12 @@
 #!/bin/sh
 # make validate fragment: full-size checks of the asperity FE
-# solver -- Hertz with Richardson extrapolation over mesh levels 1-3 and the
-# observed order, yield inception (slip vs Kogut & Etsion / Green, stick vs
-# Brizmer 2006), coated first/second yield against the thesis's Table 4.2.
+# solver -- Hertz against the converged model and the closed form, yield
+# inception (slip against the Hertz stress field; stick against its own
+# converged value and CalculiX, compared with Brizmer 2006), coated first and
+# second yield compared with the Ronen fits of the thesis's Table 4.2.
 # Called as: 20-asperity.sh CLI RESULTS_DIR; writes
-# RESULTS_DIR/validate-asperity.md; exits non-zero if a check fails.
+# RESULTS_DIR/validate-asperity.md; exits non-zero if a check fails (a fit's
+# disagreement is a finding, not a failure).
 set -eu
 CLI=$1
 OUT=$2

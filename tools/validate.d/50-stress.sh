@@ -5,8 +5,9 @@
 # tau_c 1 / 5000 MPa, delta 0.1 ... 100 wc, load control, a thin coating far
 # stronger than its substrate); every case must converge to finite numbers or
 # be refused by name.  Called as: 50-stress.sh CLI RESULTS_DIR; writes
-# RESULTS_DIR/validate-stress.csv; exits non-zero if a case fails.
+# RESULTS_DIR/validate-stress.csv and validate-stress.md; exits non-zero if a
+# case fails.
 set -eu
 CLI=$1
 OUT=$2
-python3 "$(dirname "$0")/../validate-stress.py" "$CLI" "$OUT/validate-stress.csv"
+python3 "$(dirname "$0")/../validate-stress.py" "$CLI" "$OUT/validate-stress.csv" "$OUT/validate-stress.md"

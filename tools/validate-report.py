@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""Assemble the validation report, docs/validation.md, from the parts that
+`make validate` writes into RESULTS_DIR (validate-*.md, tools/vreport.py).
+
+validate-report.py RESULTS_DIR OUT.md
+
+A part that was not run (make validate ONLY=...) is listed as such; a part's
+own date says when it ran.
+"""
+import os
+import re
+import subprocess
+import sys
+
+from vreport import SUMMARY
+
+PARTS = [("install", "Installed library"), ("asperity", "Asperity FE solver"),
+         ("surface", "Surface layer"), ("shear", "Combined loading (WSP sphere)"),
+         ("growth", "Junction growth (half-space)"), ("stress", "Numerical stability"),
+         ("tables", "FE friction tables")]
+
+
+def summary(text):
+    for line in reversed(text.splitlines()):
+        if line.startswith(SUMMARY):
+            m = re.findall(r"(\d+)", line)
+            return [int(x) for x in m]  # checks, failed, findings, targets, unmet
+    return None
+
+
+def main():
+    res, out = sys.argv[1], sys.argv[2]
+    version = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
+                             text=True).stdout.strip() or "unknown"
+    head = ["# Validation report", "",
+            "Written by `make validate` (tools/validate-report.py) from the parts in "
+            "`results/`; source tree %s. Three kinds of rows, kept apart:" % version, "",
+            "* **check**: a measured value against a verified reference (a closed form, the "
+            "same model's mesh-converged answer, an independent code). A failed check fails "
+            "`make validate`.",
+            "* **comparison**: a measured value against a published fit. A fit is a regression "
+            "of someone's data, not a reference; a disagreement beyond the stated tolerance is "
+            "a *finding*, given with its numbers and the evidence that decides it.",
+            "* **target**: an accuracy goal not met yet, with the measured value.", "",
+            "| part | checks | failed | findings | targets not met |", "|---|---|---|---|---|"]
+    body = []
+    for key, title in PARTS:
+        path = os.path.join(res, "validate-%s.md" % key)
+        if not os.path.exists(path):
+            head.append("| %s | not run | | | |" % title)
+            continue
+        text = open(path).read()
+        s = summary(text)
+        if s and len(s) == 5:
+            head.append("| [%s](#%s) | %d | %d | %d | %d |" % (title, anchor(text), s[0], s[1],
+                                                              s[2], s[4]))
+        else:
+            head.append("| %s | (no summary) | | | |" % title)
+        for line in text.rstrip().splitlines():
+            if line.startswith(SUMMARY):
+                continue
+            body.append("#" + line if line.startswith("#") else line)
+        body.append("")
+    with open(out + ".tmp", "w") as f:
+        f.write("\n".join(head + [""] + body).rstrip() + "\n")
+    os.replace(out + ".tmp", out)
+    print("wrote %s" % out)
+
+
+def anchor(text):
+    """GitHub's anchor of the part's first heading."""
+    h = text.splitlines()[0].lstrip("#").strip().lower()
+    return re.sub(r"[^a-z0-9 _-]", "", h).replace(" ", "-")
+
+
+if __name__ == "__main__":
+    main()
