@@ -4,8 +4,8 @@
 0. Point accuracy: table points (both ends of t/R and delta, Eco/Esu 2 and 4)
    against the same point one mesh level finer with four node placements (a
    one-point table, --mesh-level 1 --placements 4), stored in
-   data/fe/table-refined.csv (about one CPU hour each; --refine computes the
-   missing ones and adds them there): the stored error estimate at least as
+   data/fe/table-refined.csv (about one CPU hour each; --refine N computes up to
+   N missing ones and adds them there): the stored error estimate at least as
    large as the difference (a check), the stored mu_s within 2 % (a target).
 
 1. Held-out points: fresh FE runs between the grid nodes (in delta, t/R and
@@ -26,7 +26,7 @@
    error band.
 
 Usage: validate-tables.py CLI WORKDIR REPORT.md [--table FILE] [--config INI]
-       [--jobs N] [--refine]
+       [--jobs N] [--refine N]
 The held-out runs are kept in WORKDIR/heldout/ (each a resumable table
 build), so an interrupted validation goes on where it stopped.
 """
@@ -114,10 +114,11 @@ def stored_refined():
                 for r in csv.DictReader(f)}
 
 
-def refine(cli, config, work, jobs):
-    """Compute the missing references (hours) and add them to REFINED_CSV."""
+def refine(cli, config, work, jobs, count):
+    """Compute up to count missing references (about a CPU hour each), cheapest
+    first, and add them to REFINED_CSV."""
     have = stored_refined()
-    todo = [(k, pt) for k, pt in enumerate(REFINED) if pt not in have]
+    todo = [(k, pt) for k, pt in enumerate(REFINED) if pt not in have][:count]
     os.makedirs(os.path.join(work, "refined"), exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
         fe = list(ex.map(lambda kp: fe_point(cli, config, work, kp[0], kp[1], "refined",
@@ -148,7 +149,7 @@ def refined(cli, table, rep):
                "across the contact) with four node placements (`stiction table build --config "
                "examples/thesis-table.ini --deltas D --t-over-R T --E-ratio E --mesh-level 1 "
                "--placements 4`), stored in data/fe/table-refined.csv (%d of %d points; "
-               "`tools/validate-tables.py ... --refine` computes the others, about one CPU hour "
+               "`tools/validate-tables.py ... --refine N` computes the others, about one CPU hour "
                "each).\n" % (len(have), len(REFINED)))
     rep.out("| delta/wc | t/R | Eco/Esu | mu_s table | stored error | mu_s refined | +- | "
                "diff | covered | P/Pc diff | CPU s refined |")
@@ -370,15 +371,16 @@ def main():
     ap.add_argument("--table", default="data/tables/thesis.h5")
     ap.add_argument("--config", default="examples/thesis-table.ini")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
-    ap.add_argument("--refine", action="store_true",
-                    help="first compute the missing refined references (about one CPU hour "
-                         "each) into WORKDIR/refined/ and add them to data/fe/table-refined.csv")
+    ap.add_argument("--refine", type=int, default=0, metavar="N",
+                    help="first compute up to N missing refined references (about one CPU "
+                         "hour each, cheapest first) into WORKDIR/refined/ and add them to "
+                         "data/fe/table-refined.csv")
     a = ap.parse_args()
     if not os.path.exists(a.table):
         sys.exit("%s: no such table (make tables builds it)" % a.table)
     info = json.loads(run([a.cli, "table", "info", a.table, "--json"]).stdout)
-    if a.refine:
-        refine(a.cli, a.config, a.work, a.jobs)
+    if a.refine > 0:
+        refine(a.cli, a.config, a.work, a.jobs, a.refine)
     rep = Report("FE friction table %s: validation" % a.table,
                  "tools/validate-tables.py (`stiction table`, `surface predict --json` runs)")
     rep.out("Table: %d points, %d done, %d failed; built in %.0f s wall, %.1f CPU s per point; "
