@@ -185,6 +185,27 @@ static void test_shear_load(void **state)
 }
 
 /* What the policy functions refuse, by name. */
+/* A shear run shows its phases and the ramp's progress on a terminal
+ * (stderr), and nothing of it when stderr is a file or a pipe.  The
+ * terminal is script(1)'s pseudo-terminal; without script the test skips. */
+static void test_shear_progress(void **state)
+{
+    (void)state;
+    if (access("/usr/bin/script", X_OK) != 0) skip();
+    const char *args = "asperity --shear --threads 1 --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 "
+                       "--Y-co 325 --load 0.3 --criterion stiffness --alpha 0.9 "
+                       "--elements-per-contact 4";
+    char cmd[PATH_MAX + 1024];
+    snprintf(cmd, sizeof cmd, "/usr/bin/script -q -e -c \"'%s' %s\" /dev/null", cli, args);
+    assert_int_equal(cli_capture(cmd, 1, out, sizeof out), 0);
+    assert_non_null(strstr(out, "normal step (3D mesh, load and solve) ... done"));
+    assert_non_null(strstr(out, "shear ramp: point"));
+    snprintf(cmd, sizeof cmd, "'%s' %s", cli, args);
+    assert_int_equal(cli_capture(cmd, 2, out, sizeof out), 0);
+    assert_null(strstr(out, "shear ramp"));
+    assert_null(strstr(out, "normal step (3D mesh"));
+}
+
 static void test_refusals(void **state)
 {
     (void)state;
@@ -219,6 +240,7 @@ int main(void)
         cmocka_unit_test(test_axisym_stick_curve),
         cmocka_unit_test(test_3d_curve),
         cmocka_unit_test(test_shear_load),
+        cmocka_unit_test(test_shear_progress),
     };
     return cmocka_run_group_tests(tests, find_cli, NULL);
 }

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "stiction/asperity.h"
@@ -96,6 +97,8 @@ typedef struct {
     asp_shear_point *p;
     int n, cap;
     int oom;
+    int tty;           /* stderr is a terminal: a progress line per ramp point */
+    double omega_c, P_c;
 } ptlist;
 
 static int collect(void *ctx, const asp_shear_point *pt)
@@ -108,6 +111,11 @@ static int collect(void *ctx, const asp_shear_point *pt)
         l->p = q, l->cap = cap;
     }
     l->p[l->n++] = *pt;
+    /* the share of the contact at its shear limit reaches 1 at inception */
+    if (l->tty)
+        fprintf(stderr, "\r  shear ramp: point %d, ux/wc %.3g, Q/Pc %.4g, at the shear limit "
+                        "%3.0f %% of the contact ", l->n, pt->ux / l->omega_c, pt->Q / l->P_c,
+                100.0 * pt->limit_frac);
     return 0;
 }
 
@@ -351,6 +359,10 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
 {
     asp_placement_result *e = malloc(sizeof *e);
     if (!e) return cli_fail(cmd, STC_ENOMEM);
+    if (isatty(2))
+        fprintf(stderr, "stiction %s: %d node placements: normal step and shear ramp on each "
+                        "(member 0 first, then the others side by side) ...\n", cmd,
+                sa->placements);
     stc_status st = asp_shear_placements(p, o, &sa->so, dmm, sa->placements, e);
     if (st == STC_EINVAL || (st != STC_OK && e->k == 0)) {
         free(e);
@@ -424,13 +436,21 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     if (sa->placements > 1) return run_placements(cmd, p, o, sa, &c, dmm, json, out);
     asp_solver *sv;
     asp_point pt;
-    if ((s = asp_shear_preload(p, o, dmm, sa->load * c.P_c, &sv, &pt))) return cli_fail(cmd, s);
+    int tty = isatty(2);
+    if (tty) fprintf(stderr, "stiction %s: normal step (3D mesh, load and solve) ...", cmd);
+    if ((s = asp_shear_preload(p, o, dmm, sa->load * c.P_c, &sv, &pt))) {
+        if (tty) fputc('\n', stderr);
+        return cli_fail(cmd, s);
+    }
+    if (tty) fprintf(stderr, " done: P/Pc %.4g\n", pt.P / c.P_c);
     asp_info in;
     asp_shear_options so = sa->so;
     so.keep_fields = out != NULL;
     asp_shear_result r;
     ptlist l = {0};
+    l.tty = tty, l.omega_c = c.omega_c, l.P_c = c.P_c;
     stc_status st = asp_solver_shear(sv, &so, collect, &l, &r);
+    if (tty && l.n > 0) fputc('\n', stderr);
     if (l.oom) fprintf(stderr, "stiction %s: out of memory for the ramp points\n", cmd);
     int ok = st == STC_OK && r.converged;
     double q08 = NAN;
