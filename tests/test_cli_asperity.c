@@ -187,11 +187,14 @@ static void test_shear_load(void **state)
 /* What the policy functions refuse, by name. */
 /* A shear run shows its phases and the ramp's progress on a terminal
  * (stderr), and nothing of it when stderr is a file or a pipe.  The
- * terminal is script(1)'s pseudo-terminal; without script the test skips. */
+ * terminal is script(1)'s pseudo-terminal; without script, or a pseudo-terminal
+ * for it, the test skips. */
 static void test_shear_progress(void **state)
 {
     (void)state;
-    if (access("/usr/bin/script", X_OK) != 0) skip();
+    if (access("/usr/bin/script", X_OK) != 0 ||
+        system("/usr/bin/script -q -e -c true /dev/null >/dev/null 2>&1") != 0)
+        skip(); /* no script(1), or no pseudo-terminal for it */
     const char *args = "asperity --shear --threads 1 --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 "
                        "--Y-co 325 --load 0.3 --criterion stiffness --alpha 0.9 "
                        "--elements-per-contact 4";
