@@ -23,10 +23,10 @@ import sys
 import time
 
 from vreport import Report
-from wsp_case import write_csv
+from wsp_case import WSP_SPHERE, write_csv
 
 TAU = 325.0 / math.sqrt(3.0)
-BASE = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33"]
+BASE = WSP_SPHERE + ["--t-over-R", "0"]
 TOL = 0.03
 
 

@@ -8,8 +8,9 @@ import csv
 import math
 import os
 
-WSP = ["--R", "10.5", "--t-over-R", "0", "--E-su", "74000", "--nu", "0.33",
-       "--Y-su", "325", "--contact", "slip"]
+# the sphere alone (radius, modulus, Poisson's ratio), and the whole case
+WSP_SPHERE = ["--R", "10.5", "--E-su", "74000", "--nu", "0.33"]
+WSP = WSP_SPHERE + ["--t-over-R", "0", "--Y-su", "325", "--contact", "slip"]
 
 
 def wsp_mu(w):
