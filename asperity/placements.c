@@ -109,5 +109,18 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
                         m[j].elements_per_contact, m[j].message);
     }
     out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
+    out->mu_s_err = asp_placement_mu_s_err(out, ASP_MU_S_ERR_SINGLE, ASP_MU_S_ERR_FLOOR);
     return STC_OK;
+}
+
+double asp_placement_mu_s_err(const asp_placement_result *e, double err_single,
+                              double err_floor)
+{
+    int k = e->k;
+    if (k < 1 || e->n_ok < k) return NAN;
+    if (k == 1) return err_single * e->mu_s;
+    double ss = 0.0;
+    for (int j = 0; j < k; j++) ss += pow(e->m[j].res.mu_s - e->mu_s, 2);
+    double se2 = ss / (k - 1) / k; /* standard error of the mean, squared */
+    return sqrt(se2 + pow(err_floor * e->mu_s, 2));
 }

@@ -671,9 +671,11 @@ static void fill_result(const ramp *r, asp_slide *det, asp_shear_result *res)
     res->ux_slide = sr.ux;
     res->P_slide = sr.P;
     res->mu_s = sr.mu_s;
+    res->mu_s_err = ASP_MU_S_ERR_SINGLE * sr.mu_s; /* one mesh (asperity.h) */
     res->mu_s_preload = sr.mu_s_preload;
     res->slip_frac = sr.slip_frac;
     res->KT_after = sr.KT_after;
+    res->q_rising = sr.q_rising;
     res->index = sr.index;
     res->increments = sr.increments;
     res->converged = sr.state == ASP_SLIDE_INCEPTION;

@@ -247,10 +247,12 @@ static asp_slide_state evaluate(asp_slide *d)
             return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, i,
                           "shear criterion: whole contact at its shear limit (fraction >= "
                           "1 - %g) and Q stopped rising (WSP 2012)", p->slip_tol);
-        if (i >= 0) /* full_tol > flat_tol: see KT_after */
+        if (i >= 0) { /* full_tol > flat_tol: see KT_after */
+            d->res.q_rising = 1;
             return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, i,
                           "shear criterion: whole contact at its shear limit (fraction >= "
                           "1 - %g), Q still rising past it (WSP 2012; KT_after)", p->slip_tol);
+        }
         if ((i = plastic_plateau(d)) >= 0)
             return finish(d, ASP_SLIDE_INCEPTION, ASP_OUTCOME_CONVERGED, i,
                           "Q stopped rising (plastic plateau) with only %.3f of the contact "

@@ -65,12 +65,8 @@ void tbl_numerics_default(tbl_numerics *n)
     n->mesh_level = 0;
     n->elements_per_contact = 0.0;
     n->placements = 2;
-    /* measured: four-member means move by +0.04 / +1.5 % from the default 3D
-     * mesh to one full refinement (t/R .025, Eco/Esu 2, δ = 1 / 30 ωc_su,
-     * docs/design.md §4.6) */
-    n->err_floor = 0.015;
-    /* one mesh: ±4–8 % with where the nodes fall (WSP sphere, docs/design.md §4.5) */
-    n->err_single = 0.06;
+    n->err_floor = ASP_MU_S_ERR_FLOOR;   /* the error model of asperity.h */
+    n->err_single = ASP_MU_S_ERR_SINGLE;
     /* the axisymmetric default: a slip curve to 60 ωc within 0.29 % of the
      * converged load (docs/design.md §2.3) */
     n->normal_level = 1;
@@ -133,17 +129,6 @@ double tbl_wall_now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* The members' spread and the mesh bias, one standard error (table.h). */
-static double mu_s_error(const tbl_numerics *num, const asp_placement_result *e)
-{
-    int k = e->k;
-    if (k == 1) return num->err_single * e->mu_s;
-    double ss = 0.0;
-    for (int j = 0; j < k; j++) ss += pow(e->m[j].res.mu_s - e->mu_s, 2);
-    double se2 = ss / (k - 1) / k; /* standard error of the mean, squared */
-    return sqrt(se2 + pow(num->err_floor * e->mu_s, 2));
-}
-
 static void fill_done(const stc_critical *c, const asp_placement_result *e,
                       const tbl_numerics *num, tbl_point *out)
 {
@@ -162,7 +147,7 @@ static void fill_done(const stc_critical *c, const asp_placement_result *e,
     out->P_slide_Pc = e->P_slide / c->P_c;
     out->Q_max_Pc = e->Q_max / c->P_c;
     out->mu_s = e->mu_s;
-    out->mu_s_err = mu_s_error(num, e);
+    out->mu_s_err = asp_placement_mu_s_err(e, num->err_single, num->err_floor);
     out->mu_s_preload = e->mu_s_preload;
     out->mu_s_min = e->mu_s_min;
     out->mu_s_max = e->mu_s_max;
@@ -401,7 +386,9 @@ static unsigned long long points_hash(const tbl_table *t)
     h = fnv_i(h, (int)f->criterion), h = fnv_d(h, f->alpha);
     h = fnv_i(h, n->mesh_level), h = fnv_i(h, n->placements);
     h = fnv_d(h, n->elements_per_contact);
-    h = fnv_d(h, n->err_floor), h = fnv_d(h, n->err_single);
+    /* only the error term the points use: err_single with one member, else
+     * err_floor (a table keeps its points when the other default moves) */
+    h = fnv_d(h, n->placements == 1 ? n->err_single : n->err_floor);
     for (int k = 0; k < 3; k++) {
         h = fnv_i(h, t->n[k]);
         for (int i = 0; i < t->n[k]; i++) h = fnv_d(h, t->ax[k][i]);

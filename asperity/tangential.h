@@ -170,6 +170,9 @@ typedef struct asp_slide_result {
     double KT_after;     /* secant (Q_last - Q_i) / (ux_last - ux_i) / KT_1 from
                             there to the last point pushed (the confirmation
                             increments); KT_ratio if none */
+    int q_rising;        /* 1: the whole contact at its limit while Q still rose
+                            past it (KT_after > flat_tol): μs depends on where
+                            inception is declared */
     int n_contact;       /* contact nodes there */
     int index;           /* index of that point in the ramp (0 = ux = 0) */
     int increments;      /* accepted increments pushed */

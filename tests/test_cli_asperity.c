@@ -180,6 +180,9 @@ static void test_shear_load(void **state)
     same("increments", 0, pt.increments);
     same("Q_max_N", 0, r.Q_max);
     same("mu_s", 0, r.mu_s);
+    same("mu_s_err", 0, r.mu_s_err);
+    assert_non_null(strstr(out, r.q_rising ? "\"Q_still_rising\": true"
+                                           : "\"Q_still_rising\": false"));
     same("P_at_slide_N", 0, r.P_slide);
     same("shear_increments", 0, r.increments);
 }

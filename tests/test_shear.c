@@ -368,7 +368,8 @@ static void test_cli_json(void **state)
                           "\"P_at_slide_N\"", "\"P_preload_N\"", "\"criterion\": \"stiffness\"",
                           "\"tau_c_MPa\"", "\"junction\": \"footprint\"",
                           "\"stick_radius_mm\"", "\"shear_increments\"",
-                          "\"KT_over_KT1_after_slide\"",
+                          "\"KT_over_KT1_after_slide\"", "\"mu_s_err\"",
+                          "\"Q_still_rising\"", "\"elements_per_contact\"",
                           "\"factorizations\"", "\"converged\": true", "\"reason\"",
                           "\"delta_mm\"", "\"P_N\""};
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
@@ -563,6 +564,19 @@ static void test_placements(void **state)
     assert_true(fabs(e->mu_s - 0.5 * (e->m[0].res.mu_s + e->m[1].res.mu_s)) < 1e-15);
     assert_true(e->mu_s_min <= e->mu_s && e->mu_s <= e->mu_s_max);
     assert_true(fabs(e->m[1].res.mu_s / e->m[0].res.mu_s - 1) < 0.03);
+    /* the error estimate: the two members' standard error of the mean,
+     * |μ0 − μ1| / 2, and the mesh floor in quadrature; one member alone
+     * carries the single-mesh scatter, as the single run does */
+    double se = 0.5 * fabs(e->m[0].res.mu_s - e->m[1].res.mu_s);
+    double want = hypot(se, ASP_MU_S_ERR_FLOOR * e->mu_s);
+    printf("# mu_s error: %.5f (standard error %.5f, floor %.5f)\n", e->mu_s_err, se,
+           ASP_MU_S_ERR_FLOOR * e->mu_s);
+    assert_true(fabs(e->mu_s_err / want - 1) < 1e-12);
+    assert_true(fabs(R.res.mu_s_err / (ASP_MU_S_ERR_SINGLE * R.res.mu_s) - 1) < 1e-15);
+    e->k = e->n_ok = 1;
+    assert_true(asp_placement_mu_s_err(e, 0.05, 0.01) == 0.05 * e->mu_s);
+    e->k = 2; /* a member that failed: no estimate */
+    assert_true(isnan(asp_placement_mu_s_err(e, 0.05, 0.01)));
     free(e);
 }
 

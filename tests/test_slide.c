@@ -229,6 +229,8 @@ static void test_rising_after(void **state)
     assert_true(fabs(r.r.KT_after - 0.2) < 0.02);
     assert_non_null(strstr(f.r.reason, "stopped rising"));
     assert_non_null(strstr(r.r.reason, "still rising"));
+    assert_int_equal(f.r.q_rising, 0); /* the flag a caller reads */
+    assert_int_equal(r.r.q_rising, 1);
 }
 
 /* The ramp's solver finds no equilibrium past a point (cut-back limit):

@@ -350,6 +350,7 @@ static void test_round_trip(void **state)
     num.placements = 3;
     num.err_floor = 0.02;
     num.err_single = 0.05;
+
     double w[NW];
     w_axis(w);
     check_ok(tbl_create(&f, &num, w, NW, TR, NTR, ER, NE, &t), "tbl_create");
@@ -758,6 +759,32 @@ static void test_merge(void **state)
         assert_int_equal(pending, tbl_points(full) / 2);
         assert_true(tbl_same_build(part[s], full));
     }
+    /* the build's identity holds the error term its points use: with two
+     * placements err_floor, not err_single (and the reverse with one) */
+    tbl_table *o = NULL;
+    tbl_numerics on = num;
+    on.err_single = 0.5 * num.err_single;
+    check_ok(tbl_create(&f, &on, w, nw, tR, nt, E, ne, &o), "tbl_create other");
+    assert_int_equal(num.placements, 2);
+    assert_true(tbl_same_build(o, full));
+    tbl_destroy(&o);
+    on = num, on.err_floor = 0.5 * num.err_floor;
+    check_ok(tbl_create(&f, &on, w, nw, tR, nt, E, ne, &o), "tbl_create other");
+    assert_false(tbl_same_build(o, full));
+    tbl_destroy(&o);
+    tbl_table *o1 = NULL;
+    on = num, on.placements = 1;
+    check_ok(tbl_create(&f, &on, w, nw, tR, nt, E, ne, &o), "tbl_create one member");
+    on.err_floor = 0.5 * num.err_floor;
+    check_ok(tbl_create(&f, &on, w, nw, tR, nt, E, ne, &o1), "tbl_create one member");
+    assert_true(tbl_same_build(o, o1));
+    tbl_destroy(&o1);
+    on.err_single = 0.5 * num.err_single;
+    check_ok(tbl_create(&f, &on, w, nw, tR, nt, E, ne, &o1), "tbl_create one member");
+    assert_false(tbl_same_build(o, o1));
+    tbl_destroy(&o1);
+    tbl_destroy(&o);
+
     check_ok(tbl_merge(part, 2, &m), "tbl_merge");
     int done, failed, pending;
     tbl_count(m, &done, &failed, &pending);

@@ -9,9 +9,9 @@ validate-shear.py CLI OUT.csv OUT.md [--levels 0] [--omegas 0.5,1,3,6,12,24,48,7
 E = 74 GPa, nu = 0.33, Y = 325 MPa, R' = 10.5 mm, slip normal step, shear
 criterion, 3D model.  Per (level, omega): one `stiction asperity --shear
 --json --placements K` run (K node placements of the surface mesh, averaged:
-a single run's mu_s moves by 4-8 % with where the nodes sit relative to the
-contact edge, docs/design.md section 4.5); its member 0 is the single run with
-the default placement.  The fit is a published regression, so the ensemble is
+one mesh's mu_s moves by up to +-10 % with where the nodes sit relative to the
+contact edge, docs/design.md section 4.5); its member 0 is the single default
+run, with its error estimate.  The fit is a published regression, so the ensemble is
 compared with it (5 %; a miss is a finding), and the single run's distance to
 it is the accuracy a default run delivers (a target).  Checks: every member
 converges; up to omega_c, where the sphere is elastic under the normal load,
@@ -78,14 +78,15 @@ def main():
     ap.add_argument("--placements", type=int, default=4)
     a = ap.parse_args()
     cols = ["level", "omega_over_omega_c", "placements", "mu_s", "mu_s_min", "mu_s_max",
-            "mu_s_wsp_fit", "error_pct", "mu_s_single", "single_error_pct", "mu_s_preload",
-            "Q_max_over_P_c", "wall_s", "converged", "reason"]
+            "mu_s_wsp_fit", "error_pct", "mu_s_single", "mu_s_single_err", "single_error_pct",
+            "single_vs_ensemble_pct", "mu_s_preload", "Q_max_over_P_c",
+            "wall_s", "converged", "reason"]
     rep = Report("Combined loading: the Wu-Shi-Polycarpou sphere",
                  "tools/validate-shear.py (`stiction asperity --shear --json` runs)")
     rep.out("E = 74 GPa, nu = 0.33, Y = 325 MPa, R' = 10.5 mm, slip normal step, 3D model, "
             "shear criterion; mu_s = Q_max / P at inception, the mean of %d node placements "
-            "(members' range in brackets); member 0 is the single run with the default "
-            "placement." % a.placements)
+            "(members' range in brackets) with its error estimate; member 0 is the single "
+            "default run, with its own (one standard error)." % a.placements)
     rep.out("")
     rows, res = [], []
     for lv in [int(x) for x in a.levels.split(",")]:
@@ -100,15 +101,20 @@ def main():
             for c in ("mu_s", "mu_s_min", "mu_s_max", "mu_s_preload", "Q_max_over_P_c"):
                 r[c] = "%.5f" % j[c] if good else ""
             r["mu_s_single"] = "%.5f" % m0["mu_s"] if good else ""
+            r["mu_s_single_err"] = "%.5f" % m0["mu_s_err"] if good else ""
             r["error_pct"] = "%+.2f" % (100 * (j["mu_s"] / fit - 1)) if good else ""
             r["single_error_pct"] = "%+.2f" % (100 * (m0["mu_s"] / fit - 1)) if good else ""
+            r["single_vs_ensemble_pct"] = ("%+.2f" % (100 * (m0["mu_s"] / j["mu_s"] - 1))
+                                           if good else "")
             rows.append(r)
             write_progress(a.out, cols, rows)
             res.append((lv, w, fit, j if good else None, r["reason"]))
-            rep.out("* level %d, omega/omega_c %g: single run (member 0) %s, %d placements %s "
-                    "[%s, %s], %.0f s, fit %.4f"
-                    % (lv, w, r["mu_s_single"] or "-", a.placements, r["mu_s"] or "failed",
-                       r["mu_s_min"] or "-", r["mu_s_max"] or "-", wall, fit))
+            rep.out("* level %d, omega/omega_c %g: single run (member 0) %s +- %s, %d placements "
+                    "%s +- %s [%s, %s], %.0f s, fit %.4f"
+                    % (lv, w, r["mu_s_single"] or "-", r["mu_s_single_err"] or "-",
+                       a.placements, r["mu_s"] or "failed",
+                       "%.5f" % j["mu_s_err"] if good else "-", r["mu_s_min"] or "-",
+                       r["mu_s_max"] or "-", wall, fit))
     write_progress(a.out, cols, rows, done=True)
     rep.out("")
     for lv, w, fit, e, why in res:
@@ -149,6 +155,21 @@ def main():
                    "%+.2f ... %+.2f %% (worst %+.2f %% at %g omega_c)"
                    % (100 * min(e for _, e in errs), 100 * max(e for _, e in errs),
                       100 * worst[1], worst[0]), abs(worst[1]) <= TOL)
+    # the single run against the ensemble of the same level: its error estimate
+    # (one standard error) must cover the distance within two standard errors
+    # of both (the ensemble's own estimate is its members' standard error)
+    for (lv, w, fit, e, _), r in zip(res, rows):
+        if not e:
+            continue
+        d = float(r["mu_s_single"]) - e["mu_s"]
+        sig = (float(r["mu_s_single_err"]) ** 2 + e["mu_s_err"] ** 2) ** 0.5
+        rep.check("level %d, %g omega_c: single run against %d placements" % (lv, w, a.placements),
+                  "the ensemble of the same level: %.4f +- %.4f" % (e["mu_s"], e["mu_s_err"]),
+                  "within two combined standard errors",
+                  "%.4f +- %.4f (%+.2f %%, %.1f sigma)" % (float(r["mu_s_single"]),
+                                                           float(r["mu_s_single_err"]),
+                                                           100 * d / e["mu_s"], abs(d) / sig),
+                  abs(d) <= 2 * sig)
     return rep.write(a.report)
 
 

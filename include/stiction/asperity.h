@@ -340,7 +340,9 @@ typedef struct asp_shear_result {
     double ux_slide;     /* ux at inception, mm */
     double P_slide;      /* P at inception, N */
     double P0;           /* preload: P at the end of the normal step, N */
-    double mu_s;         /* Q_max / P_slide */
+    double mu_s;         /* Q_max / P_slide: the answer (thesis, WSP 2012) */
+    double mu_s_err;     /* its error estimate, one standard error (absolute): the
+                            node-placement scatter of one mesh, ASP_MU_S_ERR_SINGLE μs */
     double mu_s_preload; /* Q_max / P0 */
     double A_stick;      /* stick area at inception, mm² */
     double slip_frac;    /* at inception: area fraction at its shear limit (limit_frac) */
@@ -350,6 +352,9 @@ typedef struct asp_shear_result {
                             rising (stuck but saturated nodes, P relaxing), so μs
                             depends on where inception is declared, not only on
                             the Q(ux) curve (docs/design.md §4.4) */
+    int q_rising;        /* 1: inception declared with the whole contact at its
+                            shear limit while Q still rose past it (KT_after >
+                            0.01): a flagged result */
     double tau_c;        /* τc used, MPa */
     double a0;           /* contact radius after the normal step, mm */
     asp_shear_criterion criterion;
@@ -417,6 +422,15 @@ STC_API double asp_hertz_delta_guess(double P, double E, double nu, double R);
  * answer). */
 enum { ASP_PLACEMENTS_MAX = 8 };
 
+/* Error model of μs, relative (docs/design.md §4.5).  One mesh: the largest
+ * standard deviation of μs over eight evenly spaced node placements
+ * measured (8.5 %, WSP sphere at 3 ωc).  An ensemble: the members' standard
+ * error of the mean with, in quadrature, the floor, the move of four-member
+ * means from the default 3D mesh to one full refinement (docs/design.md
+ * §4.6). */
+#define ASP_MU_S_ERR_SINGLE 0.08
+#define ASP_MU_S_ERR_FLOOR 0.015
+
 typedef struct asp_placement_member {
     double elements_per_contact;
     asp_point pt;            /* end of the normal step */
@@ -428,6 +442,9 @@ typedef struct asp_placement_member {
 typedef struct asp_placement_result {
     int k, n_ok;             /* members, members that reached inception */
     double mu_s;             /* mean of the members' μs */
+    double mu_s_err;         /* its error estimate, one standard error (absolute):
+                                asp_placement_mu_s_err with ASP_MU_S_ERR_SINGLE and
+                                ASP_MU_S_ERR_FLOOR */
     double mu_s_min, mu_s_max;
     double mu_s_preload, Q_max, P_slide; /* means */
     double period;           /* T = a_max / a0, in elements per contact */
@@ -438,6 +455,13 @@ typedef struct asp_placement_result {
 STC_API stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
                                         const asp_shear_options *so, double delta, int k,
                                         asp_placement_result *out);
+
+/* One standard error of an ensemble's mean μs (absolute), the error model
+ * above with these relative errors: err_single μs for one member, else the
+ * members' standard error of the mean and err_floor μs in quadrature.  NaN
+ * unless every member reached inception.  Pure. */
+STC_API double asp_placement_mu_s_err(const asp_placement_result *e, double err_single,
+                                      double err_floor);
 
 /* ---- runs as `stiction asperity` makes them (asperity/policy.c) ----------
  * The solver settings the CLI chooses for what is asked, here so that a C

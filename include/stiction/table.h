@@ -62,9 +62,9 @@ typedef struct tbl_numerics {
                           in [1, ASP_PLACEMENTS_MAX]; default 2 */
     double err_floor;  /* relative μs error added in quadrature to the members' standard
                           error (the mesh bias the placements do not average out);
-                          default 0.015 */
+                          default ASP_MU_S_ERR_FLOOR */
     double err_single; /* relative μs error of a point with one member (the single-mesh
-                          node-placement scatter); default 0.06 */
+                          node-placement scatter); default ASP_MU_S_ERR_SINGLE */
     int normal_level;  /* the preload's P and A from the normal grid: axisymmetric load
                           curves at this axisymmetric mesh level, one per (t/R, Eco/Esu)
                           of a grid denser than the points' (the normal step is

@@ -175,6 +175,8 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_num(&j, "vm_over_Y_coating", pt->vm_over_Y[1]);
     cj_int(&j, "dofs", in->dofs);
     cj_int(&j, "elements", in->elements);
+    cj_num(&j, "elements_per_contact", in->elements_per_contact);
+    cj_num(&j, "a_max_mm", in->a_max);
     cj_int(&j, "increments", pt->increments);
     cj_int(&j, "newton_iterations", pt->newton_iterations + r->newton_iterations); /* both steps */
     cj_num(&j, "wall_s", pt->wall_s);
@@ -184,6 +186,8 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
         cj_num(&j, "Q_max_N", r->Q_max);
         cj_num(&j, "Q_max_over_P_c", r->Q_max / c->P_c);
         cj_num(&j, "mu_s", r->mu_s);
+        cj_num(&j, "mu_s_err", r->mu_s_err);
+        cj_bool(&j, "Q_still_rising", r->q_rising);
         cj_num(&j, "mu_s_preload", r->mu_s_preload);
         cj_num(&j, "ux_at_slide_mm", r->ux_slide);
         cj_num(&j, "ux_at_slide_over_omega_c", r->ux_slide / c->omega_c);
@@ -192,9 +196,10 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
         cj_num(&j, "slip_fraction_at_slide", r->slip_frac);
         cj_num(&j, "KT_over_KT1_after_slide", r->KT_after);
     } else {
-        const char *k[] = {"Q_max_N", "Q_max_over_P_c", "mu_s", "mu_s_preload", "ux_at_slide_mm",
-                           "ux_at_slide_over_omega_c", "P_at_slide_N", "stick_radius_mm",
-                           "slip_fraction_at_slide", "KT_over_KT1_after_slide"};
+        const char *k[] = {"Q_max_N", "Q_max_over_P_c", "mu_s", "mu_s_err", "Q_still_rising",
+                           "mu_s_preload", "ux_at_slide_mm", "ux_at_slide_over_omega_c",
+                           "P_at_slide_N", "stick_radius_mm", "slip_fraction_at_slide",
+                           "KT_over_KT1_after_slide"};
         for (size_t i = 0; i < sizeof k / sizeof *k; i++) cj_null(&j, k[i]);
     }
     cj_num(&j, "P_preload_N", r->P0);
@@ -220,8 +225,9 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
 static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_result *r,
                        const stc_critical *c, const ptlist *l, stc_status st)
 {
-    printf("mesh: %d elements, %d DOFs (3D half model), h = %.3g mm at the contact\n",
-           in->elements, in->dofs, in->h_contact);
+    printf("mesh: %d elements, %d DOFs (3D half model), h = %.3g mm at the contact, %.4g "
+           "elements across a_max\n", in->elements, in->dofs, in->h_contact,
+           in->elements_per_contact);
     printf("normal step: delta/wc = %.5g, P = %.6g N (P/Pc = %.5g), a = %.5g mm, %d increments, "
            "%.2f s\n\n", pt->delta / c->omega_c, pt->P, pt->P / c->P_c, pt->a, pt->increments,
            pt->wall_s);
@@ -235,12 +241,28 @@ static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_
     printf("\ncriterion %s, tau_c = %.5g MPa: %s\n",
            r->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear", r->tau_c,
            r->reason);
-    if (st == STC_OK && r->converged)
-        printf("Q_max = %.6g N (Q/Pc = %.5g) at ux = %.5g mm: mu_s = %.5g (P at slide %.6g N), "
-               "mu_s(preload) = %.5g; %d increments, %d factorizations, %.2f s\n",
-               r->Q_max, r->Q_max / c->P_c, r->ux_slide, r->mu_s, r->P_slide, r->mu_s_preload,
-               r->increments, r->factorizations, r->wall_s);
-    else printf("NOT CONVERGED: no static friction coefficient\n");
+    if (st == STC_OK && r->converged) {
+        printf("Q_max = %.6g N (Q/Pc = %.5g) at ux = %.5g mm, P = %.6g N there; %d increments, "
+               "%d factorizations, %.2f s\n\n", r->Q_max, r->Q_max / c->P_c, r->ux_slide,
+               r->P_slide, r->increments, r->factorizations, r->wall_s);
+        printf("mu_s = %.4f ± %.4f  (Q_max / P at sliding inception; ± one standard error: "
+               "one mesh's node-placement scatter, --placements 4 narrows it)%s\n", r->mu_s,
+               r->mu_s_err, r->q_rising ? "  [Q still rising]" : "");
+    } else printf("NOT CONVERGED: no static friction coefficient\n");
+}
+
+/* The flag of a result whose Q still rose past inception (stderr). */
+static void warn_rising(const char *cmd, int n, int k, double KT_after)
+{
+    if (n == 0) return;
+    if (k == 1)
+        fprintf(stderr, "stiction %s: warning: Q still rising past sliding inception "
+                        "(KT/KT1 = %.3g after it): mu_s depends on where inception is declared "
+                        "(docs/design.md §4.4)\n", cmd, KT_after);
+    else
+        fprintf(stderr, "stiction %s: warning: Q still rising past sliding inception in %d of "
+                        "%d members: their mu_s depends on where inception is declared "
+                        "(docs/design.md §4.4)\n", cmd, n, k);
 }
 
 /* ---- node-placement ensemble (--placements K) ---------------------------- */
@@ -248,6 +270,13 @@ static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_
 static const char *member_reason(const asp_placement_member *m)
 {
     return m->status == STC_OK ? m->res.reason : m->message;
+}
+
+static int rising_members(const asp_placement_result *e)
+{
+    int n = 0;
+    for (int j = 0; j < e->k; j++) n += e->m[j].status == STC_OK && e->m[j].res.q_rising;
+    return n;
 }
 
 static int write_members_csv(const char *dir, const asp_placement_result *e)
@@ -286,6 +315,8 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
     cj_num(&j, "placement_period", e->period);
     if (ok) {
         cj_num(&j, "mu_s", e->mu_s);
+        cj_num(&j, "mu_s_err", e->mu_s_err);
+        cj_int(&j, "members_Q_still_rising", rising_members(e));
         cj_num(&j, "mu_s_min", e->mu_s_min);
         cj_num(&j, "mu_s_max", e->mu_s_max);
         cj_num(&j, "mu_s_spread", 0.5 * (e->mu_s_max - e->mu_s_min) / e->mu_s);
@@ -294,8 +325,9 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
         cj_num(&j, "Q_max_over_P_c", e->Q_max / c->P_c);
         cj_num(&j, "P_at_slide_N", e->P_slide);
     } else {
-        const char *k[] = {"mu_s", "mu_s_min", "mu_s_max", "mu_s_spread", "mu_s_preload",
-                           "Q_max_N", "Q_max_over_P_c", "P_at_slide_N"};
+        const char *k[] = {"mu_s", "mu_s_err", "members_Q_still_rising", "mu_s_min", "mu_s_max",
+                           "mu_s_spread", "mu_s_preload", "Q_max_N", "Q_max_over_P_c",
+                           "P_at_slide_N"};
         for (size_t i = 0; i < sizeof k / sizeof *k; i++) cj_null(&j, k[i]);
     }
     const asp_shear_result *r0 = &e->m[0].res;
@@ -312,12 +344,15 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
         cj_num(&j, "a_mm", m->pt.a);
         if (mok) {
             cj_num(&j, "mu_s", m->res.mu_s);
+            cj_num(&j, "mu_s_err", m->res.mu_s_err);
+            cj_bool(&j, "Q_still_rising", m->res.q_rising);
             cj_num(&j, "Q_max_N", m->res.Q_max);
             cj_num(&j, "P_at_slide_N", m->res.P_slide);
             cj_num(&j, "ux_at_slide_mm", m->res.ux_slide);
         } else {
-            cj_null(&j, "mu_s"), cj_null(&j, "Q_max_N"), cj_null(&j, "P_at_slide_N");
-            cj_null(&j, "ux_at_slide_mm");
+            cj_null(&j, "mu_s"), cj_null(&j, "mu_s_err"), cj_null(&j, "Q_still_rising");
+            cj_null(&j, "Q_max_N");
+            cj_null(&j, "P_at_slide_N"), cj_null(&j, "ux_at_slide_mm");
         }
         cj_num(&j, "shear_wall_s", m->res.wall_s);
         cj_bool(&j, "converged", mok);
@@ -347,9 +382,12 @@ static void print_placements_text(const asp_placement_result *e, const stc_criti
         else printf("%8d %12.5g  FAILED: %s\n", j, m->elements_per_contact, member_reason(m));
     }
     if (st == STC_OK)
-        printf("\nmu_s = %.5f (mean of %d; members %.5f … %.5f, half range %.2f %% of the mean), "
-               "Q_max/Pc = %.5g, %.1f s\n", e->mu_s, e->k, e->mu_s_min, e->mu_s_max,
-               50.0 * (e->mu_s_max - e->mu_s_min) / e->mu_s, e->Q_max / c->P_c, e->wall_s);
+        printf("\nQ_max/Pc = %.5g, members' mu_s %.5f … %.5f (half range %.2f %% of the mean), "
+               "%.1f s\n\nmu_s = %.4f ± %.4f  (Q_max / P at sliding inception, mean of %d "
+               "placements; ± one standard error: the members' and the %.1f %% mesh floor)\n",
+               e->Q_max / c->P_c, e->mu_s_min, e->mu_s_max,
+               50.0 * (e->mu_s_max - e->mu_s_min) / e->mu_s, e->wall_s, e->mu_s, e->mu_s_err,
+               e->k, 100.0 * ASP_MU_S_ERR_FLOOR);
     else printf("\nNOT CONVERGED: no static friction coefficient\n");
 }
 
@@ -372,6 +410,7 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
     snprintf(why, sizeof why, "%s", st == STC_OK ? "" : stc_errmsg());
     if (json) print_placements_json(e, c, dmm, st);
     else print_placements_text(e, c, st);
+    if (st == STC_OK) warn_rising(cmd, rising_members(e), e->k, NAN);
     int rc = CLI_EXIT_OK;
     if (st != STC_OK) {
         fprintf(stderr, "stiction %s: %s\n", cmd, why);
@@ -459,6 +498,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     if (ok && out && write_fields(cmd, sv, out, &q08) != 0) rc = CLI_EXIT_FAIL;
     if (json) print_json(&pt, &in, &r, &c, &l, st, sa->load, q08);
     else print_text(&pt, &in, &r, &c, &l, st);
+    if (ok) warn_rising(cmd, r.q_rising, 1, r.KT_after);
     if (!ok) {
         fprintf(stderr, "stiction %s: %s\n", cmd, r.reason);
         /* the ramp points reached are kept for the diagnosis (no μs is claimed) */
