@@ -206,10 +206,27 @@ static void test_shear_progress(void **state)
     assert_int_equal(cli_capture(cmd, 1, out, sizeof out), 0);
     assert_non_null(strstr(out, "normal step (3D mesh, load and solve) ... done"));
     assert_non_null(strstr(out, "shear ramp: point"));
+}
+
+/* Off a terminal (a log, a pipe) a shear run prints a ramp line at most every
+ * --progress-every seconds: none in a run shorter than the default 60 s, one
+ * per ramp point when the interval is shorter than a point. */
+static void test_shear_progress_log(void **state)
+{
+    (void)state;
+    const char *args = "asperity --shear --threads 1 --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 "
+                       "--Y-co 325 --load 0.3 --criterion stiffness --alpha 0.9 "
+                       "--elements-per-contact 4";
+    char cmd[PATH_MAX + 1024];
     snprintf(cmd, sizeof cmd, "'%s' %s", cli, args);
     assert_int_equal(cli_capture(cmd, 2, out, sizeof out), 0);
     assert_null(strstr(out, "shear ramp"));
     assert_null(strstr(out, "normal step (3D mesh"));
+    snprintf(cmd, sizeof cmd, "'%s' %s --progress-every 1e-6", cli, args);
+    assert_int_equal(cli_capture(cmd, 2, out, sizeof out), 0);
+    assert_non_null(strstr(out, "stiction asperity: shear ramp: point 1, ux/wc 0,"));
+    assert_non_null(strstr(out, "stiction asperity: shear ramp: point 2,"));
+    assert_null(strchr(out, '\r')); /* lines, not a line rewritten in place */
 }
 
 static void test_refusals(void **state)
@@ -243,6 +260,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_shear_progress_log),
         cmocka_unit_test(test_axisym_stick_curve),
         cmocka_unit_test(test_3d_curve),
         cmocka_unit_test(test_shear_load),

@@ -62,6 +62,10 @@ static const cli_opt opts[] = {
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR (--shear: "
                    "shear.csv and fields_Q0, fields_Q080, fields_Qmax)"},
     {"json", NULL, "print JSON (one object, or an array for a curve)"},
+    {"progress-every", "S",
+     "--shear, stderr not a terminal (a log, a batch job): a progress line of the ramp at "
+     "most every S seconds (default 60; 0: none); on a terminal one line is rewritten in "
+     "place at every ramp point"},
     CLI_CONFIG_HELP,
     CLI_HEADING("Expert numerics (defaults: the measured choices of docs/design.md)"),
     {"elements-per-contact", "N",

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -30,6 +31,7 @@ void cli_shear_args_default(cli_shear_args *sa)
 {
     memset(sa, 0, sizeof *sa);
     asp_shear_options_default(&sa->so);
+    sa->progress_every = CLI_PROGRESS_EVERY_S;
 }
 
 stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
@@ -80,6 +82,10 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
             return bad(key, value, "a critical shear stress > 0 MPa");
         sa->so.tau_c = v;
         sa->on = 1;
+    } else if (!strcmp(key, "progress-every")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v >= 0.0 && v <= 86400.0))
+            return bad(key, value, "seconds in [0, 86400] (0: no progress lines)");
+        sa->progress_every = v;
     } else if (!strcmp(key, "load")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v <= 1e4))
             return bad(key, value, "P/Pc_su in (0, 1e4]");
@@ -98,8 +104,18 @@ typedef struct {
     int n, cap;
     int oom;
     int tty;           /* stderr is a terminal: a progress line per ramp point */
+    double every;      /* else a line at most every this many seconds (0: none) */
+    double t0, t_last; /* monotonic clock at the ramp's start and at the last line, s */
+    const char *cmd;
     double omega_c, P_c;
 } ptlist;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
 
 static int collect(void *ctx, const asp_shear_point *pt)
 {
@@ -112,10 +128,20 @@ static int collect(void *ctx, const asp_shear_point *pt)
     }
     l->p[l->n++] = *pt;
     /* the share of the contact at its shear limit reaches 1 at inception */
-    if (l->tty)
+    if (l->tty) {
         fprintf(stderr, "\r  shear ramp: point %d, ux/wc %.3g, Q/Pc %.4g, at the shear limit "
                         "%3.0f %% of the contact ", l->n, pt->ux / l->omega_c, pt->Q / l->P_c,
                 100.0 * pt->limit_frac);
+    } else if (l->every > 0.0) { /* a log or a batch job: a line now and then */
+        double t = now_s();
+        if (t - l->t_last >= l->every) {
+            fprintf(stderr, "stiction %s: shear ramp: point %d, ux/wc %.3g, Q/Pc %.4g, at the "
+                            "shear limit %.0f %% of the contact; %.0f s\n", l->cmd, l->n,
+                    pt->ux / l->omega_c, pt->Q / l->P_c, 100.0 * pt->limit_frac, t - l->t0);
+            fflush(stderr);
+            l->t_last = t;
+        }
+    }
     return 0;
 }
 
@@ -488,6 +514,8 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     asp_shear_result r;
     ptlist l = {0};
     l.tty = tty, l.omega_c = c.omega_c, l.P_c = c.P_c;
+    l.every = sa->progress_every, l.cmd = cmd;
+    l.t0 = l.t_last = now_s();
     stc_status st = asp_solver_shear(sv, &so, collect, &l, &r);
     if (tty && l.n > 0) fputc('\n', stderr);
     if (l.oom) fprintf(stderr, "stiction %s: out of memory for the ramp points\n", cmd);
