@@ -70,6 +70,7 @@ void tbl_numerics_default(tbl_numerics *n)
     /* the axisymmetric default: a slip curve to 60 ωc within 0.29 % of the
      * converged load (docs/design.md §2.3) */
     n->normal_level = 1;
+    n->foot_rows = 0.0;
 }
 
 stc_status tbl_numerics_validate(const tbl_numerics *n)
@@ -86,6 +87,7 @@ stc_status tbl_numerics_validate(const tbl_numerics *n)
     STC_CALL(stc_check_range("err-single", n->err_single, 0.0, 0, 0.5, 1));
     STC_CHECK(n->normal_level >= -1 && n->normal_level <= 3, STC_EINVAL,
               "normal-level = %d: must be -1 (no normal grid) or in [0, 3]", n->normal_level);
+    STC_CALL(stc_check_range("foot-rows", n->foot_rows, 0.0, 1, 0.9, 1));
     return STC_OK;
 }
 
@@ -186,6 +188,7 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     so.criterion = f->criterion;
     so.alpha = f->alpha;
     so.tau_c = f->tau_c_over_Y_co * co.Y;
+    so.foot_rows = num->foot_rows;
 
     memset(out, 0, sizeof *out);
     asp_placement_result *e = malloc(sizeof *e);
@@ -386,6 +389,7 @@ static unsigned long long points_hash(const tbl_table *t)
     h = fnv_i(h, (int)f->criterion), h = fnv_d(h, f->alpha);
     h = fnv_i(h, n->mesh_level), h = fnv_i(h, n->placements);
     h = fnv_d(h, n->elements_per_contact);
+    h = fnv_d(h, n->foot_rows);
     /* only the error term the points use: err_single with one member, else
      * err_floor (a table keeps its points when the other default moves) */
     h = fnv_d(h, n->placements == 1 ? n->err_single : n->err_floor);

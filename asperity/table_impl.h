@@ -12,7 +12,8 @@
 
 /* Stored format (docs/table-format.md); a reader refuses other versions. */
 #define TBL_FORMAT_NAME "stiction friction table"
-#define TBL_FORMAT_VERSION 2 /* 2: the normal grid (/normal); version 1 is read too */
+#define TBL_FORMAT_VERSION 3 /* 2: the normal grid (/normal), 3: foot_rows; 1 and 2 are
+                                read too */
 
 /* The reference sphere every point is computed on (the response is
  * independent of both, include/stiction/table.h). */

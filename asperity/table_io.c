@@ -75,6 +75,7 @@ static int write_family(hid_t g, const tbl_table *t)
            stc_h5_put_d(g, "elements_per_contact", n->elements_per_contact) |
            stc_h5_put_d(g, "err_floor", n->err_floor) |
            stc_h5_put_d(g, "err_single", n->err_single) |
+           stc_h5_put_d(g, "foot_rows", n->foot_rows) |
            stc_h5_put_i(g, "normal_level", n->normal_level);
 }
 
@@ -356,6 +357,10 @@ static stc_status read_family(hid_t f, const char *path, int version, tbl_family
     if (version >= 2 && stc_h5_get_i(f, "normal_level", &num->normal_level) != 0)
         return STC_FAIL(STC_EFORMAT, "%s: friction table without its normal_level attribute",
                         path);
+    /* versions 1-2: the axis-line reading */
+    num->foot_rows = 0.0;
+    if (version >= 3 && stc_h5_get_d(f, "foot_rows", &num->foot_rows) != 0)
+        return STC_FAIL(STC_EFORMAT, "%s: friction table without its foot_rows attribute", path);
     char contact[16] = "", crit[16] = "";
     int bad = stc_h5_get_d(f, "E_over_Y_su", &fam->E_over_Y_su) |
               stc_h5_get_d(f, "E_over_Y_co", &fam->E_over_Y_co) |

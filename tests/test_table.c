@@ -311,6 +311,7 @@ static void check_family_equal(const tbl_table *a, const tbl_table *b)
     assert_int_equal(na.placements, nb.placements);
     assert_true(same_bits(na.err_floor, nb.err_floor));
     assert_true(same_bits(na.err_single, nb.err_single));
+    assert_true(same_bits(na.foot_rows, nb.foot_rows));
     for (int k = 0; k < 3; k++) {
         const double *xa, *xb;
         int n = tbl_axis(a, k, &xa);
@@ -350,6 +351,7 @@ static void test_round_trip(void **state)
     num.placements = 3;
     num.err_floor = 0.02;
     num.err_single = 0.05;
+    num.foot_rows = 0.6; /* not the default */
 
     double w[NW];
     w_axis(w);
@@ -784,6 +786,10 @@ static void test_merge(void **state)
     assert_false(tbl_same_build(o, o1));
     tbl_destroy(&o1);
     tbl_destroy(&o);
+    on = num, on.foot_rows = 0.6; /* another junction reading: other points */
+    check_ok(tbl_create(&f, &on, w, nw, tR, nt, E, ne, &o), "tbl_create rows");
+    assert_false(tbl_same_build(o, full));
+    tbl_destroy(&o);
 
     check_ok(tbl_merge(part, 2, &m), "tbl_merge");
     int done, failed, pending;
@@ -991,6 +997,9 @@ static void test_bundled_table_quadrature(void **state)
     (void)state;
     tbl_table *t = NULL;
     check_ok(tbl_read(STC_DATA_DIR "/tables/thesis.h5", &t), "tbl_read");
+    tbl_numerics nm;
+    tbl_get_numerics(t, &nm);
+    assert_true(nm.foot_rows == 0.0); /* a format-2 file: the axis-line reading */
     const struct { double E_ratio, sigma_s; } c[] = {{4, 2e-6}, {1, 2e-6}, {2, 5.3e-6},
                                                      {4, 5.3e-6}};
     const double pressure[] = {0.02, 0.05, 0.1, 0.2}; /* MPa */

@@ -119,6 +119,9 @@ static const cli_opt build_opts[] = {
     CLI_HEADING("Expert numerics"),
     {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
                                   "(default); a small value (>= 2) gives a quick coarse table"},
+    {"foot-rows", "F", "junction reading of every point: 0 = the three axis lines (default, "
+                       "the bundled tables'), F in (0, 0.9] = every node row within F a0 of "
+                       "the axis (stiction asperity --foot-rows; docs/design.md §4.2, §4.5)"},
     {"normal-level", "N", "axisymmetric mesh level of the normal grid (the preload's P and A "
                           "from axisymmetric load curves), 0..3, or -1 for none: P and A from "
                           "the 3D points (default 1)"},
@@ -169,6 +172,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         s = set_int(key, value, 0, 3, &a->num.mesh_level);
     } else if (!strcmp(key, "placements")) {
         s = set_int(key, value, 1, ASP_PLACEMENTS_MAX, &a->num.placements);
+    } else if (!strcmp(key, "foot-rows")) {
+        s = stc_parse_double(key, value, &a->num.foot_rows);
     } else if (!strcmp(key, "normal-level")) {
         s = set_int(key, value, -1, 3, &a->num.normal_level);
     } else if (!strcmp(key, "elements-per-contact")) {
@@ -480,7 +485,9 @@ static void info_text(const tbl_table *t, const char *path)
     printf("  numerics: 3D mesh level %d", n.mesh_level);
     if (n.elements_per_contact > 0) printf(" (%g elements across the contact)",
                                            n.elements_per_contact);
-    printf(", %d node placements per point\n", n.placements);
+    printf(", %d node placements per point", n.placements);
+    if (n.foot_rows > 0.0) printf(", junction read on the node rows within %g a0", n.foot_rows);
+    printf("\n");
     static const char *const an[3] = {"delta/omega_c_su", "t/R", "Eco/Esu"};
     for (int k = 0; k < 3; k++) {
         const double *v;
