@@ -109,8 +109,16 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
                         m[j].elements_per_contact, m[j].message);
     }
     out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
-    out->mu_s_err = asp_placement_mu_s_err(out, ASP_MU_S_ERR_SINGLE, ASP_MU_S_ERR_FLOOR);
+    asp_shear_options def;
+    if (!so) asp_shear_options_default(&def), so = &def;
+    out->mu_s_err = asp_placement_mu_s_err(out, asp_mu_s_err_single(so->foot_rows),
+                                           ASP_MU_S_ERR_FLOOR);
     return STC_OK;
+}
+
+double asp_mu_s_err_single(double foot_rows)
+{
+    return foot_rows > 0.0 ? ASP_MU_S_ERR_ROWS : ASP_MU_S_ERR_SINGLE;
 }
 
 double asp_placement_mu_s_err(const asp_placement_result *e, double err_single,

@@ -70,7 +70,9 @@ void tbl_numerics_default(tbl_numerics *n)
     /* the axisymmetric default: a slip curve to 60 ωc within 0.29 % of the
      * converged load (docs/design.md §2.3) */
     n->normal_level = 1;
-    n->foot_rows = 0.0;
+    asp_shear_options so; /* the solver's junction reading */
+    asp_shear_options_default(&so);
+    n->foot_rows = so.foot_rows;
 }
 
 stc_status tbl_numerics_validate(const tbl_numerics *n)

@@ -3,7 +3,7 @@
 
 bench-shear.py CLI [MESHES [CASE]]
                                 (CASE: only the cases whose name contains it;
-                                 MESHES default "0,n6.6,0:rows:p2,0:nodes,0:c0,1": 3D mesh
+                                 MESHES default "0,n6.6,0:rows,0:p4,0:nodes,1": 3D mesh
                                  levels, or nX for X elements across a_max,
                                  e.g. "0,n8.5,1"; a ":nodes" suffix runs the
                                  junction rule --junction nodes instead of
@@ -13,8 +13,9 @@ bench-shear.py CLI [MESHES [CASE]]
                                  ":c0" / ":c2" run the mesh with no / two
                                  2:1 coarsenings of the outer shells instead
                                  of the default one, docs/design.md §2.5;
-                                 ":rows" reads the growth on every node row,
-                                 --foot-rows 0.6, docs/design.md §4.2; ":pK"
+                                 ":rows" reads the growth on every node row
+                                 within 0.6 a0, --foot-rows 0.6 (the default:
+                                 the axis lines, docs/design.md §4.2); ":pK"
                                  averages K node placements, --placements K,
                                  docs/design.md §4.5)
 
@@ -98,7 +99,7 @@ def main():
         sys.exit("usage: bench-shear.py CLI [MESHES [CASE]]")
     cli = sys.argv[1]
     levels = (sys.argv[2] if len(sys.argv) > 2
-              else "0,%s,0:rows:p2,0:nodes,0:c0,1" % SHIFTED).split(",")
+              else "0,%s,0:rows,0:p4,0:nodes,1" % SHIFTED).split(",")
     # CASE: run only the cases whose name contains it
     cases = [c for c in CASES if len(sys.argv) < 4 or sys.argv[3] in c[0]]
     if not cases:

@@ -45,8 +45,8 @@ def main():
         t, e = case.split("/")
         args = ["--t-over-R", t, "--E-ratio", e, "--contact", "stick", "--delta", delta]
     a0 = run(cli, args)["a_mm"]  # the axisymmetric default mesh
-    cols = ["case", "delta_over_omega_c", "elements_per_contact", "a0_mm", "a_max_mm", "psi",
-            "mu_s", "mu_s_preload", "P_over_P_c"]
+    cols = ["case", "delta_over_omega_c", "foot_rows", "elements_per_contact", "a0_mm",
+            "a_max_mm", "psi", "mu_s", "mu_s_preload", "P_over_P_c"]
     new = not os.path.exists(out)
     first = run(cli, args + ["--shear", "--elements-per-contact", "6"] + extra)
     period = first["a_max_mm"] / first["a_mm"]
@@ -58,7 +58,7 @@ def main():
             n = 6.0 + j * period / k
             r = first if j == 0 else run(cli, args + ["--shear", "--elements-per-contact",
                                                       "%.6f" % n] + extra)
-            w.writerow({"case": case, "delta_over_omega_c": delta,
+            w.writerow({"case": case, "delta_over_omega_c": delta, "foot_rows": r["foot_rows"],
                         "elements_per_contact": "%.6f" % r["elements_per_contact"],
                         "a0_mm": "%.9g" % a0, "a_max_mm": "%.9g" % r["a_max_mm"],
                         "psi": "%.4f" % ((a0 * r["elements_per_contact"] / r["a_max_mm"]) % 1.0),

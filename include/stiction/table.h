@@ -67,8 +67,9 @@ typedef struct tbl_numerics {
                           node-placement scatter); default ASP_MU_S_ERR_SINGLE */
     double foot_rows;  /* junction reading of every member (asp_shear_options.foot_rows):
                           0 = the three axis lines, > 0 = every node row within
-                          foot_rows a0 of the axis; in [0, 0.9]; default 0 (the bundled
-                          tables'; tables of format versions 1-2 are read as 0) */
+                          foot_rows a0 of the axis; in [0, 0.9]; default the
+                          solver's (asp_shear_options_default: 0); tables of format
+                          versions 1-2 are read as 0 */
     int normal_level;  /* the preload's P and A from the normal grid: axisymmetric load
                           curves at this axisymmetric mesh level, one per (t/R, Eco/Esu)
                           of a grid denser than the points' (the normal step is

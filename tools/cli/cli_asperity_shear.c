@@ -232,6 +232,7 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_str(&j, "criterion", r->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear");
     cj_num(&j, "tau_c_MPa", r->tau_c);
     cj_str(&j, "junction", r->junction == ASP_JUNCTION_NODES ? "nodes" : "footprint");
+    cj_num(&j, "foot_rows", r->foot_rows);
     cj_int(&j, "shear_increments", r->increments);
     cj_int(&j, "shear_points", l->n);
     cj_int(&j, "shear_cutbacks", r->cutbacks);
@@ -360,6 +361,7 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
     cj_str(&j, "criterion", r0->criterion == ASP_SHEAR_CRIT_STIFFNESS ? "stiffness" : "shear");
     cj_num(&j, "tau_c_MPa", r0->tau_c);
     cj_str(&j, "junction", r0->junction == ASP_JUNCTION_NODES ? "nodes" : "footprint");
+    cj_num(&j, "foot_rows", r0->foot_rows);
     cj_arr(&j, "members");
     for (int i = 0; i < e->k; i++) {
         const asp_placement_member *m = &e->m[i];

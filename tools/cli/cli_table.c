@@ -120,8 +120,8 @@ static const cli_opt build_opts[] = {
     {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
                                   "(default); a small value (>= 2) gives a quick coarse table"},
     {"foot-rows", "F", "junction reading of every point: 0 = the three axis lines (default, "
-                       "the bundled tables'), F in (0, 0.9] = every node row within F a0 of "
-                       "the axis (stiction asperity --foot-rows; docs/design.md §4.2, §4.5)"},
+                       "as stiction asperity), F in (0, 0.9] = every node row within F a0 of "
+                       "the axis (docs/design.md §4.2, §4.5)"},
     {"normal-level", "N", "axisymmetric mesh level of the normal grid (the preload's P and A "
                           "from axisymmetric load curves), 0..3, or -1 for none: P and A from "
                           "the 3D points (default 1)"},
