@@ -187,7 +187,11 @@ static void test_shear_load(void **state)
     same("shear_increments", 0, r.increments);
 }
 
-/* What the policy functions refuse, by name. */
+/* A short shear run with a few ramp points, for the progress tests. */
+static const char *const PROGRESS_ARGS =
+    "asperity --shear --threads 1 --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --Y-co 325 "
+    "--load 0.3 --criterion stiffness --alpha 0.9 --elements-per-contact 4";
+
 /* A shear run shows its phases and the ramp's progress on a terminal
  * (stderr), and nothing of it when stderr is a file or a pipe.  The
  * terminal is script(1)'s pseudo-terminal; without script, or a pseudo-terminal
@@ -198,9 +202,7 @@ static void test_shear_progress(void **state)
     if (access("/usr/bin/script", X_OK) != 0 ||
         system("/usr/bin/script -q -e -c true /dev/null >/dev/null 2>&1") != 0)
         skip(); /* no script(1), or no pseudo-terminal for it */
-    const char *args = "asperity --shear --threads 1 --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 "
-                       "--Y-co 325 --load 0.3 --criterion stiffness --alpha 0.9 "
-                       "--elements-per-contact 4";
+    const char *args = PROGRESS_ARGS;
     char cmd[PATH_MAX + 1024];
     snprintf(cmd, sizeof cmd, "/usr/bin/script -q -e -c \"'%s' %s\" /dev/null", cli, args);
     assert_int_equal(cli_capture(cmd, 1, out, sizeof out), 0);
@@ -214,9 +216,7 @@ static void test_shear_progress(void **state)
 static void test_shear_progress_log(void **state)
 {
     (void)state;
-    const char *args = "asperity --shear --threads 1 --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 "
-                       "--Y-co 325 --load 0.3 --criterion stiffness --alpha 0.9 "
-                       "--elements-per-contact 4";
+    const char *args = PROGRESS_ARGS;
     char cmd[PATH_MAX + 1024];
     snprintf(cmd, sizeof cmd, "'%s' %s", cli, args);
     assert_int_equal(cli_capture(cmd, 2, out, sizeof out), 0);
@@ -229,6 +229,7 @@ static void test_shear_progress_log(void **state)
     assert_null(strchr(out, '\r')); /* lines, not a line rewritten in place */
 }
 
+/* What the policy functions refuse, by name. */
 static void test_refusals(void **state)
 {
     (void)state;

@@ -352,7 +352,6 @@ static void test_round_trip(void **state)
     num.err_floor = 0.02;
     num.err_single = 0.05;
     num.foot_rows = 0.6; /* not the default */
-
     double w[NW];
     w_axis(w);
     check_ok(tbl_create(&f, &num, w, NW, TR, NTR, ER, NE, &t), "tbl_create");

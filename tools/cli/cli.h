@@ -87,6 +87,8 @@ const char *cli_near_best(const cli_near *n);
 
 /* Print "stiction <cmd>: <stc_errmsg()>" (or the status name) to stderr. */
 int cli_fail(const char *cmdname, stc_status s);
+/* Monotonic wall clock, s (progress lines, timings). */
+double cli_now_s(void);
 
 /* An output file written under a temporary name and renamed on success, so
  * a failed run leaves no partial file: cli_out_open(&o, dir, name) opens

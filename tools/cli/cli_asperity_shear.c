@@ -6,7 +6,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -110,13 +109,6 @@ typedef struct {
     double omega_c, P_c;
 } ptlist;
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
 static int collect(void *ctx, const asp_shear_point *pt)
 {
     ptlist *l = ctx;
@@ -133,7 +125,7 @@ static int collect(void *ctx, const asp_shear_point *pt)
                         "%3.0f %% of the contact ", l->n, pt->ux / l->omega_c, pt->Q / l->P_c,
                 100.0 * pt->limit_frac);
     } else if (l->every > 0.0) { /* a log or a batch job: a line now and then */
-        double t = now_s();
+        double t = cli_now_s();
         if (t - l->t_last >= l->every) {
             fprintf(stderr, "stiction %s: shear ramp: point %d, ux/wc %.3g, Q/Pc %.4g, at the "
                             "shear limit %.0f %% of the contact; %.0f s\n", l->cmd, l->n,
@@ -517,7 +509,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     ptlist l = {0};
     l.tty = tty, l.omega_c = c.omega_c, l.P_c = c.P_c;
     l.every = sa->progress_every, l.cmd = cmd;
-    l.t0 = l.t_last = now_s();
+    l.t0 = l.t_last = cli_now_s();
     stc_status st = asp_solver_shear(sv, &so, collect, &l, &r);
     if (tty && l.n > 0) fputc('\n', stderr);
     if (l.oom) fprintf(stderr, "stiction %s: out of memory for the ramp points\n", cmd);

@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -731,13 +730,6 @@ static void warn_outside(const char *cmd, const context *c, const srf_gw_point *
                 c->range.tR_hi);
 }
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
 static void report_timing(const srf_gw *g, int n, double setup, double points)
 {
     srf_gw_info i;
@@ -776,7 +768,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     stc_params_default(&p);
     rc = cli_parse(cmd->name, USAGE, argc, argv, opts, &p, set_opt, &o, &done);
     if (rc != CLI_EXIT_OK || done) goto out;
-    double t0 = now();
+    double t0 = cli_now_s();
     stc_status s = check_opts(&o);
     /* a bad --out is refused before any work is done */
     if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
@@ -790,9 +782,9 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK && (!(pts = calloc((size_t)n, sizeof *pts)) ||
                         !(ex = calloc((size_t)n, sizeof *ex))))
         s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
-    double t1 = now();
+    double t1 = cli_now_s();
     if (s == STC_OK) s = run_points(&o, g, &aux, pts, ex);
-    double t2 = now();
+    double t2 = cli_now_s();
     if (s != STC_OK) {
         rc = cli_fail(cmd->name, s);
         goto out;

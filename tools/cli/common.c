@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -226,6 +227,13 @@ int cli_out_close(cli_out *o)
     int bad = ferror(o->f);
     if (fclose(o->f) != 0 || bad || rename(o->tmp, o->path) != 0) return remove(o->tmp), -1;
     return 0;
+}
+
+double cli_now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
 int cli_fail(const char *cmdname, stc_status s)
