@@ -160,8 +160,10 @@ typedef struct ntrack {
 } ntrack;
 
 /* The exits at an iterate without a constraint jump: *done = 1 when it
- * converged; a failure (diverged, stagnated) is returned with its reason. */
-static stc_status newton_test(const asp_solver *s, asp_nstat *ns, ntrack *t, int it, double rn,
+ * converged, -1 when a stall made the hooks change their forces (the caller
+ * reassembles); a failure (diverged, stagnated) is returned with its
+ * reason. */
+static stc_status newton_test(asp_solver *s, asp_nstat *ns, ntrack *t, int it, double rn,
                               double ref, double delta, int *done)
 {
     const asp_options *o = &s->opt;
@@ -186,6 +188,14 @@ static stc_status newton_test(const asp_solver *s, asp_nstat *ns, ntrack *t, int
      * iterations, so no linear rate gets it to the tolerance within
      * max_newton; the caller cuts the increment back now instead */
     if (rn < 0.5 * t->r_best) t->r_best = rn, t->it_best = it;
+    /* a stall the forces of another model can settle (their discrete
+     * states cycling; shear.c's stick law) gets NEWTON_STALL more */
+    if (it - t->it_best >= NEWTON_STALL && s->hooks && s->hooks->stalled &&
+        s->hooks->stalled(s->hooks->ctx, s) > 0) {
+        t->r_best = rn, t->it_best = it;
+        *done = -1; /* the forces changed: reassemble */
+        return STC_OK;
+    }
     if (it - t->it_best >= NEWTON_STALL)
         return newton_exit(ns, ASP_OUTCOME_STAGNATED, "Newton %s at δ = %g mm: residual %.3g, "
                            "not below half of %.3g in %d iterations (tolerance %.3g)",
@@ -241,7 +251,12 @@ static stc_status newton(asp_solver *s, double delta, asp_nstat *ns, double *du,
         if (cn == 0.0) {
             int done;
             STC_CALL(newton_test(s, ns, &t, it, rn, ref, delta, &done));
-            if (done) return STC_OK;
+            if (done > 0) return STC_OK;
+            if (done < 0) { /* fresh forces and tangent, then a fresh step */
+                STC_CALL(asp_assemble(s, 1));
+                age = o->newton_reuse;
+                rn = norm_sel(s, s->fint, 0);
+            }
         }
         if (it >= o->max_newton)
             return newton_exit(ns, ASP_OUTCOME_MAX_ITERATIONS, "Newton: %d iterations at "

@@ -43,6 +43,10 @@ enum { SNAP_Q0 = 0, SNAP_C0 = 1, SNAP_NC = 3, SNAP_QMAX = 4, SNAP_R0 = 5, SNAP_N
 #define SNAP_LO 0.6
 #define SNAP_HI 0.95
 
+/* A node held stuck after a stall (stalled, try_ux) must end as a solution
+ * of the free stick law, |t| <= τc, to round-off: |t|/τc - 1 at most this. */
+#define HOLD_EXCESS 1e-9
+
 typedef struct asp_shear_snap {
     int kept;
     double Q, P, delta, ux;
@@ -71,6 +75,12 @@ struct asp_shear {
     double *cslip_new;            /* [ncand][2] trial slip; s->cstick holds the converged one */
     double *cfric;                /* [ncand][2] friction force on the flat at u, N */
     unsigned char *cfst;          /* [ncand] trial ASP_CS_STICK / ASP_CS_SLIP */
+    unsigned char *cflip;         /* [ncand] stick/slip switches in this try (saturating) */
+    unsigned char *chold;         /* [ncand] 1: held stuck for the rest of this try
+                                     (stalled) */
+    int nhold;                    /* nodes held in this try */
+    double hold_excess;           /* max |t|/τc - 1 of the held nodes, last assembly */
+    int fric_evals;               /* assemblies with the stick law free, this try */
     int *cpos;                    /* [ncand][3] positions of (x,x), (x,y), (y,y) in K */
     int fric_frozen;              /* next assembly: converged stick nodes stay stuck
                                      (first iteration of an increment, springs) */
@@ -93,6 +103,7 @@ void asp_shear_options_default(asp_shear_options *o)
      * points high, +3.1 % in μs at WSP 1 ωc against the half-space
      * (docs/design.md §4.2, §4.5) */
     o->foot_rows = 0.0;
+    o->hold_stalled = 1;
 }
 
 /* ---- the stick-law springs (hooks called from the Newton loop) ----------- */
@@ -115,18 +126,24 @@ static void springs(void *ctx, asp_solver *s, int want_K)
     asp_ls_values(s->ls, &Kx, &Kd, &Kk);
     asp_fric_law stuck = sh->fric;
     stuck.tau_c = HUGE_VAL;
-    int frozen = sh->fric_frozen;
+    int frozen = sh->fric_frozen, count = !frozen && sh->fric_evals++ > 0;
     sh->fric_frozen = 0;
+    sh->hold_excess = 0.0;
     for (int k = 0; k < s->ncand; k++) {
         double *f = sh->cfric + 2 * k;
+        unsigned char was = sh->cfst[k];
         f[0] = f[1] = 0.0;
         sh->cfst[k] = s->cs[k];
         if (s->cs[k] == ASP_CS_OPEN || !(sh->carea[k] > 0.0)) continue;
         int n = s->cand[k];
-        double g[2] = {s->u[3 * n] - sh->ux, s->u[3 * n + 1]}, Kc[4];
-        const asp_fric_law *law = frozen && s->cs[k] == ASP_CS_STICK ? &stuck : &sh->fric;
+        double g[2] = {s->u[3 * n] - sh->ux, s->u[3 * n + 1]}, Kc[4], ratio;
+        int hold = sh->chold[k];
+        const asp_fric_law *law = (frozen && s->cs[k] == ASP_CS_STICK) || hold ? &stuck
+                                                                                : &sh->fric;
         sh->cfst[k] = (unsigned char)asp_fric_update(law, sh->carea[k], g, s->cstick + 2 * k,
-                                                    sh->cslip_new + 2 * k, f, Kc, NULL);
+                                                    sh->cslip_new + 2 * k, f, Kc, &ratio);
+        if (hold) sh->hold_excess = fmax(sh->hold_excess, ratio * stuck.tau_c / sh->fric.tau_c - 1);
+        if (count && sh->cfst[k] != was && sh->cflip[k] < 255) sh->cflip[k]++;
         /* the node feels -f: residual fint + f = 0 */
         s->fint[3 * n] += f[0];
         s->fint[3 * n + 1] += f[1];
@@ -135,6 +152,28 @@ static void springs(void *ctx, asp_solver *s, int want_K)
         Kx[sh->cpos[3 * k + 1]] += Kc[1];
         Kx[sh->cpos[3 * k + 2]] += Kc[3];
     }
+}
+
+/* Newton stalled with contact nodes switching between stick and slip from
+ * one iterate to the next: near |t| = τc both states give almost the same
+ * force, and the tangent jumps between k_t and (nearly) zero along the
+ * traction, so the iterates can cycle with the residual stuck far above the
+ * tolerance (docs/design.md §4.3).  The nodes that switched twice or more
+ * in this try are held stuck for its rest (a linear spring, no cap), which
+ * takes the cycling out; try_ux accepts the result only if the held
+ * nodes' traction ends within HOLD_EXCESS of τc.  Returns how many nodes it
+ * newly holds. */
+static int stalled(void *ctx, asp_solver *s)
+{
+    asp_shear *sh = ctx;
+    int n = 0;
+    for (int k = 0; k < s->ncand; k++) {
+        if (sh->chold[k] || s->cs[k] == ASP_CS_OPEN || sh->cflip[k] < 2) continue;
+        sh->chold[k] = 1;
+        n++;
+    }
+    sh->nhold += n;
+    return n;
 }
 
 static void snap_free(asp_shear_snap *p)
@@ -157,7 +196,7 @@ void asp_shear_destroy(asp_shear **shp)
     asp_shear *sh = *shp;
     if (!sh) return;
     free(sh->carea), free(sh->carea_full), free(sh->cslip_new), free(sh->cfric), free(sh->cfst);
-    free(sh->carea_prev), free(sh->carea_tgt);
+    free(sh->carea_prev), free(sh->carea_tgt), free(sh->cflip), free(sh->chold);
     free(sh->cpos), free(sh->cnew), free(sh->ctrac), free(sh->cyield);
     asp_foot_free(&sh->fp);
     if (sh->snap)
@@ -182,12 +221,14 @@ static stc_status alloc_shear(asp_solver *s)
         sh->cslip_new = calloc(2 * n, sizeof *sh->carea), sh->cfric = calloc(2 * n, sizeof *sh->carea);
         sh->carea_prev = calloc(n, sizeof *sh->carea), sh->carea_tgt = calloc(n, sizeof *sh->carea);
         sh->cfst = calloc(n, 1), sh->cpos = calloc(3 * n, sizeof *sh->cpos);
+        sh->cflip = calloc(n, 1), sh->chold = calloc(n, 1);
         sh->cnew = calloc(n, 1), sh->cyield = calloc(n, 1);
         sh->ctrac = calloc(n, sizeof *sh->ctrac);
         sh->snap = calloc(ASP_SHEAR_NSNAP, sizeof *sh->snap);
     }
     STC_CHECK(sh->carea && sh->carea_full && sh->carea_prev && sh->carea_tgt && sh->cslip_new &&
-                  sh->cfric && sh->cfst && sh->cpos && sh->cnew && sh->cyield && sh->ctrac &&
+                  sh->cfric && sh->cfst && sh->cflip && sh->chold && sh->cpos && sh->cnew &&
+                  sh->cyield && sh->ctrac &&
                   sh->snap,
               STC_ENOMEM, "shear: out of memory");
     for (int k = 0; k < s->ncand; k++) {
@@ -523,6 +564,8 @@ static stc_status check_shear(const asp_solver *s, const asp_shear_options *o)
     STC_CHECK(o->foot_rows >= 0.0 && o->foot_rows <= 0.9, STC_EINVAL,
               "foot rows = %g: must be in [0, 0.9] (fraction of the preload contact radius)",
               o->foot_rows);
+    STC_CHECK(o->hold_stalled == 0 || o->hold_stalled == 1, STC_EINVAL,
+              "hold stalled = %d: must be 0 or 1", o->hold_stalled);
     STC_CHECK(s->dim == 3, STC_EINVAL,
               "shear: the tangential step needs the 3D model (geometry = 3d), not axisymmetric");
     STC_CHECK(!s->hooks, STC_EINVAL, "shear: a ramp was already run on this solver");
@@ -571,6 +614,9 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
     memcpy(r->cst0, s->cstick, (size_t)s->ncand * 2 * sizeof *r->cst0);
     sh->ux = ux;
     sh->fric_frozen = 1;
+    sh->fric_evals = sh->nhold = 0;
+    memset(sh->cflip, 0, (size_t)s->ncand);
+    memset(sh->chold, 0, (size_t)s->ncand);
     /* predictor: the last accepted increment scaled to this Δux
      * (docs/design.md §4.3).  Without it the increment starts from
      * u_conv, whose trial state at every plastic Gauss point lies on the
@@ -586,7 +632,14 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
     stc_status st = asp_newton_increment(s, s->delta, pred, &ns); /* Δδ = 0 */
     r->res->newton_iterations += ns.iters, r->res->factorizations += ns.facts;
     s->pt.active_set_passes += ns.passes;
-    if (st == STC_OK) return STC_OK;
+    if (st == STC_OK && sh->nhold > 0 && !(sh->hold_excess <= HOLD_EXCESS))
+        st = STC_FAIL(STC_ENOCONV, "stick/slip cycling at %d contact nodes: held stuck, "
+                      "their traction ends %.3g above tau_c (at most %g)", sh->nhold,
+                      sh->hold_excess, HOLD_EXCESS);
+    if (st == STC_OK) {
+        r->res->held_nodes += sh->nhold;
+        return STC_OK;
+    }
     memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
     memcpy(s->cs, r->cs0, (size_t)s->ncand);
     memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
@@ -641,7 +694,7 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     STC_CALL(full_areas(s));
     STC_CALL(node_areas(s, sh->foot));
     initial_slip(s);
-    sh->hooks = (asp_hooks){sh, springs, touch, 1};
+    sh->hooks = (asp_hooks){sh, springs, touch, 1, o->hold_stalled ? stalled : NULL};
     s->hooks = &sh->hooks;
     s->opt.no_separation = 1; /* thesis §3.2.3.3: the contact stays closed */
     for (int k = 0; k < 2; k++) s->mat[k].map = o->return_map;

@@ -38,6 +38,10 @@ typedef struct asp_hooks {
     void (*touch)(void *ctx, asp_solver *s, int k, double lam);
     int tangential; /* 1: the contact nodes' tangential DOFs stay free (forces
                        holds them), even under stick */
+    /* Newton stalled (newton.c): settle the discrete states of the forces
+     * that cycled; returns how many it settled now (0: none, the stall is
+     * a failure).  NULL: no such states. */
+    int (*stalled)(void *ctx, asp_solver *s);
 } asp_hooks;
 
 struct asp_solver {
