@@ -1,0 +1,242 @@
+#!/usr/bin/env python3
+"""Converged references of mu_s for the held set of shear cases: node-placement
+ensembles on the default 3D mesh (level 0) and one full refinement finer
+(level 1), stored in data/fe/ (docs/design.md section 4.6).
+
+references.py CLI WORKDIR [--levels 0,1] [--jobs N] [--only CASE,...]
+              [--max-runs M] [--retry-failed]
+
+Held set: the Wu-Shi-Polycarpou sphere (wsp_case.WSP, slip normal step) at
+omega/omega_c 0.5, 1, 3, 6, 12, 24, 48, 72, and the coated spheres of the
+thesis family (the CLI's default materials, stick normal step) at t/R 0.005
+and 0.05, Eco/Esu 2 and 4, delta/omega_c_su 1 and 30.
+
+Each (case, level) is a K = 4 node-placement ensemble, the members run one
+by one as single `stiction asperity --shear --mesh L --threads 1 --json`
+meshes with elements per contact N_j = N_0 + j T / K (T = a_max / a0 of
+member 0; the spacing of `--placements`), so a run stopped at any moment
+keeps every finished member (WORKDIR/CASE-LLEVEL/mJ.json, written by rename,
+with the stiction version and commit that made it)
+and the next run goes on from there.  A member that fails is recorded
+(mJ.fail, its reason) and not rerun without --retry-failed.  Members run
+cheapest first (level 0 before level 1, each level in the held set's
+order), N at a time, a member j > 0 once its member 0 is done.
+
+Every finished member is a row of data/fe/reference-members.csv; every
+(case, level) whose K members are done is a row of data/fe/references.csv:
+the members' mean, their standard error of the mean, extremes, mean P/Pc,
+and the CPU time.  Member 0 at level 0 is the default single run.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+from wsp_case import WSP, write_csv
+
+K = 4
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "data", "fe")
+MEMBERS_CSV = os.path.join(DATA, "reference-members.csv")
+REFS_CSV = os.path.join(DATA, "references.csv")
+
+WSP_OMEGAS = ["0.5", "1", "3", "6", "12", "24", "48", "72"]
+COATED = [(t, e, d) for d in ("1", "30") for t in ("0.005", "0.05") for e in ("2", "4")]
+
+
+def held_set():
+    """[(case id, family, delta, t/R, Eco/Esu, asperity arguments)]"""
+    cases = [("wsp-%s" % w, "wsp", w, "0", "1", WSP + ["--delta", w]) for w in WSP_OMEGAS]
+    cases += [("coated-%s-%s-%s" % (t, e, d), "thesis", d, t, e,
+               ["--t-over-R", t, "--E-ratio", e, "--contact", "stick", "--delta", d])
+              for t, e, d in COATED]
+    return cases
+
+
+def version(cli):
+    """stiction's version and, in a git checkout, its commit"""
+    p = subprocess.run([cli, "--version"], capture_output=True, text=True)
+    v = (p.stdout.strip().split() or ["?"])[-1]
+    g = subprocess.run(["git", "-C", HERE, "describe", "--always", "--dirty"],
+                       capture_output=True, text=True)
+    return v + ("+" + g.stdout.strip() if g.returncode == 0 else "")
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def write_atomic(path, text):
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(path + ".tmp", path)
+
+
+class Member:
+    def __init__(self, work, case, level, j):
+        self.case, self.level, self.j = case, level, j
+        self.dir = os.path.join(work, "%s-L%d" % (case[0], level))
+        self.json = os.path.join(self.dir, "m%d.json" % j)
+        self.fail = os.path.join(self.dir, "m%d.fail" % j)
+        self.m0 = os.path.join(self.dir, "m0.json")
+
+    def done(self):
+        return os.path.exists(self.json)
+
+    def failed(self):
+        return os.path.exists(self.fail)
+
+    def ready(self):
+        return self.j == 0 or os.path.exists(self.m0)
+
+    def command(self, cli):
+        cmd = [cli, "asperity"] + self.case[5] + ["--shear", "--model", "3d", "--mesh",
+                                                  str(self.level), "--threads", "1", "--json",
+                                                  "--progress-every", "0"]
+        if self.j > 0:
+            r0 = load(self.m0)
+            period = r0["a_max_mm"] / r0["a_mm"]
+            n = r0["elements_per_contact"] + self.j * period / K
+            cmd += ["--elements-per-contact", "%.6f" % n]
+        return cmd
+
+
+def schedule(cli, members, jobs, max_runs, ver):
+    """Run the members, at most jobs at a time, each once its member 0 is done."""
+    pending = [m for m in members if not m.done() and not m.failed()]
+    running, started = [], 0
+    while pending or running:
+        for m, p, t0 in list(running):
+            if p.poll() is None:
+                continue
+            running.remove((m, p, t0))
+            out, err = p.communicate()
+            if p.returncode == 0:
+                r = json.loads(out)
+                r["run_wall_s"] = time.time() - t0
+                r["version"] = ver
+                write_atomic(m.json, json.dumps(r, indent=1))
+                print("%s level %d member %d: mu_s %.5f (%.0f s)" %
+                      (m.case[0], m.level, m.j, r["mu_s"], r["run_wall_s"]), flush=True)
+            else:
+                why = err.strip().splitlines()[-1] if err.strip() else "exit %d" % p.returncode
+                write_atomic(m.fail, why + "\n")
+                print("%s level %d member %d failed: %s" % (m.case[0], m.level, m.j, why),
+                      flush=True)
+                # the others of a failed member 0 cannot be placed
+                if m.j == 0:
+                    pending = [q for q in pending if q.dir != m.dir]
+        while len(running) < jobs and (max_runs <= 0 or started < max_runs):
+            nxt = next((m for m in pending if m.ready()), None)
+            if nxt is None:
+                break
+            pending.remove(nxt)
+            os.makedirs(nxt.dir, exist_ok=True)
+            running.append((nxt, subprocess.Popen(nxt.command(cli), stdout=subprocess.PIPE,
+                                                  stderr=subprocess.PIPE, text=True),
+                            time.time()))
+            started += 1
+        if not running:
+            break
+        time.sleep(1.0)
+
+
+def collect(work, cases, levels):
+    mcols = ["case", "family", "delta_over_omega_c", "t_over_R", "E_ratio", "mesh_level",
+             "member", "elements_per_contact", "a0_mm", "a_max_mm", "mu_s", "mu_s_preload",
+             "P_over_P_c", "A_over_A_c", "Q_still_rising", "wall_s", "version"]
+    rcols = ["case", "family", "delta_over_omega_c", "t_over_R", "E_ratio", "mesh_level",
+             "placements", "mu_s", "mu_s_err", "mu_s_min", "mu_s_max", "mu_s_single",
+             "P_over_P_c", "wall_s", "version"]
+    old = {}
+    if os.path.exists(MEMBERS_CSV):
+        with open(MEMBERS_CSV) as f:
+            old = {(r["case"], r["mesh_level"], r["member"]): r for r in csv.DictReader(f)}
+    mrows, rrows = [], []
+    for level in levels:
+        for c in cases:
+            got = []
+            for j in range(K):
+                m = Member(work, c, level, j)
+                key = (c[0], str(level), str(j))
+                if m.done():
+                    r = load(m.json)
+                    row = {"case": c[0], "family": c[1], "delta_over_omega_c": c[2],
+                           "t_over_R": c[3], "E_ratio": c[4], "mesh_level": level, "member": j,
+                           "elements_per_contact": "%.6f" % r["elements_per_contact"],
+                           "a0_mm": "%.9g" % r["a_mm"], "a_max_mm": "%.9g" % r["a_max_mm"],
+                           "mu_s": "%.6f" % r["mu_s"],
+                           "mu_s_preload": "%.6f" % r["mu_s_preload"],
+                           "P_over_P_c": "%.6f" % r["P_over_P_c"],
+                           "A_over_A_c": "%.6f" % r["A_over_A_c"],
+                           "Q_still_rising": int(bool(r.get("Q_still_rising"))),
+                           "wall_s": "%.0f" % r.get("run_wall_s", r["wall_s"]),
+                           "version": r["version"]}
+                elif key in old:  # stored, its run not in this WORKDIR
+                    row = old[key]
+                else:
+                    continue
+                mrows.append(row)
+                got.append(row)
+            if len(got) < K:
+                continue
+            mu = [float(r["mu_s"]) for r in got]
+            mean = sum(mu) / K
+            se = math.sqrt(sum((x - mean) ** 2 for x in mu) / (K - 1) / K)
+            rrows.append({"case": c[0], "family": c[1], "delta_over_omega_c": c[2],
+                          "t_over_R": c[3], "E_ratio": c[4], "mesh_level": level,
+                          "placements": K, "mu_s": "%.6f" % mean, "mu_s_err": "%.6f" % se,
+                          "mu_s_min": "%.6f" % min(mu), "mu_s_max": "%.6f" % max(mu),
+                          "mu_s_single": got[0]["mu_s"],
+                          "P_over_P_c": "%.6f" % (sum(float(r["P_over_P_c"])
+                                                      for r in got) / K),
+                          "wall_s": "%.0f" % sum(float(r["wall_s"]) for r in got),
+                          "version": got[0]["version"]})
+    write_csv(MEMBERS_CSV, mcols, mrows)
+    write_csv(REFS_CSV, rcols, rrows)
+    return mrows, rrows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("cli")
+    ap.add_argument("work")
+    ap.add_argument("--levels", default="0,1")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--only", default="", help="case ids, comma-separated")
+    ap.add_argument("--max-runs", type=int, default=0, help="start at most M member runs")
+    ap.add_argument("--retry-failed", action="store_true")
+    a = ap.parse_args()
+    cases = held_set()
+    if a.only:
+        want = a.only.split(",")
+        bad = [w for w in want if w not in [c[0] for c in cases]]
+        if bad:
+            sys.exit("--only: unknown case %s (cases: %s)" %
+                     (", ".join(bad), ", ".join(c[0] for c in cases)))
+        cases = [c for c in cases if c[0] in want]
+    levels = [int(x) for x in a.levels.split(",")]
+    members = [Member(a.work, c, lv, j) for lv in levels for c in cases for j in range(K)]
+    if a.retry_failed:
+        for m in members:
+            if m.failed():
+                os.remove(m.fail)
+    schedule(a.cli, members, a.jobs, a.max_runs, version(a.cli))
+    _, rrows = collect(a.work, held_set(), [0, 1, 2])
+    fails = [m for m in members if m.failed()]
+    for m in fails:
+        with open(m.fail) as f:
+            print("failed: %s level %d member %d: %s" % (m.case[0], m.level, m.j,
+                                                        f.read().strip()))
+    print("%d (case, level) ensembles complete in %s" % (len(rrows), REFS_CSV))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""The default single shear run against the stored converged references of
+the held set (data/fe/references.csv, made by tools/references.py).
+
+validate-references.py CLI OUT.csv OUT.md [--level 1]
+
+For every held case with a stored reference at LEVEL (a four-placement
+ensemble one full refinement finer than the default mesh): a fresh default
+run, `stiction asperity ARGS --shear --json` with no numerical option, its
+mu_s and printed error estimate against the reference.  Check: the printed
+error estimate covers the actual error (one standard error of the run and of
+the reference in quadrature, times two: a 95 % band).  Targets: the single run
+within 2 % of the reference; every held case has its reference.  Also the
+default mesh's own four-placement mean against the finer one (how far the
+mesh moves the ensemble), from the stored rows.
+"""
+import argparse
+import csv
+import json
+import math
+import subprocess
+import sys
+import time
+
+from references import REFS_CSV, held_set
+from vreport import Report
+from wsp_case import write_progress
+
+TARGET = 0.02
+
+
+def stored():
+    """{(case, mesh level): row} of data/fe/references.csv"""
+    with open(REFS_CSV) as f:
+        return {(r["case"], int(r["mesh_level"])): r for r in csv.DictReader(f)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cli")
+    ap.add_argument("out")
+    ap.add_argument("report")
+    ap.add_argument("--level", type=int, default=1)
+    a = ap.parse_args()
+    refs = stored()
+    cases = held_set()
+    rep = Report("One shear run against the converged references",
+                 "tools/validate-references.py (`stiction asperity --shear --json` runs)")
+    rep.out("Held set: the Wu-Shi-Polycarpou sphere (slip normal step) at 8 interferences and "
+            "the coated thesis family (stick normal step) at t/R 0.005 and 0.05, Eco/Esu 2 and "
+            "4, delta/omega_c_su 1 and 30.  Reference: four node placements on the 3D mesh %d "
+            "level(s) finer than the default, their mean and its standard error "
+            "(data/fe/references.csv, tools/references.py; the members are in "
+            "data/fe/reference-members.csv).  'single' is a fresh default run (no numerical "
+            "option) with its printed error estimate; 'L0 x4' the default mesh's own "
+            "four-placement mean." % a.level)
+    rep.out("")
+    cols = ["case", "delta_over_omega_c", "t_over_R", "E_ratio", "mu_s_ref", "mu_s_ref_err",
+            "mu_s_single", "mu_s_single_err", "single_error_pct", "covered", "wall_s",
+            "mu_s_L0x4", "L0x4_vs_ref_pct"]
+    rows, why = [], {}
+    rep.out("| case | reference | single run | error | printed error | wall s | L0 x4 | "
+            "L0 x4 vs ref |")
+    rep.out("|---|---|---|---|---|---|---|---|")
+    for c in cases:
+        ref = refs.get((c[0], a.level))
+        if ref is None:
+            continue
+        t0 = time.time()
+        p = subprocess.run([a.cli, "asperity"] + c[5] + ["--shear", "--json"],
+                           capture_output=True, text=True)
+        wall = time.time() - t0
+        j = json.loads(p.stdout) if p.returncode == 0 else {}
+        mu_r, se_r = float(ref["mu_s"]), float(ref["mu_s_err"])
+        l0 = refs.get((c[0], 0))
+        r = {"case": c[0], "delta_over_omega_c": c[2], "t_over_R": c[3], "E_ratio": c[4],
+             "mu_s_ref": ref["mu_s"], "mu_s_ref_err": ref["mu_s_err"], "wall_s": "%.1f" % wall,
+             "mu_s_L0x4": l0["mu_s"] if l0 else "",
+             "L0x4_vs_ref_pct": "%+.2f" % (100 * (float(l0["mu_s"]) / mu_r - 1)) if l0 else ""}
+        if j.get("converged"):
+            mu, se = j["mu_s"], j["mu_s_err"]
+            err = mu / mu_r - 1
+            band = 2 * math.hypot(se, se_r)
+            r.update(mu_s_single="%.5f" % mu, mu_s_single_err="%.5f" % se,
+                     single_error_pct="%+.2f" % (100 * err),
+                     covered=int(abs(mu - mu_r) <= band))
+        rows.append(r)
+        write_progress(a.out, cols, rows)
+        rep.out("| %s | %.4f ± %.4f | %s ± %s | %s | %s | %s | %s | %s |"
+                % (c[0], mu_r, se_r, r.get("mu_s_single", "failed"),
+                   r.get("mu_s_single_err", "-"), r.get("single_error_pct", "-"),
+                   "yes" if r.get("covered") else "no", r["wall_s"], r["mu_s_L0x4"] or "-",
+                   r["L0x4_vs_ref_pct"] or "-"))
+        why[c[0]] = j.get("reason") or (p.stderr.strip().splitlines() or ["failed"])[-1]
+    write_progress(a.out, cols, rows, done=True)
+    rep.out("")
+    for r in rows:
+        rep.check("%s: the single run converges" % r["case"], "solver outcome", "converged",
+                  "yes" if "mu_s_single" in r else "no: %s" % why[r["case"]],
+                  "mu_s_single" in r)
+    ok = [r for r in rows if "mu_s_single" in r]
+    if ok:
+        worst = max(ok, key=lambda r: abs(float(r["single_error_pct"])))
+        cov = sum(r["covered"] for r in ok)
+        rep.check("single runs: printed error covers the actual error",
+                  "converged references (data/fe/references.csv)",
+                  "|error| <= 2 sigma (run and reference in quadrature), every case",
+                  "%d of %d" % (cov, len(ok)), cov == len(ok))
+        within = sum(abs(float(r["single_error_pct"])) <= 100 * TARGET for r in ok)
+        rep.target("single run within 2 % of the converged reference", "every case",
+                   "%d of %d; worst %s %s %%" % (within, len(ok), worst["case"],
+                                                 worst["single_error_pct"]),
+                   within == len(ok))
+    rep.target("converged references stored", "%d held cases" % len(cases),
+               "%d of %d" % (len(rows), len(cases)), len(rows) == len(cases))
+    return rep.write(a.report)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
