@@ -19,8 +19,9 @@ keeps every finished member (WORKDIR/CASE-LLEVEL/mJ.json, written by rename,
 with the stiction version and commit that made it)
 and the next run goes on from there.  A member that fails is recorded
 (mJ.fail, its reason) and not rerun without --retry-failed.  Members run
-cheapest first (level 0 before level 1, each level in the held set's
-order), N at a time, a member j > 0 once its member 0 is done.
+cheapest first (level 0 before level 1, level 0 in the held set's
+order, finer levels by the cost of their level-0 members), N at a time, a
+member j > 0 once its member 0 is done.
 
 Every finished member is a row of data/fe/reference-members.csv; every
 (case, level) whose K members are done is a row of data/fe/references.csv:
@@ -106,6 +107,19 @@ class Member:
             n = r0["elements_per_contact"] + self.j * period / K
             cmd += ["--elements-per-contact", "%.6f" % n]
         return cmd
+
+
+def cost_order(work, cases, level):
+    """cases cheapest first at a level > 0: by their level-0 members' run time
+    (the finer mesh costs 10-20 times as much), unknown ones last"""
+    if level == 0:
+        return cases
+
+    def cost(c):
+        t = [load(m.json).get("run_wall_s", 0.0) for m in
+             (Member(work, c, 0, j) for j in range(K)) if m.done()]
+        return sum(t) * K / len(t) if t else float("inf")
+    return sorted(cases, key=cost)
 
 
 def schedule(cli, members, jobs, max_runs, ver):
@@ -223,7 +237,8 @@ def main():
                      (", ".join(bad), ", ".join(c[0] for c in cases)))
         cases = [c for c in cases if c[0] in want]
     levels = [int(x) for x in a.levels.split(",")]
-    members = [Member(a.work, c, lv, j) for lv in levels for c in cases for j in range(K)]
+    members = [Member(a.work, c, lv, j) for lv in levels for c in cost_order(a.work, cases, lv)
+               for j in range(K)]
     if a.retry_failed:
         for m in members:
             if m.failed():
