@@ -23,6 +23,7 @@
 #include <cmocka.h>
 
 #include "cli_util.h"
+#include "data_util.h"
 #include "stiction/asperity.h"
 #include "stiction/formulas.h"
 #include "stiction/halfspace.h"
@@ -184,6 +185,29 @@ static void test_wsp_mu(void **state)
     assert_true(fabs(R.res.mu_s - R.res.Q_max / R.res.P_slide) < 1e-12);
     assert_true(fabs(R.res.mu_s_preload - R.res.Q_max / R.pt.P) < 1e-12);
     assert_true(fabs(R.res.P0 / R.pt.P - 1.0) < 1e-12);
+}
+
+/* The shared run is the default single run of the held case wsp-0.5
+ * (tools/references.py): against its converged reference, the four-placement
+ * ensemble one full mesh refinement finer (data/fe/references.csv, mesh level
+ * 1), it must lie within two standard errors, its printed one and the
+ * reference's in quadrature (docs/design.md §4.6). */
+static void test_converged_reference(void **state)
+{
+    (void)state;
+    enum { MAX = 64 };
+    static const char *const cols[] = {"delta_over_omega_c", "t_over_R", "mesh_level", "mu_s",
+                                       "mu_s_err"};
+    double d[MAX], t[MAX], lv[MAX], mu[MAX], se[MAX], *out[] = {d, t, lv, mu, se};
+    int n = data_read_columns("fe/references.csv", 5, cols, out, MAX), k = -1;
+    assert_true(n > 0);
+    for (int i = 0; i < n; i++)
+        if (d[i] == 0.5 && t[i] == 0.0 && lv[i] == 1.0) k = i;
+    assert_true(k >= 0);
+    double err = R.res.mu_s / mu[k] - 1, band = 2.0 * hypot(R.res.mu_s_err, se[k]);
+    printf("# converged reference %.5f +- %.5f: single run %.5f +- %.5f, %+.2f %% (band %.2f %%)\n",
+           mu[k], se[k], R.res.mu_s, R.res.mu_s_err, 100 * err, 100 * band / mu[k]);
+    assert_true(fabs(R.res.mu_s - mu[k]) <= band);
 }
 
 /* The two junction rules (asp_junction) bracket the contact growth: the
@@ -650,6 +674,7 @@ int main(void)
         cmocka_unit_test(test_mindlin_stiffness),
         cmocka_unit_test(test_full_slip_plateau),
         cmocka_unit_test(test_wsp_mu),
+        cmocka_unit_test(test_converged_reference),
         cmocka_unit_test(test_equilibrium),
         cmocka_unit_test(test_junction_bracket),
         cmocka_unit_test(test_elastic_growth_bem),

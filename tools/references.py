@@ -4,7 +4,7 @@ ensembles on the default 3D mesh (level 0) and one full refinement finer
 (level 1), stored in data/fe/ (docs/design.md section 4.6).
 
 references.py CLI WORKDIR [--levels 0,1] [--jobs N] [--only CASE,...]
-              [--max-runs M] [--retry-failed]
+              [--max-runs M] [--retry-failed] [--collect]
 
 Held set: the Wu-Shi-Polycarpou sphere (wsp_case.WSP, slip normal step) at
 omega/omega_c 0.5, 1, 3, 6, 12, 24, 48, 72, and the coated spheres of the
@@ -122,8 +122,9 @@ def cost_order(work, cases, level):
     return sorted(cases, key=cost)
 
 
-def schedule(cli, members, jobs, max_runs, ver):
-    """Run the members, at most jobs at a time, each once its member 0 is done."""
+def schedule(cli, members, jobs, max_runs, ver, done=lambda: None):
+    """Run the members, at most jobs at a time, each once its member 0 is done;
+    done() after each finished one."""
     pending = [m for m in members if not m.done() and not m.failed()]
     running, started = [], 0
     while pending or running:
@@ -139,6 +140,7 @@ def schedule(cli, members, jobs, max_runs, ver):
                 write_atomic(m.json, json.dumps(r, indent=1))
                 print("%s level %d member %d: mu_s %.5f (%.0f s)" %
                       (m.case[0], m.level, m.j, r["mu_s"], r["run_wall_s"]), flush=True)
+                done()
             else:
                 why = err.strip().splitlines()[-1] if err.strip() else "exit %d" % p.returncode
                 write_atomic(m.fail, why + "\n")
@@ -227,6 +229,8 @@ def main():
     ap.add_argument("--only", default="", help="case ids, comma-separated")
     ap.add_argument("--max-runs", type=int, default=0, help="start at most M member runs")
     ap.add_argument("--retry-failed", action="store_true")
+    ap.add_argument("--collect", action="store_true",
+                    help="run nothing: write the CSV files from WORKDIR's finished members")
     a = ap.parse_args()
     cases = held_set()
     if a.only:
@@ -243,7 +247,9 @@ def main():
         for m in members:
             if m.failed():
                 os.remove(m.fail)
-    schedule(a.cli, members, a.jobs, a.max_runs, version(a.cli))
+    if not a.collect:
+        schedule(a.cli, members, a.jobs, a.max_runs, version(a.cli),
+                 lambda: collect(a.work, held_set(), [0, 1, 2]))
     _, rrows = collect(a.work, held_set(), [0, 1, 2])
     fails = [m for m in members if m.failed()]
     for m in fails:
