@@ -38,15 +38,14 @@ stc_status asp_fric_law_init(asp_fric_law *law, double tau_c, double E, double n
     return STC_OK;
 }
 
-int asp_fric_update(const asp_fric_law *law, double area, const double g[2],
-                    const double s_old[2], double s_new[2], double f[2], double K[4],
-                    double *ratio)
+/* The stick (slip = 0) or slip branch of the return map at the trial
+ * traction tr, |tr| = nt > 0 for slip. */
+static int branch(const asp_fric_law *law, int slip, double area, const double g[2],
+                  const double s_old[2], const double tr[2], double nt, double s_new[2],
+                  double f[2], double K[4])
 {
     double kt = law->kt, tc = law->tau_c;
-    double tr[2] = {kt * (g[0] - s_old[0]), kt * (g[1] - s_old[1])};
-    double nt = hypot(tr[0], tr[1]);
-    if (ratio) *ratio = nt / tc;
-    if (nt <= tc) { /* stick: elastic predictor accepted */
+    if (!slip) { /* stick: elastic predictor accepted */
         s_new[0] = s_old[0], s_new[1] = s_old[1];
         f[0] = area * tr[0], f[1] = area * tr[1];
         if (K) K[0] = K[3] = area * kt, K[1] = K[2] = 0.0;
@@ -65,4 +64,23 @@ int asp_fric_update(const asp_fric_law *law, double area, const double g[2],
         K[3] = c * (1.0 - n[1] * n[1]);
     }
     return ASP_FRIC_SLIP;
+}
+
+int asp_fric_update(const asp_fric_law *law, double area, const double g[2],
+                    const double s_old[2], double s_new[2], double f[2], double K[4],
+                    double *ratio)
+{
+    return asp_fric_update_as(law, 0, area, g, s_old, s_new, f, K, ratio);
+}
+
+int asp_fric_update_as(const asp_fric_law *law, int state, double area, const double g[2],
+                       const double s_old[2], double s_new[2], double f[2], double K[4],
+                       double *ratio)
+{
+    double kt = law->kt, tc = law->tau_c;
+    double tr[2] = {kt * (g[0] - s_old[0]), kt * (g[1] - s_old[1])};
+    double nt = hypot(tr[0], tr[1]);
+    if (ratio) *ratio = nt / tc;
+    int slip = state == ASP_FRIC_SLIP ? nt > 0.0 : state == ASP_FRIC_STICK ? 0 : !(nt <= tc);
+    return branch(law, slip, area, g, s_old, tr, nt, s_new, f, K);
 }

@@ -43,9 +43,13 @@ enum { SNAP_Q0 = 0, SNAP_C0 = 1, SNAP_NC = 3, SNAP_QMAX = 4, SNAP_R0 = 5, SNAP_N
 #define SNAP_LO 0.6
 #define SNAP_HI 0.95
 
-/* A node held stuck after a stall (stalled, try_ux) must end as a solution
- * of the free stick law, |t| <= τc, to round-off: |t|/τc - 1 at most this. */
-#define HOLD_EXCESS 1e-9
+/* A node held in a state after a stall (stalled, try_ux) must end as a
+ * solution of the free stick law to round-off: stuck with |t_trial| <= τc,
+ * slipping with |t_trial| >= τc, within this fraction of τc; and the
+ * re-solves that flip the held nodes found otherwise are at most
+ * HOLD_PASSES per try. */
+#define HOLD_TOL 1e-9
+enum { HOLD_PASSES = 4 };
 
 typedef struct asp_shear_snap {
     int kept;
@@ -76,10 +80,11 @@ struct asp_shear {
     double *cfric;                /* [ncand][2] friction force on the flat at u, N */
     unsigned char *cfst;          /* [ncand] trial ASP_CS_STICK / ASP_CS_SLIP */
     unsigned char *cflip;         /* [ncand] stick/slip switches in this try (saturating) */
-    unsigned char *chold;         /* [ncand] 1: held stuck for the rest of this try
-                                     (stalled) */
+    unsigned char *chold;         /* [ncand] 0, or the state (ASP_FRIC_STICK / SLIP) it
+                                     is held in for the rest of this try (stalled) */
+    unsigned char *cbad;          /* [ncand] 1: held in a state the law would leave
+                                     (last assembly) */
     int nhold;                    /* nodes held in this try */
-    double hold_excess;           /* max |t|/τc - 1 of the held nodes, last assembly */
     int fric_evals;               /* assemblies with the stick law free, this try */
     int *cpos;                    /* [ncand][3] positions of (x,x), (x,y), (y,y) in K */
     int fric_frozen;              /* next assembly: converged stick nodes stay stuck
@@ -128,7 +133,6 @@ static void springs(void *ctx, asp_solver *s, int want_K)
     stuck.tau_c = HUGE_VAL;
     int frozen = sh->fric_frozen, count = !frozen && sh->fric_evals++ > 0;
     sh->fric_frozen = 0;
-    sh->hold_excess = 0.0;
     for (int k = 0; k < s->ncand; k++) {
         double *f = sh->cfric + 2 * k;
         unsigned char was = sh->cfst[k];
@@ -136,13 +140,21 @@ static void springs(void *ctx, asp_solver *s, int want_K)
         sh->cfst[k] = s->cs[k];
         if (s->cs[k] == ASP_CS_OPEN || !(sh->carea[k] > 0.0)) continue;
         int n = s->cand[k];
-        double g[2] = {s->u[3 * n] - sh->ux, s->u[3 * n + 1]}, Kc[4], ratio;
+        double g[2] = {s->u[3 * n] - sh->ux, s->u[3 * n + 1]}, Kc[4];
         int hold = sh->chold[k];
-        const asp_fric_law *law = (frozen && s->cs[k] == ASP_CS_STICK) || hold ? &stuck
-                                                                                : &sh->fric;
-        sh->cfst[k] = (unsigned char)asp_fric_update(law, sh->carea[k], g, s->cstick + 2 * k,
-                                                    sh->cslip_new + 2 * k, f, Kc, &ratio);
-        if (hold) sh->hold_excess = fmax(sh->hold_excess, ratio * stuck.tau_c / sh->fric.tau_c - 1);
+        if (hold) {
+            double ratio; /* |t_trial| / τc */
+            sh->cfst[k] = (unsigned char)asp_fric_update_as(&sh->fric, hold, sh->carea[k], g,
+                                                           s->cstick + 2 * k,
+                                                           sh->cslip_new + 2 * k, f, Kc, &ratio);
+            sh->cbad[k] = hold == ASP_FRIC_STICK ? ratio > 1.0 + HOLD_TOL
+                                                 : ratio < 1.0 - HOLD_TOL;
+        } else {
+            const asp_fric_law *law = frozen && s->cs[k] == ASP_CS_STICK ? &stuck : &sh->fric;
+            sh->cfst[k] = (unsigned char)asp_fric_update(law, sh->carea[k], g,
+                                                        s->cstick + 2 * k,
+                                                        sh->cslip_new + 2 * k, f, Kc, NULL);
+        }
         if (count && sh->cfst[k] != was && sh->cflip[k] < 255) sh->cflip[k]++;
         /* the node feels -f: residual fint + f = 0 */
         s->fint[3 * n] += f[0];
@@ -159,20 +171,37 @@ static void springs(void *ctx, asp_solver *s, int want_K)
  * force, and the tangent jumps between k_t and (nearly) zero along the
  * traction, so the iterates can cycle with the residual stuck far above the
  * tolerance (docs/design.md §4.3).  The nodes that switched twice or more
- * in this try are held stuck for its rest (a linear spring, no cap), which
- * takes the cycling out; try_ux accepts the result only if the held
- * nodes' traction ends within HOLD_EXCESS of τc.  Returns how many nodes it
- * newly holds. */
+ * in this try are held in their current state for its rest, which takes
+ * the cycling out of Newton; try_ux then checks every held node against
+ * the free law and re-solves with the wrong ones flipped (held_consistent).
+ * Returns how many nodes it newly holds. */
 static int stalled(void *ctx, asp_solver *s)
 {
     asp_shear *sh = ctx;
     int n = 0;
     for (int k = 0; k < s->ncand; k++) {
         if (sh->chold[k] || s->cs[k] == ASP_CS_OPEN || sh->cflip[k] < 2) continue;
-        sh->chold[k] = 1;
+        sh->chold[k] = sh->cfst[k] == ASP_CS_SLIP ? ASP_FRIC_SLIP : ASP_FRIC_STICK;
+        sh->cbad[k] = 0;
         n++;
     }
     sh->nhold += n;
+    return n;
+}
+
+/* After a converged solve: the held nodes whose state the free law would
+ * leave (cbad, from the last assembly) are flipped to the other state;
+ * returns how many. */
+static int held_flip(asp_solver *s)
+{
+    asp_shear *sh = s->sh;
+    int n = 0;
+    for (int k = 0; k < s->ncand; k++) {
+        if (!sh->chold[k] || !sh->cbad[k]) continue;
+        sh->chold[k] = sh->chold[k] == ASP_FRIC_STICK ? ASP_FRIC_SLIP : ASP_FRIC_STICK;
+        sh->cbad[k] = 0;
+        n++;
+    }
     return n;
 }
 
@@ -196,7 +225,7 @@ void asp_shear_destroy(asp_shear **shp)
     asp_shear *sh = *shp;
     if (!sh) return;
     free(sh->carea), free(sh->carea_full), free(sh->cslip_new), free(sh->cfric), free(sh->cfst);
-    free(sh->carea_prev), free(sh->carea_tgt), free(sh->cflip), free(sh->chold);
+    free(sh->carea_prev), free(sh->carea_tgt), free(sh->cflip), free(sh->chold), free(sh->cbad);
     free(sh->cpos), free(sh->cnew), free(sh->ctrac), free(sh->cyield);
     asp_foot_free(&sh->fp);
     if (sh->snap)
@@ -221,13 +250,13 @@ static stc_status alloc_shear(asp_solver *s)
         sh->cslip_new = calloc(2 * n, sizeof *sh->carea), sh->cfric = calloc(2 * n, sizeof *sh->carea);
         sh->carea_prev = calloc(n, sizeof *sh->carea), sh->carea_tgt = calloc(n, sizeof *sh->carea);
         sh->cfst = calloc(n, 1), sh->cpos = calloc(3 * n, sizeof *sh->cpos);
-        sh->cflip = calloc(n, 1), sh->chold = calloc(n, 1);
+        sh->cflip = calloc(n, 1), sh->chold = calloc(n, 1), sh->cbad = calloc(n, 1);
         sh->cnew = calloc(n, 1), sh->cyield = calloc(n, 1);
         sh->ctrac = calloc(n, sizeof *sh->ctrac);
         sh->snap = calloc(ASP_SHEAR_NSNAP, sizeof *sh->snap);
     }
     STC_CHECK(sh->carea && sh->carea_full && sh->carea_prev && sh->carea_tgt && sh->cslip_new &&
-                  sh->cfric && sh->cfst && sh->cflip && sh->chold && sh->cpos && sh->cnew &&
+                  sh->cfric && sh->cfst && sh->cflip && sh->chold && sh->cbad && sh->cpos && sh->cnew &&
                   sh->cyield && sh->ctrac &&
                   sh->snap,
               STC_ENOMEM, "shear: out of memory");
@@ -628,14 +657,26 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
      * 249 -> 19 factorizations, 8 -> 0 cut-backs; 24 ωc 864 -> 101 and
      * 367 -> 29; 12 ωc 237 -> 78 and 67 -> 21 (μs within 1.4 %). */
     double pred = sh->ux_dlast > 0.0 ? (ux - sh->ux_conv) / sh->ux_dlast : 0.0;
-    asp_nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
-    stc_status st = asp_newton_increment(s, s->delta, pred, &ns); /* Δδ = 0 */
-    r->res->newton_iterations += ns.iters, r->res->factorizations += ns.facts;
-    s->pt.active_set_passes += ns.passes;
-    if (st == STC_OK && sh->nhold > 0 && !(sh->hold_excess <= HOLD_EXCESS))
-        st = STC_FAIL(STC_ENOCONV, "stick/slip cycling at %d contact nodes: held stuck, "
-                      "their traction ends %.3g above tau_c (at most %g)", sh->nhold,
-                      sh->hold_excess, HOLD_EXCESS);
+    stc_status st = STC_OK;
+    for (int pass = 0;; pass++) {
+        asp_nstat ns = {0, 0, 0, ASP_OUTCOME_NONE};
+        st = asp_newton_increment(s, s->delta, pred, &ns); /* Δδ = 0 */
+        r->res->newton_iterations += ns.iters, r->res->factorizations += ns.facts;
+        s->pt.active_set_passes += ns.passes;
+        int flipped = st == STC_OK && sh->nhold > 0 ? held_flip(s) : 0;
+        if (!flipped) break;
+        if (pass + 1 >= HOLD_PASSES) {
+            st = STC_FAIL(STC_ENOCONV, "stick/slip cycling at %d contact nodes: held in a state, "
+                          "%d still in the wrong one after %d solves", sh->nhold, flipped,
+                          HOLD_PASSES);
+            break;
+        }
+        /* solve the try again from its start with those nodes flipped */
+        memcpy(s->cs, r->cs0, (size_t)s->ncand);
+        memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
+        sh->fric_frozen = 1;
+        r->res->hold_passes++;
+    }
     if (st == STC_OK) {
         r->res->held_nodes += sh->nhold;
         return STC_OK;

@@ -66,6 +66,15 @@ int asp_fric_update(const asp_fric_law *law, double area, const double g[2],
                     const double s_old[2], double s_new[2], double f[2], double K[4],
                     double *ratio);
 
+/* The same with the state imposed: state ASP_FRIC_STICK takes the stick
+ * branch and ASP_FRIC_SLIP the slip branch whatever |t_trial| is (slip at
+ * |t| = τc along t_trial; stick when t_trial = 0), 0 chooses as
+ * asp_fric_update does.  *ratio = |t_trial| / τc tells whether the imposed
+ * state is the law's own (stick: <= 1, slip: >= 1). */
+int asp_fric_update_as(const asp_fric_law *law, int state, double area, const double g[2],
+                       const double s_old[2], double s_new[2], double f[2], double K[4],
+                       double *ratio);
+
 /* ---- tributary areas (surfarea.c) ------------------------------------- */
 
 /* Consistent tributary area of every node on the outer sphere |x| = R_outer:

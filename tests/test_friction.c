@@ -258,13 +258,63 @@ static void test_invalid(void **state)
     expect_bad(100, E, NU, H, NAN, "kappa = nan");
 }
 
+/* A state imposed (asp_fric_update_as, the ramp's held nodes after a Newton
+ * stall): stick keeps the trial traction whatever its size, slip returns
+ * onto |t| = τc along it whatever its size, with the tangent of that branch
+ * (central differences); 0 is asp_fric_update to the bit; ratio says which
+ * state the free law would take. */
+static void test_imposed_state(void **state)
+{
+    (void)state;
+    asp_fric_law l = law();
+    double gs = l.tau_c / l.kt, s0[2] = {0.0, 0.0}, s1[2], s2[2], f[2], f2[2], K[4], K2[4], r;
+    double below[2] = {0.6 * gs, 0.3 * gs}, above[2] = {2.0 * gs, -1.0 * gs};
+    /* slip imposed below the limit: |f| = τc A along the trial traction */
+    assert_int_equal(asp_fric_update_as(&l, ASP_FRIC_SLIP, AREA, below, s0, s1, f, K, &r),
+                     ASP_FRIC_SLIP);
+    assert_true(r < 1.0);
+    assert_true(fabs(hypot(f[0], f[1]) / (AREA * l.tau_c) - 1.0) < 1e-14);
+    assert_true(fabs(f[0] * below[1] - f[1] * below[0]) < 1e-12 * hypot(f[0], f[1]) * gs);
+    /* its tangent: only rotation resists */
+    double eps = 1e-6 * gs, fp[2], fm[2], err = 0.0;
+    for (int j = 0; j < 2; j++) {
+        double gp[2] = {below[0], below[1]}, gm[2] = {below[0], below[1]};
+        gp[j] += eps, gm[j] -= eps;
+        asp_fric_update_as(&l, ASP_FRIC_SLIP, AREA, gp, s0, s1, fp, NULL, NULL);
+        asp_fric_update_as(&l, ASP_FRIC_SLIP, AREA, gm, s0, s1, fm, NULL, NULL);
+        for (int i = 0; i < 2; i++)
+            err = fmax(err, fabs((fp[i] - fm[i]) / (2.0 * eps) - K[2 * i + j]));
+    }
+    assert_true(err < 1e-6 * AREA * l.kt);
+    /* stick imposed above the limit: the trial traction, the elastic tangent */
+    assert_int_equal(asp_fric_update_as(&l, ASP_FRIC_STICK, AREA, above, s0, s1, f, K, &r),
+                     ASP_FRIC_STICK);
+    assert_true(r > 1.0);
+    assert_true(fabs(f[0] - AREA * l.kt * above[0]) < 1e-15 * fabs(f[0]));
+    assert_true(K[0] == AREA * l.kt && K[3] == AREA * l.kt && K[1] == 0.0);
+    /* free: the same as asp_fric_update */
+    for (int c = 0; c < 2; c++) {
+        const double *g = c ? above : below;
+        int a = asp_fric_update_as(&l, 0, AREA, g, s0, s1, f, K, NULL);
+        int b = asp_fric_update(&l, AREA, g, s0, s2, f2, K2, NULL);
+        assert_int_equal(a, b);
+        assert_memory_equal(f, f2, sizeof f);
+        assert_memory_equal(K, K2, sizeof K);
+        assert_memory_equal(s1, s2, sizeof s1);
+    }
+    /* slip imposed at zero trial traction: no direction, it sticks */
+    double zero[2] = {0.0, 0.0};
+    assert_int_equal(asp_fric_update_as(&l, ASP_FRIC_SLIP, AREA, zero, s0, s1, f, K, NULL),
+                     ASP_FRIC_STICK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tangent_fd),       cmocka_unit_test(test_tangent_transition),
         cmocka_unit_test(test_slip_limit),       cmocka_unit_test(test_objectivity),
         cmocka_unit_test(test_path_dependence),  cmocka_unit_test(test_stick_error),
-        cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_invalid),          cmocka_unit_test(test_imposed_state),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

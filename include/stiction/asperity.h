@@ -315,10 +315,11 @@ typedef struct asp_shear_options {
                             lines, but the rows read the elastic half-space's
                             growth 0.7-1.6 points high) */
     int hold_stalled;    /* 1 (default): when Newton stalls with contact nodes
-                            cycling between stick and slip, hold them stuck and
-                            accept if they end within tau_c; 0: the stall fails
-                            the increment, which is cut back (docs/design.md
-                            §4.3) */
+                            cycling between stick and slip, hold them in their
+                            state, solve, and flip the ones the stick law would
+                            not keep there (an active set, up to 4 solves); 0:
+                            the stall fails the increment, which is cut back
+                            (docs/design.md §4.3) */
 } asp_shear_options;
 
 STC_API void asp_shear_options_default(asp_shear_options *o);
@@ -372,8 +373,11 @@ typedef struct asp_shear_result {
     int index;           /* ramp point of inception (0 = ux = 0) */
     int increments;      /* accepted ramp increments */
     int cutbacks;        /* ramp increment halvings */
-    int held_nodes;      /* contact nodes held stuck after a Newton stall (their
-                            stick/slip state cycled), summed over the increments */
+    int held_nodes;      /* contact nodes held in a stick or slip state after a
+                            Newton stall (their state cycled), summed over the
+                            increments */
+    int hold_passes;     /* re-solves that flipped held nodes the stick law would
+                            not keep in their state */
     int newton_iterations, factorizations; /* of the ramp */
     double wall_s;       /* wall time of the ramp, s */
     char reason[256];    /* in words */

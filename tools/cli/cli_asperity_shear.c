@@ -229,6 +229,7 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_int(&j, "shear_points", l->n);
     cj_int(&j, "shear_cutbacks", r->cutbacks);
     cj_int(&j, "shear_held_nodes", r->held_nodes);
+    cj_int(&j, "shear_hold_passes", r->hold_passes);
     cj_int(&j, "shear_newton_iterations", r->newton_iterations);
     cj_int(&j, "factorizations", pt->factorizations + r->factorizations);
     cj_num(&j, "shear_wall_s", r->wall_s);
