@@ -48,8 +48,9 @@ def main():
                  "tools/validate-references.py (`stiction asperity --shear --json` runs)")
     rep.out("Held set: the Wu-Shi-Polycarpou sphere (slip normal step) at 8 interferences and "
             "the coated thesis family (stick normal step) at t/R 0.005 and 0.05, Eco/Esu 2 and "
-            "4, delta/omega_c_su 1 and 30.  Reference: four node placements on the 3D mesh %d "
-            "level(s) finer than the default, their mean and its standard error "
+            "4, delta/omega_c_su 1 and 30.  Reference: four node placements on 3D mesh level %d "
+            "(the default is level 0; each level doubles the elements across the contact), "
+            "their mean and its standard error "
             "(data/fe/references.csv, tools/references.py; the members are in "
             "data/fe/reference-members.csv).  'single' is a fresh default run (no numerical "
             "option) with its printed error estimate; 'L0 x4' the default mesh's own "
@@ -59,8 +60,8 @@ def main():
             "mu_s_single", "mu_s_single_err", "single_error_pct", "covered", "wall_s",
             "mu_s_L0x4", "L0x4_vs_ref_pct"]
     rows, why = [], {}
-    rep.out("| case | reference | single run | error | printed error | wall s | L0 x4 | "
-            "L0 x4 vs ref |")
+    rep.out("| case | reference | single run ± printed error | error | covered | wall s | "
+            "L0 x4 | L0 x4 vs ref |")
     rep.out("|---|---|---|---|---|---|---|---|")
     for c in cases:
         ref = refs.get((c[0], a.level))
@@ -86,7 +87,7 @@ def main():
                      covered=int(abs(mu - mu_r) <= band))
         rows.append(r)
         write_progress(a.out, cols, rows)
-        rep.out("| %s | %.4f ± %.4f | %s ± %s | %s | %s | %s | %s | %s |"
+        rep.out("| %s | %.4f ± %.4f | %s ± %s | %s %% | %s | %s | %s | %s %% |"
                 % (c[0], mu_r, se_r, r.get("mu_s_single", "failed"),
                    r.get("mu_s_single_err", "-"), r.get("single_error_pct", "-"),
                    "yes" if r.get("covered") else "no", r["wall_s"], r["mu_s_L0x4"] or "-",
