@@ -173,7 +173,7 @@ static void springs(void *ctx, asp_solver *s, int want_K)
  * tolerance (docs/design.md §4.3).  The nodes that switched twice or more
  * in this try are held in their current state for its rest, which takes
  * the cycling out of Newton; try_ux then checks every held node against
- * the free law and re-solves with the wrong ones flipped (held_consistent).
+ * the free law and re-solves with the wrong ones flipped (held_flip).
  * Returns how many nodes it newly holds. */
 static int stalled(void *ctx, asp_solver *s)
 {
@@ -615,6 +615,13 @@ typedef struct ramp {
     double p_m;           /* mean contact pressure after the normal step, MPa */
 } ramp;
 
+/* The contact and stick states of the start of the try (saved in r). */
+static void restore_states(asp_solver *s, const ramp *r)
+{
+    memcpy(s->cs, r->cs0, (size_t)s->ncand);
+    memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
+}
+
 /* One increment to ux; on failure the converged state is restored.
  *
  * lam in (0, 1]: the share of the junction reading taken in this increment.
@@ -671,9 +678,7 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
                           HOLD_PASSES);
             break;
         }
-        /* solve the try again from its start with those nodes flipped */
-        memcpy(s->cs, r->cs0, (size_t)s->ncand);
-        memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
+        restore_states(s, r); /* solve the try again with those nodes flipped */
         sh->fric_frozen = 1;
         r->res->hold_passes++;
     }
@@ -682,8 +687,7 @@ static stc_status try_ux(asp_solver *s, ramp *r, double ux, double lam)
         return STC_OK;
     }
     memcpy(s->u, s->u_conv, (size_t)s->ndof * sizeof *s->u);
-    memcpy(s->cs, r->cs0, (size_t)s->ncand);
-    memcpy(s->cstick, r->cst0, (size_t)s->ncand * 2 * sizeof *r->cst0);
+    restore_states(s, r);
     sh->ux = sh->ux_conv;
     s->k_fresh = 0;
     return st;
