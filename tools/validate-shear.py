@@ -27,7 +27,7 @@ import sys
 import time
 
 from vreport import Report
-from wsp_case import WSP, WSP_SPHERE, write_progress, wsp_mu as wsp_fit
+from wsp_case import ABOVE_1, WSP, elastic_mu as elastic, write_progress, wsp_mu as wsp_fit
 TOL = 0.05  # the band on mu_s against the fit
 
 
@@ -45,28 +45,6 @@ def run(cli, level, omega, placements):
         j["reason"] = (p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1]
         j["converged"] = False
     return j, wall
-
-
-def elastic(cli, omega):
-    """mu_s of the elastic WSP sphere at omega: full slip at tau_c = Y/sqrt(3) over
-    the grown contact of the elastic half-space (`stiction halfspace`), with the
-    growth; None when the run fails."""
-    p = subprocess.run([cli, "halfspace", "--json", "--delta", "%g" % omega, "--cells", "256"]
-                       + WSP_SPHERE + ["--Y-su", "325"], capture_output=True, text=True)
-    if p.returncode != 0:
-        return None
-    j = json.loads(p.stdout)
-    return j["mu_s"], j["area_growth"]
-
-
-# What decides the comparisons with the fit above 1 omega_c, measured once
-# (docs/design.md sections 4.5, 4.6): the readings' means and one full refinement
-ABOVE_1 = ("Above 1 omega_c no closed form bounds mu_s. At 3 omega_c the junction readings' "
-           "period means over eight placements are 0.3931 (axis lines, the default) and 0.4104 "
-           "(node rows, --foot-rows 0.6), -6.5 and -2.4 % from the fit; one full refinement finer the "
-           "four-placement means are 0.4008 (axis lines, -4.7 %) and 0.4177 (rows, -0.7 %). "
-           "The readings' gap (4 %) does not close with the mesh: where the FE and the fit "
-           "differ by more than it, neither is shown off.")
 
 
 def main():
