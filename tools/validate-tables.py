@@ -16,9 +16,12 @@
    at the held-out t/R and Eco/Esu, computed as the table's normal grid
    computes its curves (through the grid's delta values and the held-out
    one); the 3D point's own preload is listed beside it (the 3D mesh's
-   difference, not the table's).  The fresh point is a single FE point with
-   its own noise, so the check is the combined two-standard-error band; the
-   3 % is a target.
+   difference, not the table's).  A fresh point with the table's two node
+   placements carries the placement noise of a table point (1.5-18 %), more
+   than the 3 % to be resolved, so the same point is also computed with eight
+   placements (HELD_OUT_PLACEMENTS; their errors 1.6-3.2 % on the thesis
+   table's ten points) and the table is held to that one: mu_s within two standard errors (table and point combined)
+   for 90 % of the points is a check, within 3 % a target.
 2. Surface checks: Greenwood-Williamson sums over a Gaussian summit
    population from the table at Eco/Esu = 1 (uncoated: one material), 2 and 4:
    a stiffer coating gives a higher surface mu_s (the single-asperity trend of
@@ -27,8 +30,8 @@
 
 Usage: validate-tables.py CLI WORKDIR REPORT.md [--table FILE] [--config INI]
        [--jobs N] [--refine N]
-The held-out runs are kept in WORKDIR/heldout/ (each a resumable table
-build), so an interrupted validation goes on where it stopped.
+The held-out runs are kept in WORKDIR/heldout/ and WORKDIR/heldout8/ (each a
+resumable table build), so an interrupted validation goes on where it stopped.
 """
 import argparse
 import concurrent.futures
@@ -71,6 +74,7 @@ HELD_OUT = [
     (15.0, 0.005, 1.4),   # E-ratio
     (1.4, 0.012, 2.8),    # all three
 ]
+HELD_OUT_PLACEMENTS = 8
 
 
 def run(cmd, check=True):
@@ -242,64 +246,76 @@ def axisym_point(cli, table, info, axis, pt):
 
 def held_out(cli, table, config, work, jobs, rep):
     os.makedirs(os.path.join(work, "heldout"), exist_ok=True)
+    os.makedirs(os.path.join(work, "heldout%d" % HELD_OUT_PLACEMENTS), exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
         fe = list(ex.map(lambda kp: fe_point(cli, config, work, *kp),
                          enumerate(HELD_OUT)))
+        fe8 = list(ex.map(lambda kp: fe_point(cli, config, work, kp[0], kp[1],
+                                              "heldout%d" % HELD_OUT_PLACEMENTS,
+                                              ("--placements", str(HELD_OUT_PLACEMENTS))),
+                          enumerate(HELD_OUT)))
     info = json.loads(run([cli, "table", "info", table, "--json"]).stdout)
     axis = normal_axis(cli, table)
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
         ax = list(ex.map(lambda pt: axisym_point(cli, table, info, axis, pt) if axis else None,
                          HELD_OUT))
     rep.out("## Held-out points: fresh FE runs between the grid nodes\n")
+    K = HELD_OUT_PLACEMENTS
     rep.out("Each point is a one-point table of the same family and numerics (`stiction "
-               "table build --config %s --deltas D --t-over-R T --E-ratio E`), compared "
-               "with `stiction table query %s`. sigma_t: the table's standard error; "
-               "sigma_p: the fresh point's own error estimate. The preload P/Pc and A/Ac "
-               "of the table come from its normal grid and are compared with a fresh "
-               "axisymmetric load curve at the held-out t/R and Eco/Esu (`stiction asperity "
-               "--delta` through the grid's %d delta values and the held-out one, as the grid's "
-               "curves are computed); 'P/Pc 3D' is the fresh 3D point's own preload, whose "
-               "difference is the coarse 3D mesh's.\n" % (config, table, len(axis)))
-    rep.out("| delta/wc | t/R | Eco/Esu | mu_s FE | +- | mu_s table | +- sigma_t | diff | "
-               "diff/sigma_t | diff/sqrt(st^2+sp^2) | P/Pc axisym | P/Pc table | diff P | "
-               "diff A | P/Pc 3D | 3D vs table | CPU s |")
-    rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+            "table build --config %s --deltas D --t-over-R T --E-ratio E`; 'x2'), and the "
+            "same with %d node placements ('x%d', `--placements %d`), compared with `stiction "
+            "table query %s`. The table is held to the x%d point: a two-placement point "
+            "carries the placement noise the table's surrogate smooths out. sigma_t: the "
+            "table's standard error; z: the difference over the table's and the x%d point's "
+            "standard errors in quadrature. The preload P/Pc and A/Ac of the table come from "
+            "its normal grid and are compared with a fresh axisymmetric load curve at the "
+            "held-out t/R and Eco/Esu (`stiction asperity --delta` through the grid's %d "
+            "delta values and the held-out one, as the grid's curves are computed); 'P/Pc "
+            "3D' is the fresh 3D point's own preload, whose difference is the coarse 3D "
+            "mesh's.\n" % (config, K, K, K, table, K, K, len(axis)))
+    rep.out("| delta/wc | t/R | Eco/Esu | mu_s FE x2 | mu_s FE x%d | mu_s table +- sigma_t | "
+            "diff vs x%d | z | diff vs x2 | P/Pc axisym | P/Pc table | diff P | diff A | "
+            "P/Pc 3D | 3D vs table | CPU s x2, x%d |" % (K, K, K))
+    rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     n = 0
-    within3 = within2t = within2c = p1 = a1 = 0
+    within3 = within2c = p1 = a1 = 0
     worst_mu = worst_p = worst_a = 0.0
     failed = []
-    for pt, f, axp in zip(HELD_OUT, fe, ax):
-        if "error" in f or f.get("state") != "done" or axp is None:
-            why = f.get("error") or f.get("reason") or "no normal grid in the table"
+    for pt, f, f8, axp in zip(HELD_OUT, fe, fe8, ax):
+        bad = [g for g in (f, f8) if "error" in g or g.get("state") != "done"]
+        if bad or axp is None:
+            why = (bad[0].get("error") or bad[0].get("reason")) if bad else \
+                "no normal grid in the table"
             failed.append((pt, why))
             rep.out("| %g | %g | %g | failed: %s |" % (pt + (why,)))
             continue
         q = query(cli, table, pt)
         mf, sf = float(f["mu_s"]), float(f["mu_s_err"])
+        m8, s8 = float(f8["mu_s"]), float(f8["mu_s_err"])
         mt, st = q["mu_s"], q["mu_s_err"]
         p3, ptab = float(f["P_over_P_c"]), q["P_over_P_c"]
         pax, aax = axp
-        dmu = (mt - mf) / mf
+        dmu = (mt - m8) / m8
         dp = (ptab - pax) / pax
         da = (q["A_over_A_c"] - aax) / aax
         d3 = (p3 - ptab) / ptab
-        zt = abs(mt - mf) / st
-        zc = abs(mt - mf) / math.hypot(st, sf)
+        zc = abs(mt - m8) / math.hypot(st, s8)
         n += 1
         within3 += abs(dmu) <= 0.03
-        within2t += zt <= 2
         within2c += zc <= 2
         p1 += abs(dp) <= 0.01
         a1 += abs(da) <= 0.01
         worst_mu = max(worst_mu, abs(dmu))
         worst_p = max(worst_p, abs(dp))
         worst_a = max(worst_a, abs(da))
-        rep.out("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %+.2f %% | %.2f | %.2f | "
-                   "%.4f | %.4f | %+.2f %% | %+.2f %% | %.4f | %+.2f %% | %.0f |"
-                   % (pt + (mf, sf, mt, st, 100 * dmu, zt, zc, pax, ptab, 100 * dp, 100 * da,
-                            p3, 100 * d3, float(f["cpu_s"]))))
+        rep.out("| %g | %g | %g | %.4f +- %.4f | %.4f +- %.4f | %.4f +- %.4f | %+.2f %% | "
+                "%.2f | %+.2f %% | %.4f | %.4f | %+.2f %% | %+.2f %% | %.4f | %+.2f %% | "
+                "%.0f, %.0f |"
+                % (pt + (mf, sf, m8, s8, mt, st, 100 * dmu, zc, 100 * (mt - mf) / mf, pax,
+                         ptab, 100 * dp, 100 * da, p3, 100 * d3, float(f["cpu_s"]),
+                         float(f8["cpu_s"]))))
     rep.out("")
-    fresh = "fresh FE points (%d; same family and numerics)" % n
+    fresh = "fresh FE points (%d; same family and numerics, %d placements)" % (n, K)
     curve = "fresh axisymmetric load curve"
     checks = []
     if n:
@@ -310,12 +326,10 @@ def held_out(cli, table, config, work, jobs, rep):
              "%d of %d within (largest %.2f %%)" % (p1, n, 100 * worst_p), p1 == n),
             ("check", "held-out A/Ac", curve, "1 %",
              "%d of %d within (largest %.2f %%)" % (a1, n, 100 * worst_a), a1 == n),
-            ("target", "held-out mu_s within 3 % of the fresh FE point", "every point",
-             "%d of %d (largest %.2f %%; the fresh point's own error is in the table above)"
-             % (within3, n, 100 * worst_mu), within3 == n),
+            ("target", "held-out mu_s within 3 %% of the fresh %d-placement FE point" % K,
+             "every point", "%d of %d (largest %.2f %%)" % (within3, n, 100 * worst_mu),
+             within3 == n),
         ]
-        rep.out("Within two of the table's own standard errors alone: %d of %d.\n"
-                % (within2t, n))
     if failed:
         checks.append(("check", "held-out FE runs finished", "the runs", "all",
                        "%d failed" % len(failed), False))
