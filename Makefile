@@ -72,6 +72,21 @@ $(DEPSTAMP): tools/deps.sh
 deps:
 	@tools/deps.sh install
 
+# The commit a build comes from, for `stiction --version` (compiled into the
+# CLI's main.c only, rebuilt when it changes), so results made with an older
+# binary name the code that made them
+COMMIT := $(shell [ "$$(git -C $(CURDIR) rev-parse --show-toplevel 2>/dev/null)" = "$(CURDIR)" ] \
+                  && git -C $(CURDIR) describe --always --dirty 2>/dev/null)
+COMMIT_STAMP := $(O)/obj/.commit
+$(COMMIT_STAMP): FORCE
+	@mkdir -p $(@D)
+	@echo '$(COMMIT)' | cmp -s - $@ || echo '$(COMMIT)' > $@
+$(O)/obj/tools/cli/main.o: $(COMMIT_STAMP)
+ifneq ($(COMMIT),)
+$(O)/obj/tools/cli/main.o: CPPFLAGS += -DSTC_COMMIT='"$(COMMIT)"'
+endif
+.PHONY: FORCE
+
 $(O)/obj/%.o: %.c | $(DEPSTAMP)
 	@mkdir -p $(@D)
 	$(CC) $(LAYER_INC) $(CPPFLAGS) $(CFLAGS) $(LAYER_CFLAGS) -MMD -MP -c $< -o $@

@@ -33,6 +33,7 @@ import csv
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -59,12 +60,14 @@ def held_set():
 
 
 def version(cli):
-    """stiction's version and, in a git checkout, its commit"""
+    """stiction's version and the commit its binary was built from
+    (`stiction --version`: "stiction 0.1.0 (commit abc1234)"); "?" for the
+    commit of a binary that does not say."""
     p = subprocess.run([cli, "--version"], capture_output=True, text=True)
-    v = (p.stdout.strip().split() or ["?"])[-1]
-    g = subprocess.run(["git", "-C", HERE, "describe", "--always", "--dirty"],
-                       capture_output=True, text=True)
-    return v + ("+" + g.stdout.strip() if g.returncode == 0 else "")
+    m = re.match(r"stiction (\S+)(?: \(commit (\S+)\))?", p.stdout.strip())
+    if not m:
+        return "?"
+    return m.group(1) + "+" + (m.group(2) or "?")
 
 
 def load(path):

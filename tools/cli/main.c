@@ -38,7 +38,11 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (strcmp(argv[1], "--version") == 0) {
+#ifdef STC_COMMIT
+        printf("stiction %s (commit %s)\n", STC_VERSION, STC_COMMIT);
+#else
         printf("stiction %s\n", STC_VERSION);
+#endif
         return CLI_EXIT_OK;
     }
     cli_near near;
