@@ -242,6 +242,15 @@ static void test_refusals(void **state)
     asp_options_for_curve(&o, 1); /* one point: nothing changes */
     assert_int_equal(o.sample_elastic, 0);
     assert_int_equal(o.grade_3d, 0);
+    assert_int_equal(o.shell_coarsen, -1);
+    o.geom = ASP_GEOM_3D; /* a 3D point: the shells not coarsened */
+    asp_options_for_curve(&o, 1);
+    assert_int_equal(o.shell_coarsen, 0);
+    assert_int_equal(o.grade_3d, 0);
+    o.shell_coarsen = 2; /* unless the caller set it */
+    asp_options_for_curve(&o, 1);
+    assert_int_equal(o.shell_coarsen, 2);
+    asp_options_default(&o);
     stc_params p;
     stc_params_default(&p);
     asp_solver *s = (asp_solver *)&p; /* set to NULL on failure */

@@ -390,7 +390,8 @@ def bench(cli):
                 name, lev, j["dofs"], j["P_N"], 100 * (j["P_N"] / Pf - 1), er, w, m))
     print("3D half model, Hertz a/R = 0.01 (error vs the axisymmetric level 3 above)")
     Pax = rows_ax[-1][1]["P_N"]
-    # shell coarsenings: 1 is the default; 0 and 2 show what it trades
+    # shell coarsenings: 0 is the default of a normal-loading 3D run, 1 that of
+    # the shear runs, 2 a second step: what each trades
     for lev in (0, 1):
         for crs in (1, 0, 2):
             j, w, m = run(cli, HERTZ + ["--delta-mm", "0.001", "--model", "3d", "--mesh", str(lev),

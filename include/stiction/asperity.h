@@ -488,10 +488,11 @@ STC_API double asp_placement_mu_s_err(const asp_placement_result *e, double err_
  * any expert option on asp_options first, then call these. */
 
 /* Normal loading to n interferences (n > 1: a load curve, one solver run;
- * docs/design.md §2.4, §3.3): an axisymmetric (or auto) curve steps through
- * the elastic node entries (sample_elastic), a 3D curve gets the graded core
- * (grade_3d; to keep the uniform core clear it after this call).  n = 1
- * changes nothing. */
+ * docs/design.md §2.4, §2.5, §3.3): an axisymmetric (or auto) curve steps
+ * through the elastic node entries (sample_elastic), a 3D curve gets the
+ * graded core (grade_3d; to keep the uniform core clear it after this call);
+ * a 3D point or curve keeps its outer shells uncoarsened (shell_coarsen 0,
+ * unless set).  An axisymmetric point (n = 1) is unchanged. */
 STC_API void asp_options_for_curve(asp_options *o, int n);
 
 /* The tangential step needs the 3D half model: ASP_GEOM_AUTO becomes

@@ -78,7 +78,7 @@ static const cli_opt opts[] = {
      "(N in [0, 6]; default auto = 3 under stick, 0 under slip)"},
     {"shell-coarsen", "N",
      "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
-     "(default 1: from 6 a_max on)"},
+     "(default: 1, from 6 a_max on, with --shear; 0 for the normal step alone)"},
     {"grade-3d", NULL,
      "3D: core sized to the smallest contact a curve resolves, shells growing with the "
      "distance (4 2^level elements across every contact, no shell coarsening); the default "
