@@ -3,7 +3,8 @@
  * asp_options_for_shear, asp_shear_preload), so a program that sets the same
  * materials and options gets every number the CLI prints, digit for digit:
  * an axisymmetric stick curve (elastic node entries sampled, loaded on past
- * its end), a 3D slip curve (graded core) and a load-controlled shear run.
+ * its end), a 3D slip curve (graded core), a 3D elastic point (Hertz, shells
+ * not coarsened) and a load-controlled shear run.
  * Coarse meshes and one thread keep each pair of runs to seconds.
  *
  * The binary is $STICTION_CLI if set, else ../bin/stiction relative to this

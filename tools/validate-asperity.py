@@ -97,6 +97,12 @@ def hertz_section(cli, rep):
         rep.out("* a/R = %g: converged P = %.6g N +- %.2g %% (%s, order %.2f); a = %.5g mm "
                 "+- %.2g %% (%s, order %.2f)"
                 % (aR, Pinf, 100 * uP / Pinf, howP, pP, ainf, 100 * ua / ainf, howa, pa))
+        # the 3D half model's default mesh for the normal step alone
+        j3, w3, _ = run(cli, HERTZ + ["--delta-mm", repr(delta), "--model", "3d"])
+        P3 = j3["P_N"]
+        rep.out("* a/R = %g, 3D half model, default mesh (`--model 3d`): P = %.6g N (%+.3f %% vs "
+                "converged, %+.3f %% vs Hertz), %d DOFs, %.2f s"
+                % (aR, P3, 100 * (P3 / Pinf - 1), 100 * (P3 / Ph - 1), j3["dofs"], w3))
         rep.out("")
         conv = "same model, levels 3-5"
         p13, _ = richardson(*P[:3])
@@ -111,6 +117,8 @@ def hertz_section(cli, rep):
                   "%+.3f %%" % (100 * (Pinf / Ph - 1)), abs(Pinf / Ph - 1) < lim)
         rep.check("a/R = %g: converged a" % aR, "Hertz (closed form)", "1 %",
                   "%+.3f %%" % (100 * (ainf / ah - 1)), abs(ainf / ah - 1) < 0.01)
+        rep.check("a/R = %g: 3D default mesh P" % aR, "Hertz (closed form)", "%g %%" % (100 * lim),
+                  "%+.3f %%" % (100 * (P3 / Ph - 1)), abs(P3 / Ph - 1) < lim)
     rep.out("The remainder against Hertz grows linearly with a/R (half-space vs hemisphere with "
             "its base fixed at depth R): compare the two converged values.")
     rep.out("")
