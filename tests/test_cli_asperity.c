@@ -144,6 +144,15 @@ static void test_3d_curve(void **state)
     same("dofs", 0, res.info.dofs);
 }
 
+/* A homogeneous sphere (both layers alike) and its material. */
+static void homogeneous(stc_params *p, double R, double E, double nu, double Y, stc_material *su)
+{
+    stc_params_default(p);
+    p->R = R, p->E_su = E, p->nu = nu, p->Y_su = p->Y_co = Y;
+    assert_int_equal(stc_params_resolve(p), STC_OK);
+    stc_params_materials(p, su, NULL);
+}
+
 /* A 3D point of the normal step alone, elastic (Hertz, a/R = 0.003, the
  * default 3D mesh): the policy leaves its shells uncoarsened, and P is
  * within 0.5 % of Hertz (measured +0.316 %; the converged model +0.174 %,
@@ -152,11 +161,8 @@ static void test_3d_hertz_point(void **state)
 {
     (void)state;
     stc_params p;
-    stc_params_default(&p);
-    p.R = 10.09, p.E_su = 74000.0, p.nu = 0.32, p.Y_su = p.Y_co = 70000.0;
-    assert_int_equal(stc_params_resolve(&p), STC_OK);
     stc_material su;
-    stc_params_materials(&p, &su, NULL);
+    homogeneous(&p, 10.09, 74000.0, 0.32, 70000.0, &su);
     double d = 0.003 * 0.003 * p.R;
     stc_hertz h;
     assert_int_equal(stc_hertz_eval(&su, p.R, d, &h), STC_OK);
@@ -186,12 +192,9 @@ static void test_shear_load(void **state)
 {
     (void)state;
     stc_params p;
-    stc_params_default(&p);
-    p.R = 10.5, p.E_su = 74000.0, p.nu = 0.33, p.Y_su = p.Y_co = 325.0;
-    assert_int_equal(stc_params_resolve(&p), STC_OK);
     stc_material su;
     stc_critical c;
-    stc_params_materials(&p, &su, NULL);
+    homogeneous(&p, 10.5, 74000.0, 0.33, 325.0, &su);
     assert_int_equal(stc_critical_eval(&su, p.R, &c), STC_OK);
     asp_options o;
     asp_options_default(&o);
