@@ -141,20 +141,16 @@ static void springs(void *ctx, asp_solver *s, int want_K)
         if (s->cs[k] == ASP_CS_OPEN || !(sh->carea[k] > 0.0)) continue;
         int n = s->cand[k];
         double g[2] = {s->u[3 * n] - sh->ux, s->u[3 * n + 1]}, Kc[4];
-        int hold = sh->chold[k];
-        if (hold) {
-            double ratio; /* |t_trial| / τc */
-            sh->cfst[k] = (unsigned char)asp_fric_update_as(&sh->fric, hold, sh->carea[k], g,
-                                                           s->cstick + 2 * k,
-                                                           sh->cslip_new + 2 * k, f, Kc, &ratio);
+        int hold = sh->chold[k]; /* 0: the law chooses */
+        const asp_fric_law *law = !hold && frozen && s->cs[k] == ASP_CS_STICK ? &stuck
+                                                                               : &sh->fric;
+        double ratio; /* |t_trial| / τc */
+        sh->cfst[k] = (unsigned char)asp_fric_update_as(law, hold, sh->carea[k], g,
+                                                       s->cstick + 2 * k, sh->cslip_new + 2 * k,
+                                                       f, Kc, &ratio);
+        if (hold)
             sh->cbad[k] = hold == ASP_FRIC_STICK ? ratio > 1.0 + HOLD_TOL
                                                  : ratio < 1.0 - HOLD_TOL;
-        } else {
-            const asp_fric_law *law = frozen && s->cs[k] == ASP_CS_STICK ? &stuck : &sh->fric;
-            sh->cfst[k] = (unsigned char)asp_fric_update(law, sh->carea[k], g,
-                                                        s->cstick + 2 * k,
-                                                        sh->cslip_new + 2 * k, f, Kc, NULL);
-        }
         if (count && sh->cfst[k] != was && sh->cflip[k] < 255) sh->cflip[k]++;
         /* the node feels -f: residual fint + f = 0 */
         s->fint[3 * n] += f[0];

@@ -170,6 +170,12 @@ static void test_3d_hertz_point(void **state)
     asp_options_default(&o);
     o.geom = ASP_GEOM_3D, o.threads = 1;
     asp_options_for_curve(&o, 1);
+    assert_int_equal(o.shell_coarsen, 0); /* a 3D point: the shells not coarsened */
+    assert_int_equal(o.grade_3d, 0);
+    asp_options set = o;
+    set.shell_coarsen = 2; /* unless the caller set it */
+    asp_options_for_curve(&set, 1);
+    assert_int_equal(set.shell_coarsen, 2);
     asp_curve_point pt;
     asp_curve_result res;
     assert_int_equal(asp_curve_run(&p, &o, &d, 1, NULL, NULL, &pt, &res), STC_OK);
@@ -282,14 +288,6 @@ static void test_refusals(void **state)
     assert_int_equal(o.sample_elastic, 0);
     assert_int_equal(o.grade_3d, 0);
     assert_int_equal(o.shell_coarsen, -1);
-    o.geom = ASP_GEOM_3D; /* a 3D point: the shells not coarsened */
-    asp_options_for_curve(&o, 1);
-    assert_int_equal(o.shell_coarsen, 0);
-    assert_int_equal(o.grade_3d, 0);
-    o.shell_coarsen = 2; /* unless the caller set it */
-    asp_options_for_curve(&o, 1);
-    assert_int_equal(o.shell_coarsen, 2);
-    asp_options_default(&o);
     stc_params p;
     stc_params_default(&p);
     asp_solver *s = (asp_solver *)&p; /* set to NULL on failure */

@@ -626,7 +626,7 @@ static void test_thin_strong_coating(void **state)
     stc_params p;
     asp_options o;
     asp_shear_options so;
-    asp_shear_result r, *res = &r;
+    asp_shear_result res;
     asp_point pt;
     stc_material su;
     stc_critical c;
@@ -645,15 +645,15 @@ static void test_thin_strong_coating(void **state)
     double delta = 10.0 * c.omega_c;
     assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
     assert_int_equal(asp_solver_load(s, delta, &pt), STC_OK);
-    stc_status st = asp_solver_shear(s, &so, NULL, NULL, res);
+    stc_status st = asp_solver_shear(s, &so, NULL, NULL, &res);
     printf("# thin strong coating: mu_s %.4f, %d cut-backs, %d nodes held, "
-           "%d re-solves, %d increments, %.1f s (%s)\n", res->mu_s, res->cutbacks,
-           res->held_nodes, res->hold_passes, res->increments, res->wall_s, res->reason);
+           "%d re-solves, %d increments, %.1f s (%s)\n", res.mu_s, res.cutbacks,
+           res.held_nodes, res.hold_passes, res.increments, res.wall_s, res.reason);
     asp_solver_destroy(&s);
     assert_int_equal(st, STC_OK);
-    assert_true(res->converged);
-    assert_true(res->cutbacks + res->held_nodes >= 1); /* it stalls */
-    assert_true(res->mu_s > 0.5 && res->mu_s < 1.5);
+    assert_true(res.converged);
+    assert_true(res.cutbacks + res.held_nodes >= 1); /* it stalls */
+    assert_true(res.mu_s > 0.5 && res.mu_s < 1.5);
 }
 
 int main(void)
