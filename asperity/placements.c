@@ -111,14 +111,23 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
     out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
     asp_shear_options def;
     if (!so) asp_shear_options_default(&def), so = &def;
-    out->mu_s_err = asp_placement_mu_s_err(out, asp_mu_s_err_single(so->foot_rows),
+    /* one member: its own error, the single mesh's at this δ */
+    out->mu_s_err = asp_placement_mu_s_err(out, m[0].res.mu_s_err / m[0].res.mu_s,
                                            ASP_MU_S_ERR_FLOOR);
     return STC_OK;
 }
 
-double asp_mu_s_err_single(double foot_rows)
+double asp_mu_s_err_single(double foot_rows, double delta_over_omega)
 {
-    return foot_rows > 0.0 ? ASP_MU_S_ERR_ROWS : ASP_MU_S_ERR_SINGLE;
+    /* the axis lines' scatter rises with the plastic junction growth: 1.2-2.6 %
+     * up to first yield, 3.8 % at 1.4, 5.8 % at 2, 5-8.5 % from 3 on (over
+     * 4-8 placements, docs/design.md §4.5) */
+    double x = delta_over_omega, e = ASP_MU_S_ERR_SINGLE;
+    if (!(x >= 3.0))
+        e = !(x > 1.0) ? ASP_MU_S_ERR_ELASTIC
+                       : ASP_MU_S_ERR_ELASTIC *
+                             pow(ASP_MU_S_ERR_SINGLE / ASP_MU_S_ERR_ELASTIC, log(x) / log(3.0));
+    return foot_rows > 0.0 ? fmin(ASP_MU_S_ERR_ROWS, e) : e;
 }
 
 double asp_placement_mu_s_err(const asp_placement_result *e, double err_single,

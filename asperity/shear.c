@@ -761,7 +761,8 @@ static stc_status setup_ramp(asp_solver *s, const asp_shear_options *o, asp_shea
     return asp_slide_create(&sp, &su, det);
 }
 
-static void fill_result(const ramp *r, asp_slide *det, double foot_rows, asp_shear_result *res)
+static void fill_result(const asp_solver *s, const ramp *r, asp_slide *det, double foot_rows,
+                        asp_shear_result *res)
 {
     asp_slide_result sr;
     asp_slide_get(det, &sr);
@@ -769,7 +770,7 @@ static void fill_result(const ramp *r, asp_slide *det, double foot_rows, asp_she
     res->ux_slide = sr.ux;
     res->P_slide = sr.P;
     res->mu_s = sr.mu_s;
-    res->mu_s_err = asp_mu_s_err_single(foot_rows) * sr.mu_s; /* one mesh */
+    res->mu_s_err = asp_mu_s_err_single(foot_rows, s->delta / s->omega_est) * sr.mu_s;
     res->mu_s_preload = sr.mu_s_preload;
     res->slip_frac = sr.slip_frac;
     res->KT_after = sr.KT_after;
@@ -829,7 +830,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
         }
         du *= 0.5;
     }
-    fill_result(&r, det, o->foot_rows, res);
+    fill_result(s, &r, det, o->foot_rows, res);
     if (stop) {
         why = ASP_OUTCOME_STOPPED;
         st = STC_FAIL(STC_ENOCONV, "shear: %s at ux = %g mm", asp_outcome_str(why), s->sh->ux_conv);
@@ -839,7 +840,7 @@ stc_status asp_solver_shear(asp_solver *s, const asp_shear_options *o, asp_shear
     }
 done:
     if (st != STC_OK) { /* what was reached stays in res; the reason says why */
-        if (det && r.npt > 0 && !res->increments) fill_result(&r, det, o->foot_rows, res);
+        if (det && r.npt > 0 && !res->increments) fill_result(s, &r, det, o->foot_rows, res);
         res->converged = 0;
         res->outcome = why;
         snprintf(res->reason, sizeof res->reason, "%s", stc_errmsg());

@@ -599,9 +599,22 @@ static void test_placements(void **state)
     printf("# mu_s error: %.5f (standard error %.5f, floor %.5f)\n", e->mu_s_err, se,
            ASP_MU_S_ERR_FLOOR * e->mu_s);
     assert_true(fabs(e->mu_s_err / want - 1) < 1e-12);
-    assert_true(fabs(R.res.mu_s_err / (ASP_MU_S_ERR_SINGLE * R.res.mu_s) - 1) < 1e-15);
-    assert_true(asp_mu_s_err_single(0.0) == ASP_MU_S_ERR_SINGLE); /* the axis lines */
-    assert_true(asp_mu_s_err_single(0.6) == ASP_MU_S_ERR_ROWS);
+    /* the single run at 0.5 ωc carries the elastic regime's scatter; the
+     * axis lines' error rises continuously and monotonically to the plastic
+     * one at 3 ωc; the rows' is the smaller of theirs and the axis lines' */
+    assert_true(fabs(R.res.mu_s_err / (ASP_MU_S_ERR_ELASTIC * R.res.mu_s) - 1) < 1e-15);
+    assert_true(asp_mu_s_err_single(0.0, 1.0) == ASP_MU_S_ERR_ELASTIC);
+    assert_true(asp_mu_s_err_single(0.0, 3.0) == ASP_MU_S_ERR_SINGLE);
+    assert_true(asp_mu_s_err_single(0.0, 60.0) == ASP_MU_S_ERR_SINGLE);
+    assert_true(fabs(asp_mu_s_err_single(0.0, 1.0 + 1e-9) - ASP_MU_S_ERR_ELASTIC) < 1e-9);
+    assert_true(fabs(asp_mu_s_err_single(0.0, 3.0 - 1e-9) - ASP_MU_S_ERR_SINGLE) < 1e-9);
+    for (double x = 1.0, prev = 0.0; x <= 3.0; x += 0.125) {
+        double v = asp_mu_s_err_single(0.0, x);
+        assert_true(v > prev);
+        prev = v;
+    }
+    assert_true(asp_mu_s_err_single(0.6, 0.5) == ASP_MU_S_ERR_ELASTIC);
+    assert_true(asp_mu_s_err_single(0.6, 10.0) == ASP_MU_S_ERR_ROWS);
     e->k = e->n_ok = 1;
     assert_true(asp_placement_mu_s_err(e, 0.05, 0.01) == 0.05 * e->mu_s);
     e->k = 2; /* a member that failed: no estimate */

@@ -350,7 +350,7 @@ typedef struct asp_shear_result {
     double mu_s;         /* Q_max / P_slide: the answer (thesis, WSP 2012) */
     double mu_s_err;     /* its error estimate, one standard error (absolute): the
                             node-placement scatter of one mesh with the reading
-                            used, asp_mu_s_err_single(foot_rows) μs */
+                            used at this δ, asp_mu_s_err_single μs */
     double mu_s_preload; /* Q_max / P0 */
     double A_stick;      /* stick area at inception, mm² */
     double slip_frac;    /* at inception: area fraction at its shear limit (limit_frac) */
@@ -437,18 +437,24 @@ STC_API double asp_hertz_delta_guess(double P, double E, double nu, double R);
 enum { ASP_PLACEMENTS_MAX = 8 };
 
 /* Error model of μs, relative (docs/design.md §4.5).  One mesh: the largest
- * standard deviation of μs over eight evenly spaced node placements
- * measured, with the floor below: read on the three axis lines 8.5 % (WSP
- * sphere at 3 ωc; ASP_MU_S_ERR_SINGLE), on the node rows 3.8 % (WSP 48 ωc;
- * ASP_MU_S_ERR_ROWS).  An ensemble: the members' standard error of the mean
- * with, in quadrature, the floor, the move of four-member means from the
- * default 3D mesh to one full refinement (docs/design.md §4.6). */
+ * standard deviation of μs over node placements measured in its regime,
+ * with the floor below.  Read on the three axis lines: 2.6 % up to the
+ * first-yield interference (ASP_MU_S_ERR_ELASTIC; WSP sphere at 1 ωc, coated
+ * t/R 0.05 at 1 ωc_su), 8 % from 3 times it on (ASP_MU_S_ERR_SINGLE; 8.5 %
+ * at WSP 3 ωc), log-linear in δ between; on the node rows 3.8 %
+ * (WSP 48 ωc; ASP_MU_S_ERR_ROWS), or the axis lines' value where that is
+ * smaller.  An ensemble: the members' standard error of the mean with, in
+ * quadrature, the floor, the move of four-member means from the default 3D
+ * mesh to one full refinement (docs/design.md §4.6). */
 #define ASP_MU_S_ERR_SINGLE 0.08
+#define ASP_MU_S_ERR_ELASTIC 0.026
 #define ASP_MU_S_ERR_ROWS 0.04
 #define ASP_MU_S_ERR_FLOOR 0.015
 /* The relative error of one mesh's μs read with asp_shear_options.foot_rows
- * (> 0: ASP_MU_S_ERR_ROWS, else ASP_MU_S_ERR_SINGLE).  Pure. */
-STC_API double asp_mu_s_err_single(double foot_rows);
+ * at the interference delta_over_omega, δ over the first-yield interference
+ * of the softer-yielding layer (the smaller ωc of the two layers as if
+ * each were the whole sphere; ωc of a homogeneous sphere).  Pure. */
+STC_API double asp_mu_s_err_single(double foot_rows, double delta_over_omega);
 
 typedef struct asp_placement_member {
     double elements_per_contact;
@@ -462,8 +468,8 @@ typedef struct asp_placement_result {
     int k, n_ok;             /* members, members that reached inception */
     double mu_s;             /* mean of the members' μs */
     double mu_s_err;         /* its error estimate, one standard error (absolute):
-                                asp_placement_mu_s_err with asp_mu_s_err_single of
-                                the reading and ASP_MU_S_ERR_FLOOR */
+                                asp_placement_mu_s_err with member 0's relative
+                                error (one member) and ASP_MU_S_ERR_FLOOR */
     double mu_s_min, mu_s_max;
     double mu_s_preload, Q_max, P_slide; /* means */
     double period;           /* T = a_max / a0, in elements per contact */
