@@ -29,15 +29,12 @@ finest mesh in < 60 s); the runs are independent processes, one at a time,
 on the solver's default threads (both cores), so the times are those of one
 run on the machine as loaded.
 """
-import json
 import math
-import os
-import subprocess
 import sys
-import tempfile
-import time
 
+from shearrun import run_shear
 from wsp_case import WSP
+
 COATED = ["--R", "10", "--E-su", "200000", "--E-over-Y", "1000", "--nu", "0.32",
           "--t-over-R", "0.025", "--E-ratio", "2", "--contact", "stick"]
 CASES = [
@@ -57,19 +54,8 @@ SHIFTED = "n6.6"
 
 def run(cli, args):
     """(json, wall s, peak MB) of one CLI run, or (None, wall s, reason)."""
-    with tempfile.TemporaryFile("w+") as fo, tempfile.TemporaryFile("w+") as fe:
-        t0 = time.monotonic()
-        p = subprocess.Popen([cli, "asperity", "--shear", "--model", "3d", "--json"] + args,
-                             stdout=fo, stderr=fe, text=True)
-        _, status, ru = os.wait4(p.pid, 0)  # the child's own peak memory
-        wall = time.monotonic() - t0
-        p.returncode = os.waitstatus_to_exitcode(status)
-        fo.seek(0), fe.seek(0)
-        out, err = fo.read(), fe.read().strip()
-    if p.returncode != 0:
-        return None, wall, err.splitlines()[-1] if err else "exit %d" % p.returncode
-    j = json.loads(out)
-    return (j[-1] if isinstance(j, list) else j), wall, ru.ru_maxrss / 1024.0
+    j, wall, _, extra = run_shear(cli, args)
+    return j, wall, extra
 
 
 def mesh_args(m):

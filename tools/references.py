@@ -59,6 +59,12 @@ def held_set():
     return cases
 
 
+def stored_refs():
+    """{(case, mesh level): row} of data/fe/references.csv"""
+    with open(REFS_CSV) as f:
+        return {(r["case"], int(r["mesh_level"])): r for r in csv.DictReader(f)}
+
+
 def version(cli):
     """stiction's version and the commit its binary was built from
     (`stiction --version`: "stiction 0.1.0 (commit abc1234)"); "?" for the

@@ -19,14 +19,13 @@ full slip over the half-space's grown contact, and at every interference the
 growth-free value tau_c A0 / P0 of the axisymmetric normal step.
 """
 import argparse
-import csv
 import json
 import math
 import subprocess
 import sys
 import time
 
-from references import REFS_CSV, held_set
+from references import held_set, stored_refs
 from vreport import Report
 from wsp_case import ABOVE_1, elastic_mu, growth_free_mu, write_progress, wsp_mu
 
@@ -66,12 +65,6 @@ def against_fit(rep, cli, refs, cases, level):
                     "%.4f (%+.2f %%)" % (mu, 100 * d), abs(d) <= FIT_TOL, ("", " ".join(ev)))
 
 
-def stored():
-    """{(case, mesh level): row} of data/fe/references.csv"""
-    with open(REFS_CSV) as f:
-        return {(r["case"], int(r["mesh_level"])): r for r in csv.DictReader(f)}
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("cli")
@@ -79,7 +72,7 @@ def main():
     ap.add_argument("report")
     ap.add_argument("--level", type=int, default=1)
     a = ap.parse_args()
-    refs = stored()
+    refs = stored_refs()
     cases = held_set()
     rep = Report("One shear run against the converged references",
                  "tools/validate-references.py (`stiction asperity --shear --json` runs)")
