@@ -22,16 +22,22 @@
 #include "stc_check.h"
 #include "threads.h"
 
-/* Normal step of one member (its solver is kept for the ramp). */
-static void member_load(const stc_params *p, const asp_options *o, double delta,
-                        asp_placement_member *m, asp_solver **sv)
+/* Normal step of one member (its solver is kept for the ramp): meshed for
+ * dmesh (mm) and loaded to delta, or with P > 0 (member 0 under load
+ * control) brought to P as asp_shear_preload does. */
+static void member_load(const stc_params *p, const asp_options *o, double dmesh, double delta,
+                        double P, asp_placement_member *m, asp_solver **sv)
 {
     asp_options mo = *o;
     mo.elements_per_contact = m->elements_per_contact;
     mo.threads = 1;
     *sv = NULL;
-    m->status = asp_solver_create(p, &mo, delta, sv);
-    if (m->status == STC_OK) m->status = asp_solver_load(*sv, delta, &m->pt);
+    if (P > 0.0) {
+        m->status = asp_shear_preload(p, &mo, 0.0, P, sv, &m->pt);
+    } else {
+        m->status = asp_solver_create(p, &mo, dmesh, sv);
+        if (m->status == STC_OK) m->status = asp_solver_load(*sv, delta, &m->pt);
+    }
     if (m->status != STC_OK) snprintf(m->message, sizeof m->message, "%s", stc_errmsg());
 }
 
@@ -49,18 +55,26 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
                                 const asp_shear_options *so, double delta, int k,
                                 asp_placement_result *out)
 {
+    return asp_shear_placements_preload(p, o, so, delta, 0.0, k, out);
+}
+
+stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *o,
+                                        const asp_shear_options *so, double delta, double P,
+                                        int k, asp_placement_result *out)
+{
     memset(out, 0, sizeof *out);
     STC_CHECK(k >= 1 && k <= ASP_PLACEMENTS_MAX, STC_EINVAL,
               "placements = %d: must be in [1, %d]", k, ASP_PLACEMENTS_MAX);
     STC_CHECK(o && o->geom == ASP_GEOM_3D, STC_EINVAL,
               "placements: the tangential step needs the 3D model");
-    STC_CHECK(delta > 0.0, STC_EINVAL, "placements: delta = %g mm: must be > 0", delta);
+    STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
+              "placements: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
     double t0 = omp_get_wtime();
     asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
     asp_placement_member *m = out->m;
     out->k = k;
     m[0].elements_per_contact = o->elements_per_contact; /* 0: the level's */
-    member_load(p, o, delta, &m[0], &sv[0]);
+    member_load(p, o, delta, delta, P, &m[0], &sv[0]);
     asp_info in;
     if (sv[0]) { /* the mesh resolves the level into elements per contact */
         asp_solver_info(sv[0], &in);
@@ -71,6 +85,11 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
         return STC_FAIL(m[0].status, "placements: member 0 (elements per contact %g): %s",
                         m[0].elements_per_contact, m[0].message);
     }
+    /* under load control the others run at member 0's interference, on
+     * meshes sized as its own (for the same delta_max), so the phases stay
+     * evenly spaced; their loads differ from P by their meshes' */
+    double dmesh = delta > 0.0 ? delta : sv[0]->delta_max;
+    if (P > 0.0) delta = m[0].pt.delta;
     out->period = in.a_max / m[0].pt.a;
     for (int j = 1; j < k; j++)
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
@@ -85,7 +104,7 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
         omp_set_max_active_levels(0);
 #pragma omp for schedule(dynamic, 1)
         for (int j = 0; j < k; j++) {
-            if (j > 0) member_load(p, o, delta, &m[j], &sv[j]);
+            if (j > 0) member_load(p, o, dmesh, delta, 0.0, &m[j], &sv[j]);
             member_shear(so, &m[j], &sv[j]);
         }
     }

@@ -80,15 +80,14 @@ static void expect_fail_on(const char *base, const char *extra, const char *n1, 
     expect_fail(args, n1, n2);
 }
 
-/* --placements: a whole number of meshes in [1, 8], and not with --load
- * (all refused while parsing, before any mesh is built) */
+/* --placements: a whole number of meshes in [1, 8] (refused while parsing,
+ * before any mesh is built) */
 static void test_bad_placements(void **state)
 {
     (void)state;
     expect_fail("asperity --delta 3 --shear --placements 0", "placements = '0'", "[1, 8]");
     expect_fail("asperity --delta 3 --shear --placements 9", "placements = '9'", "[1, 8]");
     expect_fail("asperity --delta 3 --shear --placements 2.5", "placements = '2.5'", "[1, 8]");
-    expect_fail("asperity --shear --load 5 --placements 2", "placements = 2", "--load");
 }
 
 static void test_bad_common_values(void **state)

@@ -4,7 +4,8 @@
  * materials and options gets every number the CLI prints, digit for digit:
  * an axisymmetric stick curve (elastic node entries sampled, loaded on past
  * its end), a 3D slip curve (graded core), a 3D elastic point (Hertz, shells
- * not coarsened) and a load-controlled shear run.
+ * not coarsened) and a load-controlled shear run, alone and as member 0 of an
+ * ensemble.
  * Coarse meshes and one thread keep each pair of runs to seconds.
  *
  * The binary is $STICTION_CLI if set, else ../bin/stiction relative to this
@@ -230,6 +231,13 @@ static void test_shear_load(void **state)
                                            : "\"Q_still_rising\": false"));
     same("P_at_slide_N", 0, r.P_slide);
     same("shear_increments", 0, r.increments);
+    /* under --placements 2 member 0 is this run and sets the others' delta */
+    run_json("--R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --Y-co 325 --load 0.3 "
+             "--criterion stiffness --alpha 0.9 --elements-per-contact 4 --placements 2");
+    same("load_P_over_P_c", 0, 0.3);
+    same("delta_mm", 0, pt.delta);
+    same("P_preload_N", 0, pt.P);
+    same("mu_s", 1, r.mu_s); /* members[0] */
 }
 
 /* A short shear run with a few ramp points, for the progress tests. */

@@ -325,6 +325,57 @@ static void test_load_control(void **state)
     }
 }
 
+/* The ensemble under load control: member 0 is the single load-controlled
+ * run (asp_shear_preload to P, then the ramp), the other member runs at its
+ * interference on a mesh sized as its own, shifted by half a period.  A
+ * coarse mesh (4 elements per contact): the mechanics, not the accuracy. */
+static void test_placements_load(void **state)
+{
+    (void)state;
+    stc_params p;
+    stc_material m;
+    stc_critical c;
+    asp_options o;
+    asp_shear_options so;
+    wsp_params(&p);
+    stc_params_materials(&p, &m, NULL);
+    assert_int_equal(stc_critical_eval(&m, p.R, &c), STC_OK);
+    asp_options_default(&o);
+    o.geom = ASP_GEOM_3D, o.mesh_level = 0, o.threads = 1, o.elements_per_contact = 4.0;
+    assert_int_equal(asp_options_for_shear(&o), STC_OK);
+    asp_shear_options_default(&so);
+    double P = 0.3 * c.P_c;
+    asp_placement_result *e = malloc(sizeof *e);
+    assert_non_null(e);
+    assert_int_equal(asp_shear_placements_preload(&p, &o, &so, 0.1, P, 2, e), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "give one of them"));
+    stc_status st = asp_shear_placements_preload(&p, &o, &so, 0.0, P, 2, e);
+    if (st) fail_msg("placements under load control: %s", stc_errmsg());
+    asp_solver *s = NULL;
+    asp_point pt;
+    asp_shear_result r;
+    assert_int_equal(asp_shear_preload(&p, &o, 0.0, P, &s, &pt), STC_OK);
+    assert_int_equal(asp_solver_shear(s, &so, NULL, NULL, &r), STC_OK);
+    asp_solver_destroy(&s);
+    printf("# placements at P = 0.3 Pc: delta %.6g mm, P0/P - 1 = %+.1e, P1/P - 1 = %+.1e, "
+           "mu_s %.5f / %.5f (single run %.5f), mean %.5f\n", e->m[0].pt.delta,
+           e->m[0].pt.P / P - 1, e->m[1].pt.P / P - 1, e->m[0].res.mu_s, e->m[1].res.mu_s,
+           r.mu_s, e->mu_s);
+    assert_true(fabs(e->m[0].pt.delta / pt.delta - 1) < 1e-10);
+    assert_true(fabs(e->m[0].res.mu_s / r.mu_s - 1) < 1e-10);
+    assert_true(fabs(e->m[0].pt.P / P - 1) <= 1e-3);
+    assert_true(e->m[1].pt.delta == e->m[0].pt.delta);
+    assert_true(fabs(e->m[1].pt.P / P - 1) < 0.02);
+    assert_true(fabs(e->m[1].elements_per_contact - 4.0 - 0.5 * e->period) < 1e-12);
+    assert_true(e->m[1].pt.a != e->m[0].pt.a); /* another mesh */
+    /* the meshes are sized to the contact (asp_shear_preload: 1.1 times the
+     * axisymmetric δ(P)): a_max / a0 = 1.1 sqrt(1.1) for Hertz, where
+     * twice the Hertz guess gave 1.1 sqrt(2) */
+    printf("# period (a_max / a0) %.4f\n", e->period);
+    assert_true(e->period > 1.1 && e->period < 1.25);
+    free(e);
+}
+
 /* ---- CLI ------------------------------------------------------------------- */
 
 static char cli[PATH_MAX];
@@ -360,7 +411,6 @@ static void test_cli_errors(void **state)
         {"--load -1", "load = '-1'"},
         {"--delta 0.5 --placements 9", "placements = '9'"},
         {"--delta 0.5 --placements 2.5", "placements = '2.5'"},
-        {"--load 2 --placements 2", "not under --load"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         char args[512];
@@ -688,6 +738,7 @@ int main(void)
     const struct CMUnitTest other[] = {
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_load_control),
+        cmocka_unit_test(test_placements_load),
         cmocka_unit_test(test_cli_errors),
         cmocka_unit_test(test_cli_json),
         cmocka_unit_test(test_thin_strong_coating),

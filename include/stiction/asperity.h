@@ -480,6 +480,14 @@ typedef struct asp_placement_result {
 STC_API stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
                                         const asp_shear_options *so, double delta, int k,
                                         asp_placement_result *out);
+/* The same at a preload given by delta (mm) or, with P > 0 (N; delta 0), by
+ * load control: member 0 is asp_shear_preload's run to P, and the others
+ * run at member 0's interference on meshes sized as its own (its delta_max),
+ * so their phases stay evenly spaced; their preloads differ from P by their
+ * meshes' (within about 1 %).  asp_shear_placements is this with P = 0. */
+STC_API stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *o,
+                                                const asp_shear_options *so, double delta,
+                                                double P, int k, asp_placement_result *out);
 
 /* One standard error of an ensemble's mean μs (absolute), the error model
  * above with these relative errors: err_single μs for one member, else the

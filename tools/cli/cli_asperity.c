@@ -29,7 +29,8 @@ static const cli_opt opts[] = {
                       "(> 0, increasing)"},
     {"delta-mm", "LIST", "interference(s) in mm (> 0, increasing)"},
     {"load", "X", "load control: the normal load P = X Pc_su instead of --delta, then shear "
-                  "(implies --shear)"},
+                  "(implies --shear; with --placements K member 0 finds the interference and "
+                  "the others run at it)"},
     {"shear", NULL, "after the normal step to one interference, shear to sliding inception "
                     "(3D model; implied by --load, --criterion, --alpha, --tau-c)"},
     CLI_HEADING("Contact and friction"),

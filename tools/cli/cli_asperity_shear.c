@@ -324,7 +324,7 @@ static int write_members_csv(const char *dir, const asp_placement_result *e)
 }
 
 static void print_placements_json(const asp_placement_result *e, const stc_critical *c,
-                                   double delta, stc_status st)
+                                   double delta, double load, stc_status st)
 {
     cli_json j;
     int ok = st == STC_OK;
@@ -332,6 +332,8 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
     cj_obj(&j, NULL);
     cj_num(&j, "delta_mm", delta);
     cj_num(&j, "delta_over_omega_c_su", delta / c->omega_c);
+    if (load > 0.0) cj_num(&j, "load_P_over_P_c", load);
+    else cj_null(&j, "load_P_over_P_c");
     cj_int(&j, "placements", e->k);
     cj_num(&j, "placement_period", e->period);
     if (ok) {
@@ -390,8 +392,11 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
 }
 
 static void print_placements_text(const asp_placement_result *e, const stc_critical *c,
-                                  stc_status st)
+                                  double delta, double load, stc_status st)
 {
+    if (load > 0.0)
+        printf("load control: P = %.6g Pc reached by member 0 at delta = %.6g mm (%.5g omega_c); "
+               "the others run at that delta\n", load, delta, delta / c->omega_c);
     printf("node-placement ensemble: %d meshes, elements per contact shifted by %.4g / %d "
            "(one node spacing at the contact edge)\n\n", e->k, e->period, e->k);
     printf("%8s %12s %10s %12s %12s %10s %8s\n", "member", "elem/contact", "a0 mm", "Q_max N",
@@ -423,15 +428,17 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
         fprintf(stderr, "stiction %s: %d node placements: normal step and shear ramp on each "
                         "(member 0 first, then the others side by side) ...\n", cmd,
                 sa->placements);
-    stc_status st = asp_shear_placements(p, o, &sa->so, dmm, sa->placements, e);
+    stc_status st = asp_shear_placements_preload(p, o, &sa->so, dmm, sa->load * c->P_c,
+                                                 sa->placements, e);
     if (st == STC_EINVAL || (st != STC_OK && e->k == 0)) {
         free(e);
         return cli_fail(cmd, st);
     }
     char why[512];
     snprintf(why, sizeof why, "%s", st == STC_OK ? "" : stc_errmsg());
-    if (json) print_placements_json(e, c, dmm, st);
-    else print_placements_text(e, c, st);
+    double delta = sa->load > 0.0 ? e->m[0].pt.delta : dmm;
+    if (json) print_placements_json(e, c, delta, sa->load, st);
+    else print_placements_text(e, c, delta, sa->load, st);
     if (st == STC_OK) warn_rising(cmd, rising_members(e), e->k, NAN);
     int rc = CLI_EXIT_OK;
     if (st != STC_OK) {
@@ -464,11 +471,6 @@ static int check_args(const char *cmd, const stc_params *p, asp_options *o,
     if (sa->load <= 0.0 && ndelta != 1) {
         fprintf(stderr, "stiction %s: delta: --shear needs one interference (--delta X or "
                         "--delta-mm X) or --load X, got %d values\n", cmd, ndelta);
-        return CLI_EXIT_USAGE;
-    }
-    if (sa->placements > 1 && sa->load > 0.0) {
-        fprintf(stderr, "stiction %s: placements = %d: the ensemble runs at a given --delta, "
-                        "not under --load\n", cmd, sa->placements);
         return CLI_EXIT_USAGE;
     }
     if (delta_mm > 0.01 * p->R) {
