@@ -295,6 +295,16 @@ static void test_errors(void **state)
 /* asp_solver_load_to_P on the (cheap) axisymmetric model: an elastic Hertz
  * target and one well past yield (P = 20 Pc, slip), each reached within the
  * tolerance; the plastic P(δ) lies below Hertz, so δ exceeds the Hertz δ. */
+/* The WSP sphere, its critical values and level-0 options on one thread. */
+static void wsp_setup(stc_params *p, stc_material *m, stc_critical *c, asp_options *o)
+{
+    wsp_params(p);
+    stc_params_materials(p, m, NULL);
+    assert_int_equal(stc_critical_eval(m, p->R, c), STC_OK);
+    asp_options_default(o);
+    o->mesh_level = 0, o->threads = 1;
+}
+
 static void test_load_control(void **state)
 {
     (void)state;
@@ -303,11 +313,7 @@ static void test_load_control(void **state)
     stc_critical c;
     asp_options o;
     asp_point pt;
-    wsp_params(&p);
-    stc_params_materials(&p, &m, NULL);
-    assert_int_equal(stc_critical_eval(&m, p.R, &c), STC_OK);
-    asp_options_default(&o);
-    o.mesh_level = 0, o.threads = 1;
+    wsp_setup(&p, &m, &c, &o);
     const double X[2] = {0.5, 20.0};
     for (int i = 0; i < 2; i++) {
         asp_solver *s = NULL;
@@ -337,11 +343,8 @@ static void test_placements_load(void **state)
     stc_critical c;
     asp_options o;
     asp_shear_options so;
-    wsp_params(&p);
-    stc_params_materials(&p, &m, NULL);
-    assert_int_equal(stc_critical_eval(&m, p.R, &c), STC_OK);
-    asp_options_default(&o);
-    o.geom = ASP_GEOM_3D, o.mesh_level = 0, o.threads = 1, o.elements_per_contact = 4.0;
+    wsp_setup(&p, &m, &c, &o);
+    o.geom = ASP_GEOM_3D, o.elements_per_contact = 4.0;
     assert_int_equal(asp_options_for_shear(&o), STC_OK);
     asp_shear_options_default(&so);
     double P = 0.3 * c.P_c;
