@@ -128,8 +128,6 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
                         m[j].elements_per_contact, m[j].message);
     }
     out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
-    asp_shear_options def;
-    if (!so) asp_shear_options_default(&def), so = &def;
     /* one member: its own error, the single mesh's at this δ */
     out->mu_s_err = asp_placement_mu_s_err(out, m[0].res.mu_s_err / m[0].res.mu_s,
                                            ASP_MU_S_ERR_FLOOR);

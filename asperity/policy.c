@@ -104,12 +104,12 @@ static double wide_delta_max(const stc_params *p, double P)
  * axisymmetric model's δ(P) (level 0, within 0.3 % of the converged load in
  * a second or two; the 3D mesh reads P within about 1 % of it), so its
  * contact gets the elements a run at that δ gets.  Meshed for twice the
- * Hertz guess instead, the contact had a fifth fewer elements across
- * (WSP 3 ωc: a_max / a 1.91 against 1.39).  The wide size if the
+ * Hertz guess instead, the contact had about a quarter fewer elements
+ * across (WSP 3 ωc: a_max / a 1.91 against 1.39).  The wide size if the
  * axisymmetric run fails. */
-static double preload_delta_max(const stc_params *p, const asp_options *o, double P)
+static double preload_delta_max(const stc_params *p, const asp_options *o, double P,
+                                double wide)
 {
-    double wide = wide_delta_max(p, P);
     asp_options ao;
     asp_options_default(&ao);
     ao.geom = ASP_GEOM_AXISYM, ao.mesh_level = 0;
@@ -130,15 +130,14 @@ stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double d
     *out = NULL;
     STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
               "preload: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
-    double dmax = delta;
-    if (P > 0.0) dmax = preload_delta_max(p, o, P);
+    double wide = P > 0.0 ? wide_delta_max(p, P) : delta;
+    double dmax = P > 0.0 ? preload_delta_max(p, o, P, wide) : delta;
     asp_solver *s = NULL;
     STC_CALL(asp_solver_create(p, o, dmax, &s));
     stc_status st = P > 0.0 ? asp_solver_load_to_P(s, P, 1e-3, pt) : asp_solver_load(s, delta, pt);
-    if (st != STC_OK && P > 0.0 && dmax < 0.01 * p->R) {
-        /* not reached within the sized mesh: the wide one */
+    if (st != STC_OK && dmax < wide) { /* not reached within the sized mesh: the wide one */
         asp_solver_destroy(&s);
-        STC_CALL(asp_solver_create(p, o, wide_delta_max(p, P), &s));
+        STC_CALL(asp_solver_create(p, o, wide, &s));
         st = asp_solver_load_to_P(s, P, 1e-3, pt);
     }
     if (st != STC_OK) {
