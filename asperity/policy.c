@@ -120,6 +120,7 @@ static double preload_delta_max(const stc_params *p, const asp_options *o, doubl
     stc_status st = asp_solver_create(p, &ao, wide, &a);
     if (st == STC_OK) st = asp_solver_load_to_P(a, P, 1e-3, &pt);
     asp_solver_destroy(&a);
+    if (st != STC_OK) stc_error_clear(); /* answered by the wide size */
     return st == STC_OK ? fmin(1.1 * pt.delta, wide) : wide;
 }
 
@@ -137,6 +138,7 @@ stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double d
     stc_status st = P > 0.0 ? asp_solver_load_to_P(s, P, 1e-3, pt) : asp_solver_load(s, delta, pt);
     if (st != STC_OK && dmax < wide) { /* not reached within the sized mesh: the wide one */
         asp_solver_destroy(&s);
+        stc_error_clear();
         STC_CALL(asp_solver_create(p, o, wide, &s));
         st = asp_solver_load_to_P(s, P, 1e-3, pt);
     }

@@ -292,9 +292,6 @@ static void test_errors(void **state)
 
 /* ---- load control ---------------------------------------------------------- */
 
-/* asp_solver_load_to_P on the (cheap) axisymmetric model: an elastic Hertz
- * target and one well past yield (P = 20 Pc, slip), each reached within the
- * tolerance; the plastic P(δ) lies below Hertz, so δ exceeds the Hertz δ. */
 /* The WSP sphere, its critical values and level-0 options on one thread. */
 static void wsp_setup(stc_params *p, stc_material *m, stc_critical *c, asp_options *o)
 {
@@ -305,6 +302,9 @@ static void wsp_setup(stc_params *p, stc_material *m, stc_critical *c, asp_optio
     o->mesh_level = 0, o->threads = 1;
 }
 
+/* asp_solver_load_to_P on the (cheap) axisymmetric model: an elastic Hertz
+ * target and one well past yield (P = 20 Pc, slip), each reached within the
+ * tolerance; the plastic P(δ) lies below Hertz, so δ exceeds the Hertz δ. */
 static void test_load_control(void **state)
 {
     (void)state;
