@@ -77,6 +77,18 @@ void asp_mesh_destroy(asp_mesh **m); /* sets *m = NULL */
  * elements of the scaled Jacobian).  Returns STC_EFORMAT if an element is
  * inverted. */
 stc_status asp_mesh_quality(const asp_mesh *m, double *worst);
+/* Local refinement (refine3d.c).  Splits every hex with mark[e] != 0 into
+ * eight; new edge and face nodes shared with unmarked elements become
+ * hanging nodes; new nodes on the spheres R_outer and R_interface (0: none)
+ * stay on them.  Refuses a marked element that touches a hanging node. */
+stc_status asp_mesh_refine3d(const asp_mesh *m, const unsigned char *mark, double R_outer,
+                             double R_interface, asp_mesh **out); /* returns new */
+/* `levels` nested 2:1 refinements of the elements near the contact edge
+ * a0 (h the element size there): the band a0 - 1.5 h ... a0 + 2 h
+ * laterally, 1.5 h deep, each further level one h narrower on every side;
+ * replaces *m. */
+stc_status asp_mesh_refine_band(asp_mesh **m, double R_outer, double R_interface, double h,
+                                double a0, int levels);
 
 /* ---- material: isotropic elasticity + von Mises perfect plasticity ----- */
 

@@ -70,6 +70,11 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
               "placements: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
     double t0 = omp_get_wtime();
+    /* an edge band: placed once for all members (under load control by
+     * member 0's preload, which finds it on the way) */
+    asp_options eo = *o;
+    if (delta > 0.0) STC_CALL(asp_options_edge(p, &eo, delta, 0.0));
+    o = &eo;
     asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
     asp_placement_member *m = out->m;
     out->k = k;
@@ -89,6 +94,7 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
      * meshes sized as its own (for the same delta_max), so the phases stay
      * evenly spaced; their loads differ from P by their meshes' */
     double dmesh = delta > 0.0 ? delta : sv[0]->delta_max;
+    eo.edge_a0 = sv[0]->opt.edge_a0;
     if (P > 0.0) delta = m[0].pt.delta;
     out->period = in.a_max / m[0].pt.a;
     for (int j = 1; j < k; j++)

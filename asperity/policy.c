@@ -100,15 +100,12 @@ static double wide_delta_max(const stc_params *p, double P)
     return fmin(2.0 * asp_hertz_delta_guess(P, su.E, su.nu, p->R), 0.01 * p->R);
 }
 
-/* The interference a load-controlled 3D run is meshed for: 1.1 times the
- * axisymmetric model's δ(P) (level 0, within 0.3 % of the converged load in
- * a second or two; the 3D mesh reads P within about 1 % of it), so its
- * contact gets the elements a run at that δ gets.  Meshed for twice the
- * Hertz guess instead, the contact had about a quarter fewer elements
- * across (WSP 3 ωc: a_max / a 1.91 against 1.39).  The wide size if the
- * axisymmetric run fails. */
-static double preload_delta_max(const stc_params *p, const asp_options *o, double P,
-                                double wide)
+/* The axisymmetric model (level 0) at δ or brought to P: within 0.3 % of
+ * the converged load in a second or two.  It sizes a load-controlled 3D
+ * run's mesh (asp_shear_preload) and places the edge band
+ * (asp_options_edge). */
+static stc_status axisym_preload(const stc_params *p, const asp_options *o, double delta,
+                                 double P, double dmax, asp_point *pt)
 {
     asp_options ao;
     asp_options_default(&ao);
@@ -116,12 +113,22 @@ static double preload_delta_max(const stc_params *p, const asp_options *o, doubl
     ao.contact = o->contact, ao.no_separation = o->no_separation;
     ao.return_map = o->return_map, ao.threads = o->threads;
     asp_solver *a = NULL;
-    asp_point pt;
-    stc_status st = asp_solver_create(p, &ao, wide, &a);
-    if (st == STC_OK) st = asp_solver_load_to_P(a, P, 1e-3, &pt);
+    stc_status st = asp_solver_create(p, &ao, dmax, &a);
+    if (st == STC_OK)
+        st = P > 0.0 ? asp_solver_load_to_P(a, P, 1e-3, pt) : asp_solver_load(a, delta, pt);
     asp_solver_destroy(&a);
-    if (st != STC_OK) stc_error_clear(); /* answered by the wide size */
-    return st == STC_OK ? fmin(1.1 * pt.delta, wide) : wide;
+    return st;
+}
+
+stc_status asp_options_edge(const stc_params *p, asp_options *o, double delta, double P)
+{
+    if (o->edge_refine <= 0 || o->edge_a0 > 0.0) return STC_OK;
+    STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
+              "edge band: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
+    asp_point pt;
+    STC_CALL(axisym_preload(p, o, delta, P, P > 0.0 ? wide_delta_max(p, P) : delta, &pt));
+    o->edge_a0 = pt.a;
+    return STC_OK;
 }
 
 stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double delta, double P,
@@ -131,8 +138,27 @@ stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double d
     *out = NULL;
     STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
               "preload: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
-    double wide = P > 0.0 ? wide_delta_max(p, P) : delta;
-    double dmax = P > 0.0 ? preload_delta_max(p, o, P, wide) : delta;
+    double wide = P > 0.0 ? wide_delta_max(p, P) : delta, dmax = delta;
+    asp_options eo = *o;
+    if (P > 0.0) {
+        /* A load-controlled 3D run is meshed for 1.1 times the axisymmetric
+         * model's δ(P) (the 3D mesh reads P within about 1 % of it), so its
+         * contact gets the elements a run at that δ gets.  Meshed for twice
+         * the Hertz guess instead, the contact had about a quarter fewer
+         * elements across (WSP 3 ωc: a_max / a 1.91 against 1.39).  The wide
+         * size if the axisymmetric run fails.  The same run places an edge
+         * band. */
+        asp_point ap;
+        if (axisym_preload(p, o, 0.0, P, wide, &ap) == STC_OK) {
+            dmax = fmin(1.1 * ap.delta, wide);
+            if (eo.edge_refine > 0 && !(eo.edge_a0 > 0.0)) eo.edge_a0 = ap.a;
+        } else {
+            stc_error_clear(); /* answered by the wide size */
+            dmax = wide;
+        }
+    }
+    STC_CALL(asp_options_edge(p, &eo, delta, P));
+    o = &eo;
     asp_solver *s = NULL;
     STC_CALL(asp_solver_create(p, o, dmax, &s));
     stc_status st = P > 0.0 ? asp_solver_load_to_P(s, P, 1e-3, pt) : asp_solver_load(s, delta, pt);

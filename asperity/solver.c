@@ -58,6 +58,8 @@ void asp_options_default(asp_options *o)
     o->shell_coarsen = -1;
     o->grade_3d = 0;
     o->sample_elastic = 0;
+    o->edge_refine = 0;
+    o->edge_a0 = 0.0;
 }
 
 static stc_status check_options(const asp_options *o)
@@ -73,6 +75,10 @@ static stc_status check_options(const asp_options *o)
               "grade-3d = %d: must be 0 or 1", o->grade_3d);
     STC_CHECK(o->sample_elastic == 0 || o->sample_elastic == 1, STC_EINVAL,
               "sample-elastic = %d: must be 0 or 1", o->sample_elastic);
+    STC_CHECK(o->edge_refine >= 0 && o->edge_refine <= 3, STC_EINVAL,
+              "edge refinements = %d: must be in [0, 3]", o->edge_refine);
+    STC_CHECK(o->edge_a0 >= 0.0 && isfinite(o->edge_a0), STC_EINVAL,
+              "edge a0 = %g mm: must be >= 0", o->edge_a0);
     STC_CHECK(o->shell_coarsen >= -1 && o->shell_coarsen <= 2, STC_EINVAL,
               "shell coarsenings = %d: must be -1 (default) or in [0, 2]", o->shell_coarsen);
     STC_CHECK(o->surface_layers >= -1 && o->surface_layers <= ASP_MESH_MAX_SURFACE_LAYERS,
@@ -192,6 +198,12 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
             s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
         }
         STC_CALL(asp_mesh_half3d(&spec, &s->mesh));
+        if (s->opt.edge_refine > 0 && s->opt.edge_a0 > 0.0 && !graded)
+        {
+            STC_CALL(asp_mesh_refine_band(&s->mesh, s->par.R + t, t > 0.0 ? s->par.R : 0.0,
+                                          s->a_max / n, s->opt.edge_a0, s->opt.edge_refine));
+            s->edge_refine = s->opt.edge_refine;
+        }
     } else {
         STC_CALL(asp_mesh_axisym_nl(&spec, s->a_min, n, asp_surface_layers(&s->opt), &s->mesh));
     }
@@ -280,6 +292,8 @@ void asp_solver_info(const asp_solver *s, asp_info *info)
     info->h_contact = s->h;
     info->a_max = s->a_max;
     info->elements_per_contact = s->n_contact;
+    info->edge_refine = s->edge_refine;
+    info->edge_a0 = s->edge_refine > 0 ? s->opt.edge_a0 : 0.0;
     info->a_min = s->a_min;
     asp_ls_stats ls;
     int n_asm;

@@ -55,6 +55,7 @@ struct asp_solver {
     double Rp, h, h0, a_max, a_min, delta_max, quality; /* h0: size at a_min */
     double n_contact;     /* elements across a_max (h = a_max / n_contact) */
     int graded;           /* 3D: core sized to a_min, shells h ∝ distance */
+    int edge_refine;      /* 3D: 2:1 refinements of the contact-edge band in the mesh */
 
     asp_linsolve *ls;     /* the linear solver (linsolve.c) on K's fixed pattern */
     asp_asm *as;          /* assembly: pattern, scatter maps, colours (assemble.c) */

@@ -185,6 +185,14 @@ static stc_status node_areas(const asp_mesh *m, double R_outer, const foot *fp, 
                         : areas_half3d(m, R_outer, fp, area);
     STC_CHECK(n > 0, STC_EINVAL,
               "surface areas: no element face lies on the sphere R_outer = %g mm", R_outer);
+    /* a hanging node (refine3d.c) carries no load of its own: its share goes
+     * to its masters by its weights, as its forces do */
+    for (int k = 0; k < m->nhang; k++) {
+        double *ah = area + m->hang[k];
+        for (int a = 0; a < 4 && m->hang_m[4 * k + a] >= 0; a++)
+            area[m->hang_m[4 * k + a]] += m->hang_w[4 * k + a] * *ah;
+        *ah = 0.0;
+    }
     return STC_OK;
 }
 

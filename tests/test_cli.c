@@ -88,6 +88,7 @@ static void test_bad_placements(void **state)
     expect_fail("asperity --delta 3 --shear --placements 0", "placements = '0'", "[1, 8]");
     expect_fail("asperity --delta 3 --shear --placements 9", "placements = '9'", "[1, 8]");
     expect_fail("asperity --delta 3 --shear --placements 2.5", "placements = '2.5'", "[1, 8]");
+    expect_fail("asperity --delta 3 --shear --edge-refine 4", "edge-refine = '4'", "[0, 3]");
 }
 
 static void test_bad_common_values(void **state)
@@ -481,7 +482,7 @@ static void test_help_layout(void **state)
         at = next;
     }
     assert_null(strstr(help, "xperimental"));
-    const char *expert[] = {"--surface-layers", "--shell-coarsen", "--grade-3d",
+    const char *expert[] = {"--surface-layers", "--shell-coarsen", "--edge-refine", "--grade-3d",
                             "--newton-reuse", "--krylov", "--krylov-max", "--steps-per-node",
                             "--return-map", "--ramp-return-map", "--junction"};
     const char *sect = strstr(help, "Expert numerics");

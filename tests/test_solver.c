@@ -514,6 +514,49 @@ static void test_hanging_nodes(void **state)
     assert_true(fabs(pt[1].a / pt[0].a - 1) < 0.002);
 }
 
+/* The band refined around the contact edge (refine3d.c): its hanging nodes
+ * keep the equilibrium of the base reaction with the contact load, the
+ * surface nodes added at the edge come into contact, and the elastic load
+ * moves by what the finer contact sampling at the edge adds.  Hertz a/R =
+ * 0.01, band at the Hertz radius; measured P against Hertz (converged
+ * +0.62 %): n = 6: +0.665 / +1.034 / +1.099 % (0 / 1 / 2 levels), n = 7:
+ * +0.751 / +0.947 / +0.989 %, n = 12: +0.735 / +0.812 / +0.819 %: node-to-flat
+ * contact on the coarse edge lets the faces between nodes sink in (softer),
+ * which cancelled part of the coarse hexahedra's stiffness. */
+static void test_edge_band(void **state)
+{
+    (void)state;
+    stc_params p;
+    asp_options o;
+    asp_info in[3];
+    asp_point pt[3];
+    double delta = 0.01 * 0.01 * 10.09;
+    hertz_params(&p);
+    for (int k = 0; k < 3; k++) {
+        asp_solver *s = NULL;
+        asp_options_default(&o);
+        o.mesh_level = 0, o.geom = ASP_GEOM_3D, o.shell_coarsen = 0;
+        o.edge_refine = k, o.edge_a0 = sqrt(p.R * delta);
+        assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
+        assert_int_equal(asp_solver_load(s, delta, &pt[k]), STC_OK);
+        asp_solver_info(s, &in[k]);
+        asp_solver_destroy(&s);
+        assert_int_equal(in[k].edge_refine, k);
+        assert_true(fabs(pt[k].P_base / pt[k].P - 1) < 1e-8);
+    }
+    printf("# edge band 0 / 1 / 2 levels: %d / %d / %d DOFs, %d / %d / %d nodes in contact, "
+           "P %+.3f %% / %+.3f %%, a %+.3f %% / %+.3f %%\n", in[0].dofs, in[1].dofs, in[2].dofs,
+           pt[0].n_contact, pt[1].n_contact, pt[2].n_contact, 100 * (pt[1].P / pt[0].P - 1),
+           100 * (pt[2].P / pt[0].P - 1), 100 * (pt[1].a / pt[0].a - 1),
+           100 * (pt[2].a / pt[0].a - 1));
+    assert_true(in[0].dofs < in[1].dofs && in[1].dofs < in[2].dofs);
+    assert_true(pt[0].n_contact < pt[1].n_contact && pt[1].n_contact < pt[2].n_contact);
+    for (int k = 1; k < 3; k++) {
+        assert_true(pt[k].P > pt[0].P && pt[k].P / pt[0].P - 1 < 0.006);
+        assert_true(fabs(pt[k].a / pt[0].a - 1) < 0.01);
+    }
+}
+
 /* Coated stick run with the Newton steps solved by a factorization each
  * (krylov off) or by PCG preconditioned with the last factor (on). */
 static void krylov_run(asp_krylov mode, asp_contact_law contact, asp_geom geom, asp_point *pt,
@@ -768,6 +811,7 @@ int main(void)
         cmocka_unit_test(test_smooth_tail),
         cmocka_unit_test(test_3d_vs_axisym),
         cmocka_unit_test(test_hanging_nodes), cmocka_unit_test(test_elements_per_contact),
+        cmocka_unit_test(test_edge_band),
         cmocka_unit_test(test_krylov),
         cmocka_unit_test(test_return_map_steps),
         cmocka_unit_test(test_surface_layers), cmocka_unit_test(test_contact_radius_plastic),

@@ -139,6 +139,14 @@ typedef struct asp_options {
                                 fitting across the yield bend; 0 = jump to the
                                 predicted yield.  asp_options_for_curve sets it
                                 for load curves; default 0 */
+    int edge_refine;         /* 3D: nested 2:1 refinements of the elements in a band
+                                around the preload's contact edge (hanging nodes,
+                                asperity/refine3d.c), in [0, 3]; needs edge_a0;
+                                default 0 */
+    double edge_a0;          /* 3D: the preload's contact radius the band is centred
+                                on, mm (asp_shear_preload sets it from the
+                                axisymmetric model when edge_refine > 0 and it is 0);
+                                default 0 */
 } asp_options;
 
 STC_API void asp_options_default(asp_options *o);
@@ -155,6 +163,9 @@ typedef struct asp_info {
     double a_min;        /* smallest contact radius with about elements_per_contact
                             elements across (a load curve's mesh: between a_min
                             and a_max every contact has); a_max if none, mm */
+    int edge_refine;     /* 2:1 refinements of the band around the preload's contact
+                            edge in the mesh (asp_options.edge_refine), 0 if none */
+    double edge_a0;      /* the contact radius that band is centred on, mm (0: none) */
     /* where the time went since create (wall, s): element loops (tangent and
      * residual), numeric factorizations, PCG iterations (solves + mat-vecs) */
     double time_assembly_s, time_factorize_s, time_pcg_s;
@@ -546,6 +557,13 @@ typedef void (*asp_curve_fn)(void *ctx, const asp_solver *s, int i);
 STC_API stc_status asp_curve_run(const stc_params *p, const asp_options *o,
                                  const double *delta, int n, asp_curve_fn cb, void *ctx,
                                  asp_curve_point *pts, asp_curve_result *res);
+
+/* With o->edge_refine > 0 and o->edge_a0 = 0: sets o->edge_a0 to the
+ * preload's contact radius from the axisymmetric model (level 0) at the
+ * interference delta (mm) or brought to the load P (N), one of them > 0.
+ * Otherwise leaves o as it is.  asp_shear_preload and the placement
+ * ensembles call it. */
+STC_API stc_status asp_options_edge(const stc_params *p, asp_options *o, double delta, double P);
 
 /* The solver of a shear run at its preload: meshed for delta (mm) and
  * loaded to it; or, with P > 0 (N; delta 0), meshed for twice the Hertz

@@ -80,6 +80,9 @@ static const cli_opt opts[] = {
     {"shell-coarsen", "N",
      "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
      "(default: 1, from 6 a_max on, with --shear; 0 for the normal step alone)"},
+    {"edge-refine", "K",
+     "3D: K nested 2:1 refinements of the elements in a band around the preload's contact "
+     "edge (from the axisymmetric model's contact radius), 0..3 (default 0)"},
     {"grade-3d", NULL,
      "3D: core sized to the smallest contact a curve resolves, shells growing with the "
      "distance (4 2^level elements across every contact, no shell coarsening); the default "
@@ -179,6 +182,11 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         stc_status st = cli_parse_flag(key, value, &f);
         if (st) return st;
         a->o.grade_3d = a->grade = f;
+    } else if (!strcmp(key, "edge-refine")) {
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 3)
+            return bad(key, value, "an integer in [0, 3]");
+        a->o.edge_refine = (int)l;
     } else if (!strcmp(key, "shell-coarsen")) {
         long l;
         if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 2)

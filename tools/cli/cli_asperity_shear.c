@@ -195,6 +195,8 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
     cj_int(&j, "elements", in->elements);
     cj_num(&j, "elements_per_contact", in->elements_per_contact);
     cj_num(&j, "a_max_mm", in->a_max);
+    cj_int(&j, "edge_refine", in->edge_refine);
+    cj_num(&j, "edge_a0_mm", in->edge_a0);
     cj_int(&j, "increments", pt->increments);
     cj_int(&j, "newton_iterations", pt->newton_iterations + r->newton_iterations); /* both steps */
     cj_num(&j, "wall_s", pt->wall_s);
@@ -247,8 +249,12 @@ static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_
                        const stc_critical *c, const ptlist *l, stc_status st)
 {
     printf("mesh: %d elements, %d DOFs (3D half model), h = %.3g mm at the contact, %.4g "
-           "elements across a_max\n", in->elements, in->dofs, in->h_contact,
+           "elements across a_max", in->elements, in->dofs, in->h_contact,
            in->elements_per_contact);
+    if (in->edge_refine > 0)
+        printf(", %d times finer around the contact edge at %.4g mm", 1 << in->edge_refine,
+               in->edge_a0);
+    printf("\n");
     printf("normal step: delta/wc = %.5g, P = %.6g N (P/Pc = %.5g), a = %.5g mm, %d increments, "
            "%.2f s\n\n", pt->delta / c->omega_c, pt->P, pt->P / c->P_c, pt->a, pt->increments,
            pt->wall_s);
