@@ -479,6 +479,21 @@ static void test_3d_vs_axisym(void **state)
     assert_true(fabs(p3.P_base / p3.P - 1) < 1e-6);
 }
 
+/* One 3D Hertz point with options o: its point and mesh; the base
+ * reaction must balance the contact load (a hanging node's force lost or
+ * put on the wrong master would break it). */
+static void hertz_3d(const asp_options *o, double delta, asp_point *pt, asp_info *in)
+{
+    stc_params p;
+    asp_solver *s = NULL;
+    hertz_params(&p);
+    assert_int_equal(asp_solver_create(&p, o, delta, &s), STC_OK);
+    assert_int_equal(asp_solver_load(s, delta, pt), STC_OK);
+    asp_solver_info(s, in);
+    asp_solver_destroy(&s);
+    assert_true(fabs(pt->P_base / pt->P - 1) < 1e-8);
+}
+
 /* Hanging nodes of the coarsened 3D shells (mesh3d.c, assemble.c
  * scatter_hang): the default (one 2:1 step from 6 a_max) and two steps
  * against the uncoarsened mesh.  A force of a hanging node lost or put on
@@ -488,23 +503,16 @@ static void test_3d_vs_axisym(void **state)
 static void test_hanging_nodes(void **state)
 {
     (void)state;
-    stc_params p;
     asp_options o;
     asp_info in;
     asp_point pt[3];
     int dofs[3];
     double delta = 0.01 * 0.01 * 10.09;
-    hertz_params(&p);
     for (int k = 0; k < 3; k++) {
-        asp_solver *s = NULL;
         asp_options_default(&o);
         o.mesh_level = 0, o.geom = ASP_GEOM_3D, o.shell_coarsen = k == 0 ? 0 : k == 1 ? -1 : 2;
-        assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
-        assert_int_equal(asp_solver_load(s, delta, &pt[k]), STC_OK);
-        asp_solver_info(s, &in);
+        hertz_3d(&o, delta, &pt[k], &in);
         dofs[k] = in.dofs;
-        asp_solver_destroy(&s);
-        assert_true(fabs(pt[k].P_base / pt[k].P - 1) < 1e-8);
     }
     printf("# hanging nodes: %d / %d / %d DOFs (none / default / 2 steps), P %+.3f %% / %+.3f %%\n",
            dofs[0], dofs[1], dofs[2], 100 * (pt[1].P / pt[0].P - 1), 100 * (pt[2].P / pt[0].P - 1));
@@ -533,16 +541,11 @@ static void test_edge_band(void **state)
     double delta = 0.01 * 0.01 * 10.09;
     hertz_params(&p);
     for (int k = 0; k < 3; k++) {
-        asp_solver *s = NULL;
         asp_options_default(&o);
         o.mesh_level = 0, o.geom = ASP_GEOM_3D, o.shell_coarsen = 0;
         o.edge_refine = k, o.edge_a0 = sqrt(p.R * delta);
-        assert_int_equal(asp_solver_create(&p, &o, delta, &s), STC_OK);
-        assert_int_equal(asp_solver_load(s, delta, &pt[k]), STC_OK);
-        asp_solver_info(s, &in[k]);
-        asp_solver_destroy(&s);
+        hertz_3d(&o, delta, &pt[k], &in[k]);
         assert_int_equal(in[k].edge_refine, k);
-        assert_true(fabs(pt[k].P_base / pt[k].P - 1) < 1e-8);
     }
     printf("# edge band 0 / 1 / 2 levels: %d / %d / %d DOFs, %d / %d / %d nodes in contact, "
            "P %+.3f %% / %+.3f %%, a %+.3f %% / %+.3f %%\n", in[0].dofs, in[1].dofs, in[2].dofs,
