@@ -38,7 +38,8 @@
  * The junction's edge advances by up to ~13 % of a0 (0.5-0.8 h at six
  * elements across a_max) before sliding.  WSP 12 ωc, two levels: a band
  * of 2 / 3 / 2 h gave μs 0.3343 at 36795 DOFs and 126 s, this one 0.3340
- * at 22356 DOFs and 47 s (docs/design.md §4.6). */
+ * at 22356 DOFs and 47 s; over four placements at WSP 3 ωc the wider band
+ * scattered 0.5 %, this one 2.1 % (docs/design.md §4.6). */
 static const double ASP_BAND_IN = 1.5, ASP_BAND_OUT = 2.0, ASP_BAND_DEPTH = 1.5;
 
 /* Hex8 corner a at local (ξ, η, ζ) ∈ {0, 1}³ (mesh3d.c's order). */
