@@ -360,8 +360,9 @@ static int mark_band(const asp_mesh *M, double Rp, double r_in, double r_out, do
 stc_status asp_mesh_refine_band(asp_mesh **M, double Rp, double R_interface, double h,
                                 double a0, int levels)
 {
-    STC_CHECK(levels >= 0 && levels <= 3, STC_EINVAL,
-              "edge refinement: levels = %d: must be in [0, 3]", levels);
+    STC_CHECK(levels >= 0 && levels <= 2, STC_EINVAL,
+              "edge refinement: levels = %d: must be in [0, 2] (a third band, one h inside "
+              "the second, is empty)", levels);
     STC_CHECK(a0 > 0.0 && h > 0.0, STC_EINVAL,
               "edge refinement: a0 = %g mm, h = %g mm: both must be > 0", a0, h);
     for (int lv = 0; lv < levels; lv++) {

@@ -75,8 +75,8 @@ static stc_status check_options(const asp_options *o)
               "grade-3d = %d: must be 0 or 1", o->grade_3d);
     STC_CHECK(o->sample_elastic == 0 || o->sample_elastic == 1, STC_EINVAL,
               "sample-elastic = %d: must be 0 or 1", o->sample_elastic);
-    STC_CHECK(o->edge_refine >= 0 && o->edge_refine <= 3, STC_EINVAL,
-              "edge refinements = %d: must be in [0, 3]", o->edge_refine);
+    STC_CHECK(o->edge_refine >= 0 && o->edge_refine <= 2, STC_EINVAL,
+              "edge refinements = %d: must be in [0, 2]", o->edge_refine);
     STC_CHECK(o->edge_a0 >= 0.0 && isfinite(o->edge_a0), STC_EINVAL,
               "edge a0 = %g mm: must be >= 0", o->edge_a0);
     STC_CHECK(o->shell_coarsen >= -1 && o->shell_coarsen <= 2, STC_EINVAL,

@@ -82,7 +82,7 @@ static const cli_opt opts[] = {
      "(default: 1, from 6 a_max on, with --shear; 0 for the normal step alone)"},
     {"edge-refine", "K",
      "3D: K nested 2:1 refinements of the elements in a band around the preload's contact "
-     "edge (from the axisymmetric model's contact radius), 0..3 (default 0)"},
+     "edge (from the axisymmetric model's contact radius), 0..2 (default 0)"},
     {"grade-3d", NULL,
      "3D: core sized to the smallest contact a curve resolves, shells growing with the "
      "distance (4 2^level elements across every contact, no shell coarsening); the default "
@@ -184,8 +184,8 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
         a->o.grade_3d = a->grade = f;
     } else if (!strcmp(key, "edge-refine")) {
         long l;
-        if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 3)
-            return bad(key, value, "an integer in [0, 3]");
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > 2)
+            return bad(key, value, "an integer in [0, 2]");
         a->o.edge_refine = (int)l;
     } else if (!strcmp(key, "shell-coarsen")) {
         long l;
