@@ -89,6 +89,7 @@ static void test_bad_placements(void **state)
     expect_fail("asperity --delta 3 --shear --placements 9", "placements = '9'", "[1, 8]");
     expect_fail("asperity --delta 3 --shear --placements 2.5", "placements = '2.5'", "[1, 8]");
     expect_fail("asperity --delta 3 --shear --edge-refine 3", "edge-refine = '3'", "[0, 2]");
+    expect_fail("asperity --delta 3 --edge-refine 2", "edge-refine = 2", "only with --shear");
 }
 
 static void test_bad_common_values(void **state)

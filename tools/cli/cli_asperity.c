@@ -81,8 +81,10 @@ static const cli_opt opts[] = {
      "3D: 2:1 angular coarsenings of the mesh's outer shells (hanging nodes), 0..2 "
      "(default: 1, from 6 a_max on, with --shear; 0 for the normal step alone)"},
     {"edge-refine", "K",
-     "3D: K nested 2:1 refinements of the elements in a band around the preload's contact "
-     "edge (from the axisymmetric model's contact radius), 0..2 (default 0)"},
+     "--shear: K nested 2:1 refinements of the elements in a band around the preload's "
+     "contact edge (placed from the axisymmetric model's contact radius), 0..2 (default 0); "
+     "K = 2 cuts the node-placement scatter of mu_s to 0.1-3.4 % (6.8 % at 72 omega_c) at "
+     "4-15x the time"},
     {"grade-3d", NULL,
      "3D: core sized to the smallest contact a curve resolves, shells growing with the "
      "distance (4 2^level elements across every contact, no shell coarsening); the default "
@@ -448,6 +450,11 @@ int cli_asperity(const cli_cmd *cmd, int argc, char **argv)
         if (a.sh.on) {
             rc = cli_asperity_shear(cmd->name, &p, &a.o, &a.sh, a.delta, a.ndelta, a.in_mm,
                                     a.json, a.out);
+        } else if (a.o.edge_refine > 0) {
+            /* the band sits at the preload's contact edge, for the ramp */
+            fprintf(stderr, "stiction %s: edge-refine = %d: only with --shear\n", cmd->name,
+                    a.o.edge_refine);
+            rc = CLI_EXIT_USAGE;
         } else if (!a.delta) {
             fprintf(stderr, "stiction %s: --delta or --delta-mm is required\n", cmd->name);
             rc = CLI_EXIT_USAGE;
