@@ -141,7 +141,9 @@ typedef struct asp_options {
                                 for load curves; default 0 */
     int edge_refine;         /* 3D: nested 2:1 refinements of the elements in a band
                                 around the preload's contact edge (hanging nodes,
-                                asperity/refine3d.c), in [0, 2]; needs edge_a0;
+                                asperity/refine3d.c), in [0, 2]; needs edge_a0,
+                                none on the graded core of a load curve
+                                (asp_info.edge_refine says what the mesh has);
                                 default 0 */
     double edge_a0;          /* 3D: the preload's contact radius the band is centred
                                 on, mm (asp_shear_preload sets it from the
