@@ -37,12 +37,15 @@ typedef struct asp_mesh {
     int *conn;            /* [nelem][nen], counter-clockwise / positive Jacobian */
     int *region;          /* [nelem] ASP_REGION_* */
     unsigned char *flags; /* [nnode] ASP_NODE_* bits */
-    /* Hanging nodes (3D shell coarsening, mesh3d.c): node hang[k] is not an
-     * unknown; its displacement is sum_a hang_w[4k+a] u(hang_m[4k+a]) over
-     * its masters (hang_m = -1 for unused slots; weights sum to 1; a master
-     * is never itself hanging).  Its coordinates are the same average of
-     * the masters', so the fine elements that use it conform to the coarse
-     * face it lies on.  nhang = 0 and NULL arrays when there are none. */
+    /* Hanging nodes (3D shell coarsening, mesh3d.c; the edge band,
+     * refine3d.c): node hang[k] is not an unknown; its displacement is
+     * sum_a hang_w[4k+a] u(hang_m[4k+a]) over its masters (hang_m = -1 for
+     * unused slots; weights sum to 1; a master is never itself hanging).
+     * Its coordinates are the same average of the masters', so the fine
+     * elements that use it conform to the coarse face it lies on, except on
+     * the outer sphere and the coating interface, where the band's are
+     * moved radially onto the sphere (h²/(8R) off the chord).  nhang = 0 and
+     * NULL arrays when there are none (the band's may be allocated). */
     int nhang;
     int *hang;            /* [nhang] node ids */
     int *hang_m;          /* [nhang][4] master node ids or -1 */
@@ -83,10 +86,10 @@ stc_status asp_mesh_quality(const asp_mesh *m, double *worst);
  * stay on them.  Refuses a marked element that touches a hanging node. */
 stc_status asp_mesh_refine3d(const asp_mesh *m, const unsigned char *mark, double R_outer,
                              double R_interface, asp_mesh **out); /* returns new */
-/* `levels` nested 2:1 refinements of the elements near the contact edge
- * a0 (h the element size there): the band a0 - 1.5 h ... a0 + 2 h
- * laterally, 1.5 h deep, each further level one h narrower on every side;
- * replaces *m. */
+/* `levels` (0..2) nested 2:1 refinements of the elements near the contact
+ * edge a0 (h the element size there): the band a0 - 1.5 h ... a0 + 2 h
+ * laterally, the elements that start less than 1.5 h deep, each further
+ * level one h narrower on every side and shallower; replaces *m. */
 stc_status asp_mesh_refine_band(asp_mesh **m, double R_outer, double R_interface, double h,
                                 double a0, int levels);
 

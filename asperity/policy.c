@@ -149,9 +149,13 @@ stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double d
          * size if the axisymmetric run fails.  The same run places an edge
          * band. */
         asp_point ap;
-        if (axisym_preload(p, o, 0.0, P, wide, &ap) == STC_OK) {
+        stc_status ast = axisym_preload(p, o, 0.0, P, wide, &ap);
+        int band = eo.edge_refine > 0 && !(eo.edge_a0 > 0.0);
+        if (ast == STC_OK) {
             dmax = fmin(1.1 * ap.delta, wide);
-            if (eo.edge_refine > 0 && !(eo.edge_a0 > 0.0)) eo.edge_a0 = ap.a;
+            if (band) eo.edge_a0 = ap.a;
+        } else if (band) {
+            return ast; /* the band has no a0 to sit at: the axisymmetric run's reason */
         } else {
             stc_error_clear(); /* answered by the wide size */
             dmax = wide;

@@ -72,6 +72,7 @@ static size_t key_hash(const rf_key *k, size_t cap)
 {
     uint64_t h = 1469598103934665603ull;
     for (int a = 0; a < 4; a++) h = (h ^ (uint32_t)k->id[a]) * 1099511628211ull;
+    h ^= h >> 32; /* the high bits into the slot: node ids reach far beyond cap */
     return (size_t)(h & (cap - 1));
 }
 

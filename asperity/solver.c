@@ -198,9 +198,8 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
             s->a_min = s->a_max; /* the 3D mesh is uniform over the a_max zone */
         }
         STC_CALL(asp_mesh_half3d(&spec, &s->mesh));
-        if (s->opt.edge_refine > 0 && s->opt.edge_a0 > 0.0 && !graded)
-        {
-            STC_CALL(asp_mesh_refine_band(&s->mesh, s->par.R + t, t > 0.0 ? s->par.R : 0.0,
+        if (s->opt.edge_refine > 0 && s->opt.edge_a0 > 0.0 && !graded) {
+            STC_CALL(asp_mesh_refine_band(&s->mesh, s->Rp, t > 0.0 ? s->par.R : 0.0,
                                           s->a_max / n, s->opt.edge_a0, s->opt.edge_refine));
             s->edge_refine = s->opt.edge_refine;
         }

@@ -12,7 +12,10 @@ static inline void elem_coords(const asp_mesh *M, int e, double X[24])
         for (int i = 0; i < 3; i++) X[3 * a + i] = M->x[3 * M->conn[8 * e + a] + i];
 }
 
-static inline double norm3(const double *x) { return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]); }
+static inline double norm3(const double *x)
+{
+    return sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+}
 
 /* Volume by 2x2x2 Gauss (exact for the trilinear map's Jacobian). */
 static inline double hex_volume(const double X[24])

@@ -40,8 +40,8 @@ static asp_mesh *make(double t, double a)
     return M;
 }
 
-/* Hanging-node invariants of M; returns how many hanging nodes lie within
- * r0 < r < r1 of the axis. */
+/* Hanging-node invariants of M; returns how many hanging nodes were moved
+ * off their masters' average onto a sphere. */
 static int check_hanging(const asp_mesh *M, double Rp, double Ri, double h)
 {
     unsigned char *is_h = calloc((size_t)M->nnode, 1);
@@ -83,7 +83,7 @@ static int check_hanging(const asp_mesh *M, double Rp, double Ri, double h)
     return near;
 }
 
-/* Band refinement of one mesh, 0..2 levels. */
+/* Band refinement of one mesh, one and two levels, against the unrefined. */
 static void band(double t, double a)
 {
     asp_mesh *M0 = make(t, a);

@@ -146,9 +146,10 @@ typedef struct asp_options {
                                 (asp_info.edge_refine says what the mesh has);
                                 default 0 */
     double edge_a0;          /* 3D: the preload's contact radius the band is centred
-                                on, mm (asp_shear_preload sets it from the
-                                axisymmetric model when edge_refine > 0 and it is 0);
-                                default 0 */
+                                on, mm; 0 with edge_refine > 0: asp_shear_preload and
+                                the placement ensembles find it in their copy of the
+                                options from the axisymmetric model (asp_options_edge;
+                                asp_info.edge_a0 reports it); default 0 */
 } asp_options;
 
 STC_API void asp_options_default(asp_options *o);
@@ -485,7 +486,9 @@ typedef struct asp_placement_result {
                                 error (one member) and ASP_MU_S_ERR_FLOOR */
     double mu_s_min, mu_s_max;
     double mu_s_preload, Q_max, P_slide; /* means */
-    double period;           /* T = a_max / a0, in elements per contact */
+    double period;           /* T = a_max / a0 / 2^edge_refine, in elements per contact:
+                                the shift that moves the surface nodes at the edge by
+                                one spacing */
     double wall_s;
     asp_placement_member m[ASP_PLACEMENTS_MAX];
 } asp_placement_result;
