@@ -100,6 +100,7 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
      * coarse one, or the band's, 2^K times finer (a coarse shift moves the
      * band's nodes by whole spacings: every member at one phase) */
     out->period = in.a_max / m[0].pt.a / (1 << in.edge_refine);
+    out->edge_refine = in.edge_refine;
     for (int j = 1; j < k; j++)
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
     int nt = o->threads > 0 ? o->threads : omp_get_max_threads();

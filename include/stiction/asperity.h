@@ -489,6 +489,7 @@ typedef struct asp_placement_result {
     double period;           /* T = a_max / a0 / 2^edge_refine, in elements per contact:
                                 the shift that moves the surface nodes at the edge by
                                 one spacing */
+    int edge_refine;         /* the members' edge band (asp_info.edge_refine), 0 if none */
     double wall_s;
     asp_placement_member m[ASP_PLACEMENTS_MAX];
 } asp_placement_result;

@@ -343,6 +343,7 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
     else cj_null(&j, "load_P_over_P_c");
     cj_int(&j, "placements", e->k);
     cj_num(&j, "placement_period", e->period);
+    cj_int(&j, "edge_refine", e->edge_refine);
     if (ok) {
         cj_num(&j, "mu_s", e->mu_s);
         cj_num(&j, "mu_s_err", e->mu_s_err);
@@ -405,7 +406,9 @@ static void print_placements_text(const asp_placement_result *e, const stc_criti
         printf("load control: P = %.6g Pc reached by member 0 at delta = %.6g mm (%.5g omega_c); "
                "the others run at that delta\n", load, delta, delta / c->omega_c);
     printf("node-placement ensemble: %d meshes, elements per contact shifted by %.4g / %d "
-           "(one node spacing at the contact edge)\n\n", e->k, e->period, e->k);
+           "(one node spacing at the contact edge", e->k, e->period, e->k);
+    if (e->edge_refine > 0) printf(", in a band %d times finer", 1 << e->edge_refine);
+    printf(")\n\n");
     printf("%8s %12s %10s %12s %12s %10s %8s\n", "member", "elem/contact", "a0 mm", "Q_max N",
            "P slide N", "mu_s", "ramp s");
     for (int j = 0; j < e->k; j++) {
