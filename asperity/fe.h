@@ -80,6 +80,10 @@ void asp_mesh_destroy(asp_mesh **m); /* sets *m = NULL */
  * elements of the scaled Jacobian).  Returns STC_EFORMAT if an element is
  * inverted. */
 stc_status asp_mesh_quality(const asp_mesh *m, double *worst);
+/* Whether node n lies on the sphere |x| = R about the origin (relative
+ * tolerance 1e-9; the meshes put surface and interface nodes on it exactly
+ * up to rounding); 0 for R <= 0. */
+int asp_mesh_on_sphere(const asp_mesh *m, int n, double R);
 /* Local refinement (refine3d.c).  Splits every hex with mark[e] != 0 into
  * eight; new edge and face nodes shared with unmarked elements become
  * hanging nodes; new nodes on the spheres R_outer and R_interface (0: none)

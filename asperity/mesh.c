@@ -505,6 +505,14 @@ static double hex_quality(const double *X)
     return w;
 }
 
+int asp_mesh_on_sphere(const asp_mesh *m, int n, double R)
+{
+    const double *x = m->x + (size_t)m->dim * n;
+    double r2 = 0.0;
+    for (int i = 0; i < m->dim; i++) r2 += x[i] * x[i];
+    return R > 0.0 && fabs(sqrt(r2) - R) <= 1e-9 * R;
+}
+
 stc_status asp_mesh_quality(const asp_mesh *m, double *worst)
 {
     double w = 1.0, X[24];

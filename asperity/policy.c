@@ -160,8 +160,9 @@ stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double d
             stc_error_clear(); /* answered by the wide size */
             dmax = wide;
         }
+    } else {
+        STC_CALL(asp_options_edge(p, &eo, delta, 0.0));
     }
-    STC_CALL(asp_options_edge(p, &eo, delta, P));
     o = &eo;
     asp_solver *s = NULL;
     STC_CALL(asp_solver_create(p, o, dmax, &s));

@@ -117,11 +117,6 @@ typedef struct rf_build {
     int cap;
 } rf_build;
 
-static int on_sphere(const double *x, double R)
-{
-    return R > 0.0 && fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - R) <= 1e-9 * R;
-}
-
 /* The node at the centre of corner set ids[0..n) (n = 2, 4, 8): found or
  * created.  Creation places it at the corners' mean and snaps it onto a
  * sphere all its corners lie on. */
@@ -143,8 +138,8 @@ static int node_at(rf_build *b, const int *ids, int n)
         const double *y = b->M->x + 3 * (size_t)ids[a];
         for (int i = 0; i < 3; i++) X[i] += y[i] / n;
         f &= b->M->flags[ids[a]];
-        out &= on_sphere(y, b->R_out);
-        itf &= on_sphere(y, b->R_if);
+        out &= asp_mesh_on_sphere(b->M, ids[a], b->R_out);
+        itf &= asp_mesh_on_sphere(b->M, ids[a], b->R_if);
     }
     if (n < 8 && (out || itf)) {
         double r = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]), R = out ? b->R_out : b->R_if;

@@ -20,18 +20,9 @@
 #include "stc_check.h"
 #include "tangential.h"
 
-static const double ON_SPHERE = 1e-9; /* relative radius tolerance */
 /* Sub-cells per direction on a face cut by the contact circle: the cut
  * error is ~ (h/ASP_DISC_NSUB)² per cut face (measured in test_surfarea). */
 enum { ASP_DISC_NSUB = 32 };
-
-static int on_sphere(const asp_mesh *m, int n, double R)
-{
-    const double *x = m->x + (size_t)m->dim * n;
-    double r2 = 0.0;
-    for (int i = 0; i < m->dim; i++) r2 += x[i] * x[i];
-    return fabs(sqrt(r2) - R) <= ON_SPHERE * R;
-}
 
 /* Axisymmetric: every quad edge with both nodes on the sphere. */
 /* 2π ∫ r N_a ds and 2π ∫ r N_b ds over the part of the edge a -> b with
@@ -64,7 +55,7 @@ static int areas_axisym(const asp_mesh *m, double R, double rc, double *area)
         const int *c = m->conn + 4 * (size_t)e;
         for (int k = 0; k < 4; k++) {
             int a = c[k], b = c[(k + 1) % 4];
-            if (!on_sphere(m, a, R) || !on_sphere(m, b, R)) continue;
+            if (!asp_mesh_on_sphere(m, a, R) || !asp_mesh_on_sphere(m, b, R)) continue;
             const double *xa = m->x + 2 * (size_t)a, *xb = m->x + 2 * (size_t)b;
             double wa, wb;
             if (isinf(rc)) { /* 2π ∫ r N ds with r linear along the edge */
@@ -156,7 +147,8 @@ static int areas_half3d(const asp_mesh *m, double R, const foot *fp, double *are
         const int *c = m->conn + 8 * (size_t)e;
         for (int f = 0; f < 6; f++) {
             int id[4], all = 1;
-            for (int a = 0; a < 4; a++) id[a] = c[HEX_FACE[f][a]], all &= on_sphere(m, id[a], R);
+            for (int a = 0; a < 4; a++)
+                id[a] = c[HEX_FACE[f][a]], all &= asp_mesh_on_sphere(m, id[a], R);
             if (!all) continue;
             double X[12], w[4];
             for (int a = 0; a < 4; a++) memcpy(X + 3 * a, m->x + 3 * (size_t)id[a], 3 * sizeof *X);
