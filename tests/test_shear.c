@@ -475,9 +475,26 @@ static void test_cli_json(void **state)
     char line[512];
     assert_non_null(fgets(line, sizeof line, f));
     assert_string_equal(line, "ux_mm,ux_over_omega_c,Q_N,Q_over_P_c,P_N,A_mm2,stick_area_mm2,"
-                              "slip_fraction,n_contact,a_lead_mm,a_trail_mm,a_side_mm\n");
+                              "slip_fraction,n_contact,a_lead_mm,a_trail_mm,a_side_mm,"
+                              "limit_fraction\n");
     assert_non_null(fgets(line, sizeof line, f));
     assert_true(!strncmp(line, "0,0,", 4)); /* first row: ux = 0 */
+    /* every row: the fraction at the shear limit counts the slipping area and
+     * the stuck area on saturated material, so it is never below the
+     * slipping fraction */
+    int rows = 0;
+    do {
+        double v[13];
+        char *c = line;
+        for (int k = 0; k < 13; k++) {
+            v[k] = strtod(c, &c);
+            if (k < 12 && *c++ != ',') fail_msg("shear.csv row %d: %s", rows, line);
+        }
+        if (!(v[7] >= 0.0 && v[7] <= 1.0 && v[12] >= v[7] - 1e-12 && v[12] <= 1.0))
+            fail_msg("shear.csv row %d: slip_fraction %g, limit_fraction %g", rows, v[7], v[12]);
+        rows++;
+    } while (fgets(line, sizeof line, f));
+    assert_true(rows >= 3);
     fclose(f);
     char rm[300];
     snprintf(rm, sizeof rm, "rm -rf '%s'", dir);

@@ -62,7 +62,8 @@ static const cli_opt opts[] = {
     {"model", "axisym|3d|auto", "geometry of the model (default auto: axisymmetric for the "
                                 "normal step, 3D half model with --shear)"},
     {"out", "DIR", "write curve.csv and fields_NNN.{h5,xmf} (ParaView) into DIR (--shear: "
-                   "shear.csv and fields_Q0, fields_Q080, fields_Qmax)"},
+                   "shear.csv and fields_Q0, fields_Q080, fields_Qmax; --placements: "
+                   "placements.csv; columns in docs/output-files.md)"},
     {"json", NULL, "print JSON (one object, or an array for a curve)"},
     {"progress-every", "S",
      "--shear, stderr not a terminal (a log, a batch job): a progress line of the ramp at "

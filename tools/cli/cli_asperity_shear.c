@@ -143,12 +143,12 @@ static int write_csv(const char *dir, const ptlist *l, const stc_critical *c)
     FILE *f = cli_out_open(&o, dir, "shear.csv");
     if (!f) return -1;
     fprintf(f, "ux_mm,ux_over_omega_c,Q_N,Q_over_P_c,P_N,A_mm2,stick_area_mm2,slip_fraction,"
-               "n_contact,a_lead_mm,a_trail_mm,a_side_mm\n");
+               "n_contact,a_lead_mm,a_trail_mm,a_side_mm,limit_fraction\n");
     for (int i = 0; i < l->n; i++) {
         const asp_shear_point *p = &l->p[i];
-        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%.9g,%.9g,%.9g\n", p->ux,
+        fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%.9g,%.9g,%.9g,%.6g\n", p->ux,
                 p->ux / c->omega_c, p->Q, p->Q / c->P_c, p->P, p->A, p->A_stick, p->slip_frac,
-                p->n_contact, p->a_lead, p->a_trail, p->a_side);
+                p->n_contact, p->a_lead, p->a_trail, p->a_side, p->limit_frac);
     }
     return cli_out_close(&o);
 }
