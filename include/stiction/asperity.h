@@ -325,7 +325,7 @@ typedef struct asp_shear_options {
                             its last node in contact, and averages them; 0 = the
                             three axis lines only; in [0, 0.9], default 0
                             (docs/design.md §4.2, §4.5: at 0.6 the node-placement
-                            scatter is 1.0-3.8 % against 2.6-8.5 % on the axis
+                            scatter is 1.0-3.8 % against 2.6-10.1 % on the axis
                             lines, but the rows read the elastic half-space's
                             growth 0.7-1.6 points high) */
     int hold_stalled;    /* 1 (default): when Newton stalls with contact nodes
@@ -454,13 +454,13 @@ enum { ASP_PLACEMENTS_MAX = 8 };
  * standard deviation of μs over node placements measured in its regime,
  * with the floor below.  Read on the three axis lines: 2.6 % up to the
  * first-yield interference (ASP_MU_S_ERR_ELASTIC; WSP sphere at 1 ωc, coated
- * t/R 0.05 at 1 ωc_su), 8 % from 3 times it on (ASP_MU_S_ERR_SINGLE; 8.5 %
- * at WSP 3 ωc), log-linear in δ between; on the node rows 3.8 %
- * (WSP 48 ωc; ASP_MU_S_ERR_ROWS), or the axis lines' value where that is
+ * t/R 0.05 at 1 ωc_su), 10 % from 3 times it on (ASP_MU_S_ERR_SINGLE; 10.1 %
+ * over eight placements at WSP 6 ωc), log-linear in δ between; on the node
+ * rows 3.8 % (WSP 48 ωc; ASP_MU_S_ERR_ROWS), or the axis lines' value where that is
  * smaller.  An ensemble: the members' standard error of the mean with, in
  * quadrature, the floor, the move of four-member means from the default 3D
  * mesh to one full refinement (docs/design.md §4.6). */
-#define ASP_MU_S_ERR_SINGLE 0.08
+#define ASP_MU_S_ERR_SINGLE 0.10
 #define ASP_MU_S_ERR_ELASTIC 0.026
 #define ASP_MU_S_ERR_ROWS 0.04
 #define ASP_MU_S_ERR_FLOOR 0.015

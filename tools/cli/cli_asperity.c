@@ -54,7 +54,7 @@ static const cli_opt opts[] = {
     {"placements", "K",
      "--shear: average K meshes whose surface nodes are shifted by 1/K of a node spacing at "
      "the contact edge (node-placement ensemble), K in [1, 8] (default 1).  One level-0 "
-     "mesh's mu_s scatters with where its nodes fall by up to 8.5 % (standard deviation; "
+     "mesh's mu_s scatters with where its nodes fall by up to 10.1 % (standard deviation; "
      "3.8 % with --foot-rows 0.6); the members' mean and spread are reported, with the "
      "mean's standard error.  Costs K times the CPU time; the members run concurrently, "
      "one thread each (docs/design.md §4.5)"},
@@ -105,7 +105,7 @@ static const cli_opt opts[] = {
      "--shear, footprint reading: read the edge advance on every row of surface nodes "
      "within F a0 of the axis and average them, F in [0, 0.9] (default 0: the three axis "
      "lines only).  Over eight node placements mu_s scatters by 1.0-3.8 % (standard "
-     "deviation) on the rows at F = 0.6 against 2.6-8.5 % on the axis lines, and reads "
+     "deviation) on the rows at F = 0.6 against 2.6-10.1 % on the axis lines, and reads "
      "1.5-4.4 % higher; against the elastic half-space the rows read 0.7-1.6 points more "
      "junction growth, the axis lines -2.3 ... +0.7 (docs/design.md §4.2, §4.5)"},
     {"ramp-return-map", "radial|midpoint|exact",
