@@ -84,6 +84,8 @@ stc_status asp_mesh_quality(const asp_mesh *m, double *worst);
  * tolerance 1e-9; the meshes put surface and interface nodes on it exactly
  * up to rounding); 0 for R <= 0. */
 int asp_mesh_on_sphere(const asp_mesh *m, int n, double R);
+/* The faces of the hex8 (mesh3d.c's corner order), corners in cyclic order. */
+extern const int asp_hex8_faces[6][4];
 /* Local refinement (refine3d.c).  Splits every hex with mark[e] != 0 into
  * eight; new edge and face nodes shared with unmarked elements become
  * hanging nodes; new nodes on the spheres R_outer and R_interface (0: none)

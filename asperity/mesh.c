@@ -505,6 +505,9 @@ static double hex_quality(const double *X)
     return w;
 }
 
+const int asp_hex8_faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
 int asp_mesh_on_sphere(const asp_mesh *m, int n, double R)
 {
     const double *x = m->x + (size_t)m->dim * n;

@@ -46,8 +46,6 @@ static const double ASP_BAND_IN = 1.5, ASP_BAND_OUT = 2.0, ASP_BAND_DEPTH = 1.5;
 static const int CORNER_AT[2][2][2] = {{{0, 4}, {3, 7}}, {{1, 5}, {2, 6}}}; /* [ξ][η][ζ] */
 static const int HEX_EDGES[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                      {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-static const int HEX_FACES[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
 /* Open-addressing table from a sorted set of 2 or 4 corner ids (an edge or a
  * face of the parent mesh) to the new node on it. */
@@ -221,7 +219,7 @@ static stc_status check_marked(const asp_mesh *M, const unsigned char *mark)
         }
         for (int f = 0; f < 6; f++) {
             int ids[4];
-            for (int a = 0; a < 4; a++) ids[a] = c[HEX_FACES[f][a]];
+            for (int a = 0; a < 4; a++) ids[a] = c[asp_hex8_faces[f][a]];
             rf_key k;
             key_make(&k, ids, 4);
             bad |= table_get(&t, &k) >= 0;
@@ -262,7 +260,7 @@ static stc_status collect_hanging(rf_build *b, const unsigned char *mark, asp_me
         for (int q = 0; q < 18; q++) {
             int ids[4], n = q < 12 ? 2 : 4;
             for (int a = 0; a < n; a++)
-                ids[a] = q < 12 ? c[HEX_EDGES[q][a]] : c[HEX_FACES[q - 12][a]];
+                ids[a] = q < 12 ? c[HEX_EDGES[q][a]] : c[asp_hex8_faces[q - 12][a]];
             rf_key k;
             key_make(&k, ids, n);
             int id = table_get(&b->tab, &k);

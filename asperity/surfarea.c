@@ -72,10 +72,6 @@ static int areas_axisym(const asp_mesh *m, double R, double rc, double *area)
     return nedge;
 }
 
-/* Faces of the standard hex8 (corners in cyclic order). */
-static const int HEX_FACE[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                   {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-
 /* Contact footprint in the plane: two half-ellipses with the semi-axes ap
  * (x >= 0), am (x < 0) along x and ay along y (a disc: all three equal).
  * Its gauge ρ (< 1 inside) is convex: the union of the halves is convex
@@ -148,7 +144,7 @@ static int areas_half3d(const asp_mesh *m, double R, const foot *fp, double *are
         for (int f = 0; f < 6; f++) {
             int id[4], all = 1;
             for (int a = 0; a < 4; a++)
-                id[a] = c[HEX_FACE[f][a]], all &= asp_mesh_on_sphere(m, id[a], R);
+                id[a] = c[asp_hex8_faces[f][a]], all &= asp_mesh_on_sphere(m, id[a], R);
             if (!all) continue;
             double X[12], w[4];
             for (int a = 0; a < 4; a++) memcpy(X + 3 * a, m->x + 3 * (size_t)id[a], 3 * sizeof *X);
