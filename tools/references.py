@@ -17,7 +17,10 @@ meshes with elements per contact N_j = N_0 + j T / K (T = a_max / a0 of
 member 0; the spacing of `--placements`), so a run stopped at any moment
 keeps every finished member (WORKDIR/CASE-LLEVEL/mJ.json, written by rename,
 with the stiction version and commit that made it)
-and the next run goes on from there.  A member that fails is recorded
+and the next run goes on from there.  Each member's ramp, shear.csv of
+`--out`, is kept beside it as mJ.shear.csv, so a reading of the ramp other
+than the one the run made (another inception criterion) can be taken from
+it later without running the member again.  A member that fails is recorded
 (mJ.fail, its reason) and not rerun without --retry-failed.  Members run
 cheapest first (level 0 before level 1, level 0 in the held set's
 order, finer levels by the cost of their level-0 members), N at a time, a
@@ -34,6 +37,7 @@ import json
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -96,6 +100,8 @@ class Member:
         self.json = os.path.join(self.dir, "m%d.json" % j)
         self.fail = os.path.join(self.dir, "m%d.fail" % j)
         self.m0 = os.path.join(self.dir, "m0.json")
+        self.run = os.path.join(self.dir, "m%d.run" % j)
+        self.curve = os.path.join(self.dir, "m%d.shear.csv" % j)
 
     def done(self):
         return os.path.exists(self.json)
@@ -103,13 +109,21 @@ class Member:
     def failed(self):
         return os.path.exists(self.fail)
 
+    def keep_curve(self):
+        """keep the ramp's shear.csv beside the member (a ramp that failed
+        too: the points it reached), drop the field files"""
+        src = os.path.join(self.run, "shear.csv")
+        if os.path.exists(src):
+            os.replace(src, self.curve)
+        shutil.rmtree(self.run, ignore_errors=True)
+
     def ready(self):
         return self.j == 0 or os.path.exists(self.m0)
 
     def command(self, cli):
         cmd = [cli, "asperity"] + self.case[5] + ["--shear", "--model", "3d", "--mesh",
                                                   str(self.level), "--threads", "1", "--json",
-                                                  "--progress-every", "0"]
+                                                  "--progress-every", "0", "--out", self.run]
         if self.j > 0:
             r0 = load(self.m0)
             period = r0["a_max_mm"] / r0["a_mm"]
@@ -142,6 +156,7 @@ def schedule(cli, members, jobs, max_runs, ver, done=lambda: None):
                 continue
             running.remove((m, p, t0))
             out, err = p.communicate()
+            m.keep_curve()
             if p.returncode == 0:
                 r = json.loads(out)
                 r["run_wall_s"] = time.time() - t0
