@@ -144,16 +144,16 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     return STC_OK;
 }
 
-double asp_mu_s_err_single(double foot_rows, double delta_over_omega)
+double asp_mu_s_err_single(double foot_rows, int edge_refine, double delta_over_omega)
 {
     /* the axis lines' scatter rises with the plastic junction growth: 1.2-2.6 %
-     * up to first yield, 3.8 % at 1.4, 5.8 % at 2, 5-8.5 % from 3 on (over
-     * 4-8 placements, docs/design.md §4.5) */
-    double x = delta_over_omega, e = ASP_MU_S_ERR_SINGLE;
+     * up to first yield, 3.8 % at 1.4, 5.8 % at 2, 6.3-10.1 % from 3 on (over
+     * 8 placements; two band levels: 1.3-6.8 % over 4, docs/design.md §4.5) */
+    double x = delta_over_omega;
+    double hi = edge_refine >= 2 ? ASP_MU_S_ERR_BAND : ASP_MU_S_ERR_SINGLE, e = hi;
     if (!(x >= 3.0))
         e = !(x > 1.0) ? ASP_MU_S_ERR_ELASTIC
-                       : ASP_MU_S_ERR_ELASTIC *
-                             pow(ASP_MU_S_ERR_SINGLE / ASP_MU_S_ERR_ELASTIC, log(x) / log(3.0));
+                       : ASP_MU_S_ERR_ELASTIC * pow(hi / ASP_MU_S_ERR_ELASTIC, log(x) / log(3.0));
     return foot_rows > 0.0 ? fmin(ASP_MU_S_ERR_ROWS, e) : e;
 }
 

@@ -770,7 +770,8 @@ static void fill_result(const asp_solver *s, const ramp *r, asp_slide *det, doub
     res->ux_slide = sr.ux;
     res->P_slide = sr.P;
     res->mu_s = sr.mu_s;
-    res->mu_s_err = asp_mu_s_err_single(foot_rows, s->delta / s->omega_est) * sr.mu_s;
+    res->mu_s_err =
+        asp_mu_s_err_single(foot_rows, s->edge_refine, s->delta / s->omega_est) * sr.mu_s;
     res->mu_s_preload = sr.mu_s_preload;
     res->slip_frac = sr.slip_frac;
     res->KT_after = sr.KT_after;

@@ -673,18 +673,25 @@ static void test_placements(void **state)
      * axis lines' error rises continuously and monotonically to the plastic
      * one at 3 ωc; the rows' is the smaller of theirs and the axis lines' */
     assert_true(fabs(R.res.mu_s_err / (ASP_MU_S_ERR_ELASTIC * R.res.mu_s) - 1) < 1e-15);
-    assert_true(asp_mu_s_err_single(0.0, 1.0) == ASP_MU_S_ERR_ELASTIC);
-    assert_true(asp_mu_s_err_single(0.0, 3.0) == ASP_MU_S_ERR_SINGLE);
-    assert_true(asp_mu_s_err_single(0.0, 60.0) == ASP_MU_S_ERR_SINGLE);
-    assert_true(fabs(asp_mu_s_err_single(0.0, 1.0 + 1e-9) - ASP_MU_S_ERR_ELASTIC) < 1e-9);
-    assert_true(fabs(asp_mu_s_err_single(0.0, 3.0 - 1e-9) - ASP_MU_S_ERR_SINGLE) < 1e-9);
-    for (double x = 1.0, prev = 0.0; x <= 3.0; x += 0.125) {
-        double v = asp_mu_s_err_single(0.0, x);
-        assert_true(v > prev);
-        prev = v;
+    for (int band = 0; band <= 2; band++) {
+        /* one band level is no better than the default mesh (docs/design.md
+         * §2.7); two have their own, smaller plastic value */
+        double hi = band == 2 ? ASP_MU_S_ERR_BAND : ASP_MU_S_ERR_SINGLE;
+        assert_true(asp_mu_s_err_single(0.0, band, 1.0) == ASP_MU_S_ERR_ELASTIC);
+        assert_true(asp_mu_s_err_single(0.0, band, 3.0) == hi);
+        assert_true(asp_mu_s_err_single(0.0, band, 60.0) == hi);
+        assert_true(fabs(asp_mu_s_err_single(0.0, band, 1.0 + 1e-9) - ASP_MU_S_ERR_ELASTIC) < 1e-9);
+        assert_true(fabs(asp_mu_s_err_single(0.0, band, 3.0 - 1e-9) - hi) < 1e-9);
+        for (double x = 1.0, prev = 0.0; x <= 3.0; x += 0.125) {
+            double v = asp_mu_s_err_single(0.0, band, x);
+            assert_true(v > prev);
+            assert_true(band < 2 || v <= asp_mu_s_err_single(0.0, 0, x));
+            prev = v;
+        }
+        assert_true(asp_mu_s_err_single(0.6, band, 0.5) == ASP_MU_S_ERR_ELASTIC);
+        assert_true(asp_mu_s_err_single(0.6, band, 10.0) == ASP_MU_S_ERR_ROWS);
     }
-    assert_true(asp_mu_s_err_single(0.6, 0.5) == ASP_MU_S_ERR_ELASTIC);
-    assert_true(asp_mu_s_err_single(0.6, 10.0) == ASP_MU_S_ERR_ROWS);
+    assert_true(ASP_MU_S_ERR_ELASTIC < ASP_MU_S_ERR_BAND && ASP_MU_S_ERR_BAND < ASP_MU_S_ERR_SINGLE);
     e->k = e->n_ok = 1;
     assert_true(asp_placement_mu_s_err(e, 0.05, 0.01) == 0.05 * e->mu_s);
     e->k = 2; /* a member that failed: no estimate */
