@@ -20,7 +20,8 @@ with the stiction version and commit that made it)
 and the next run goes on from there.  Each member's ramp, shear.csv of
 `--out`, is kept beside it as mJ.shear.csv, so a reading of the ramp other
 than the one the run made (another inception criterion) can be taken from
-it later without running the member again.  A member that fails is recorded
+it later without running the member again; collected, the ramps are the
+rows of data/fe/reference-ramps.csv.  A member that fails is recorded
 (mJ.fail, its reason) and not rerun without --retry-failed.  Members run
 cheapest first (level 0 before level 1, level 0 in the held set's
 order, finer levels by the cost of their level-0 members), N at a time, a
@@ -49,6 +50,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data", "fe")
 MEMBERS_CSV = os.path.join(DATA, "reference-members.csv")
 REFS_CSV = os.path.join(DATA, "references.csv")
+RAMPS_CSV = os.path.join(DATA, "reference-ramps.csv")
+# the columns of `asperity --shear --out`'s shear.csv kept for each member
+RAMP_COLS = ["ux_mm", "Q_N", "P_N", "A_mm2", "slip_fraction", "limit_fraction", "n_contact",
+             "a_lead_mm", "a_trail_mm", "a_side_mm"]
 
 WSP_OMEGAS = ["0.5", "1", "3", "6", "12", "24", "48", "72"]
 COATED = [(t, e, d) for d in ("1", "30") for t in ("0.005", "0.05") for e in ("2", "4")]
@@ -195,11 +200,15 @@ def collect(work, cases, levels):
     rcols = ["case", "family", "delta_over_omega_c", "t_over_R", "E_ratio", "mesh_level",
              "placements", "mu_s", "mu_s_err", "mu_s_min", "mu_s_max", "mu_s_single",
              "P_over_P_c", "wall_s", "version"]
-    old = {}
+    old, old_ramps = {}, {}
     if os.path.exists(MEMBERS_CSV):
         with open(MEMBERS_CSV) as f:
             old = {(r["case"], r["mesh_level"], r["member"]): r for r in csv.DictReader(f)}
-    mrows, rrows = [], []
+    if os.path.exists(RAMPS_CSV):
+        with open(RAMPS_CSV) as f:
+            for r in csv.DictReader(f):
+                old_ramps.setdefault((r["case"], r["mesh_level"], r["member"]), []).append(r)
+    mrows, rrows, ramps = [], [], []
     for level in levels:
         for c in cases:
             got = []
@@ -223,6 +232,13 @@ def collect(work, cases, levels):
                     row = old[key]
                 else:
                     continue
+                if m.done() and os.path.exists(m.curve):
+                    with open(m.curve) as f:
+                        ramps += [dict({"case": c[0], "mesh_level": level, "member": j},
+                                       **{k: p[k] for k in RAMP_COLS})
+                                  for p in csv.DictReader(f)]
+                else:
+                    ramps += old_ramps.get(key, [])
                 mrows.append(row)
                 got.append(row)
             if len(got) < K:
@@ -241,6 +257,8 @@ def collect(work, cases, levels):
                           "version": got[0]["version"]})
     write_csv(MEMBERS_CSV, mcols, mrows)
     write_csv(REFS_CSV, rcols, rrows)
+    if ramps:
+        write_csv(RAMPS_CSV, ["case", "mesh_level", "member"] + RAMP_COLS, ramps)
     return mrows, rrows
 
 
