@@ -1,0 +1,174 @@
+#!/usr/bin/env python3
+"""Other readings of kept shear ramps: mu_s of each reference member read
+offline from its ramp under candidate inception criteria, and how each
+reading agrees between the two mesh levels (docs/design.md section 4.4).
+
+ramp-readings.py [--ramps CSV] [--members CSV] [--thresholds 0.95,0.98,0.99]
+                 [--kt 0.05] [--csv OUT]
+
+The ramps are the rows of data/fe/reference-ramps.csv (one per accepted
+ramp point of a member: ux, Q, P, the fraction of the contact area at its
+shear limit, ...); the members' own mu_s, as their runs read it, come from
+data/fe/reference-members.csv.  For each member:
+
+  as run   the run's own mu_s (the solver's criterion);
+  f >= X   the first crossing of the limit fraction through X, interpolated
+           linearly between the two ramp points around it: the largest Q up
+           to the crossing over P at the crossing;
+  KT a     the first increment whose secant stiffness is at most a times the
+           first increment's: Q over P at its end (Brizmer, Kligerman &
+           Etsion 2007);
+  ux/ux_m  Q over P at a common ux per case: the smallest of the members'
+           last ux at level 0 and level 1, so every ramp of the case reaches it.
+
+A member whose ramp never reaches a reading has none; the count shows it.
+Per (case, level) the table gives the members' mean and standard
+deviation; per case with both levels, the level-0 mean against the level-1
+mean (%), the question being which reading converges with the mesh.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "data", "fe")
+
+
+def load_ramps(path):
+    ramps = defaultdict(list)
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            key = (r["case"], int(r["mesh_level"]), int(r["member"]))
+            ramps[key].append(tuple(float(r[c]) for c in
+                                    ("ux_mm", "Q_N", "P_N", "limit_fraction")))
+    for pts in ramps.values():
+        pts.sort(key=lambda p: p[0])
+    return ramps
+
+
+def load_members(path):
+    with open(path) as f:
+        return {(r["case"], int(r["mesh_level"]), int(r["member"])): float(r["mu_s"])
+                for r in csv.DictReader(f)}
+
+
+def at_fraction(pts, x):
+    """Q_max up to the first crossing of the limit fraction through x, over P
+    there; None if the ramp never reaches x."""
+    qmax = pts[0][1]
+    for i in range(1, len(pts)):
+        u0, q0, p0, f0 = pts[i - 1]
+        u1, q1, p1, f1 = pts[i]
+        if f1 >= x:
+            s = (x - f0) / (f1 - f0) if f1 > f0 else 1.0
+            q, p = q0 + s * (q1 - q0), p0 + s * (p1 - p0)
+            return max(qmax, q) / p
+        qmax = max(qmax, q1)
+    return None
+
+
+def at_stiffness(pts, a):
+    """Q/P where the secant stiffness first falls to a times the first's."""
+    if len(pts) < 3 or pts[1][0] <= pts[0][0]:
+        return None
+    kt1 = (pts[1][1] - pts[0][1]) / (pts[1][0] - pts[0][0])
+    for i in range(2, len(pts)):
+        kt = (pts[i][1] - pts[i - 1][1]) / (pts[i][0] - pts[i - 1][0])
+        if kt <= a * kt1:
+            return pts[i][1] / pts[i][2]
+    return None
+
+
+def at_ux(pts, u):
+    """Q/P at ux = u, interpolated; None beyond the ramp."""
+    for i in range(1, len(pts)):
+        u0, q0, p0, _ = pts[i - 1]
+        u1, q1, p1, _ = pts[i]
+        if u1 >= u:
+            s = (u - u0) / (u1 - u0) if u1 > u0 else 1.0
+            return (q0 + s * (q1 - q0)) / (p0 + s * (p1 - p0))
+    return None
+
+
+def stats(v):
+    v = [x for x in v if x is not None]
+    if not v:
+        return None, None, 0
+    m = sum(v) / len(v)
+    sd = math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1)) if len(v) > 1 else 0.0
+    return m, sd, len(v)
+
+
+def case_order(name):
+    fam, _, rest = name.partition("-")
+    parts = rest.split("-")
+    return (fam != "wsp", [float(p) for p in parts][::-1])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--ramps", default=os.path.join(DATA, "reference-ramps.csv"))
+    ap.add_argument("--members", default=os.path.join(DATA, "reference-members.csv"))
+    ap.add_argument("--thresholds", default="0.95,0.98,0.99")
+    ap.add_argument("--kt", type=float, default=0.05)
+    ap.add_argument("--csv", help="write every member's readings here too")
+    a = ap.parse_args()
+    try:
+        xs = [float(t) for t in a.thresholds.split(",")]
+    except ValueError:
+        sys.exit("ramp-readings.py: --thresholds %r: a comma-separated list of numbers in "
+                 "(0, 1] expected" % a.thresholds)
+    if any(not 0.0 < x <= 1.0 for x in xs):
+        sys.exit("ramp-readings.py: --thresholds %r: each must be in (0, 1]" % a.thresholds)
+    ramps = load_ramps(a.ramps)
+    members = load_members(a.members)
+    cases = sorted({k[0] for k in ramps}, key=case_order)
+    names = ["as run"] + ["f>=%g" % x for x in xs] + ["KT %g" % a.kt, "at ux"]
+    read = {}  # (case, level) -> list of per-member reading lists
+    ucommon = {}
+    for c in cases:
+        ends = [pts[-1][0] for k, pts in ramps.items() if k[0] == c]
+        ucommon[c] = min(ends)
+    rows = []
+    for (c, lev, j), pts in sorted(ramps.items(), key=lambda kv: (case_order(kv[0][0]),
+                                                                   kv[0][1], kv[0][2])):
+        r = [members.get((c, lev, j))] + [at_fraction(pts, x) for x in xs] + \
+            [at_stiffness(pts, a.kt), at_ux(pts, ucommon[c])]
+        read.setdefault((c, lev), []).append(r)
+        rows.append([c, lev, j] + r)
+    if a.csv:
+        tmp = a.csv + ".tmp"
+        with open(tmp, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["case", "mesh_level", "member"] +
+                        [n.replace(" ", "_").replace(">=", "_") for n in names])
+            for row in rows:
+                w.writerow(row[:3] + ["" if v is None else "%.6f" % v for v in row[3:]])
+        os.replace(tmp, a.csv)
+    print("Each cell: level-0 mean / level-1 mean, their difference (%), and the level-1 "
+          "members' standard deviation (%); n/4 where fewer members reach the reading.")
+    print("'at ux' reads every member at the case's common ux (in um).\n")
+    print("| case | " + " | ".join(names) + " |")
+    print("|---" * (len(names) + 1) + "|")
+    for c in cases:
+        cells = []
+        for k in range(len(names)):
+            s = [stats([r[k] for r in read.get((c, lev), [])]) for lev in (0, 1)]
+            if s[0][0] is None or s[1][0] is None:
+                one = s[0] if s[0][0] is not None else s[1]
+                cells.append("%.4f (one level)" % one[0] if one[0] is not None else "—")
+                continue
+            d = 100.0 * (s[0][0] / s[1][0] - 1.0)
+            cell = "%.4f / %.4f, %+.1f, %.1f" % (s[0][0], s[1][0], d, 100.0 * s[1][1] / s[1][0])
+            if min(s[0][2], s[1][2]) < len(read[(c, 0)]):
+                cell += " (%d/%d)" % (min(s[0][2], s[1][2]), len(read[(c, 0)]))
+            cells.append(cell)
+        label = c + (" (%.3g um)" % (1e3 * ucommon[c]))
+        print("| " + label + " | " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main()
