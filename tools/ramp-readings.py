@@ -18,23 +18,23 @@ data/fe/reference-members.csv.  For each member:
   KT a     the first increment whose secant stiffness is at most a times the
            first increment's: Q over P at its end (Brizmer, Kligerman &
            Etsion 2007);
-  ux/ux_m  Q over P at a common ux per case: the smallest of the members'
+  at ux    Q over P at a common ux per case: the smallest of the members'
            last ux at level 0 and level 1, so every ramp of the case reaches it.
 
 A member whose ramp never reaches a reading has none; the count shows it.
-Per (case, level) the table gives the members' mean and standard
-deviation; per case with both levels, the level-0 mean against the level-1
-mean (%), the question being which reading converges with the mesh.
+Per case and reading the table gives the level-0 mean, the level-1 mean,
+their difference (%), and the level-1 members' standard deviation (%): the
+question is which reading converges with the mesh.  --csv writes every
+member's readings.
 """
 import argparse
 import csv
 import math
-import os
 import sys
 from collections import defaultdict
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "..", "data", "fe")
+from references import MEMBERS_CSV, RAMPS_CSV, held_set
+from wsp_case import write_csv
 
 
 def load_ramps(path):
@@ -55,19 +55,29 @@ def load_members(path):
                 for r in csv.DictReader(f)}
 
 
+def first_crossing(pts, col, x):
+    """(i, s): the first ramp point i whose column col reaches x and the
+    fraction s of the way from point i - 1 where it crosses (linear); None if
+    it never does."""
+    for i in range(1, len(pts)):
+        v0, v1 = pts[i - 1][col], pts[i][col]
+        if v1 >= x:
+            return i, (x - v0) / (v1 - v0) if v1 > v0 else 1.0
+    return None
+
+
+def between(pts, i, s, col):
+    return pts[i - 1][col] + s * (pts[i][col] - pts[i - 1][col])
+
+
 def at_fraction(pts, x):
     """Q_max up to the first crossing of the limit fraction through x, over P
     there; None if the ramp never reaches x."""
-    qmax = pts[0][1]
-    for i in range(1, len(pts)):
-        u0, q0, p0, f0 = pts[i - 1]
-        u1, q1, p1, f1 = pts[i]
-        if f1 >= x:
-            s = (x - f0) / (f1 - f0) if f1 > f0 else 1.0
-            q, p = q0 + s * (q1 - q0), p0 + s * (p1 - p0)
-            return max(qmax, q) / p
-        qmax = max(qmax, q1)
-    return None
+    c = first_crossing(pts, 3, x)
+    if c is None:
+        return None
+    i, s = c
+    return max(max(p[1] for p in pts[:i]), between(pts, i, s, 1)) / between(pts, i, s, 2)
 
 
 def at_stiffness(pts, a):
@@ -84,13 +94,11 @@ def at_stiffness(pts, a):
 
 def at_ux(pts, u):
     """Q/P at ux = u, interpolated; None beyond the ramp."""
-    for i in range(1, len(pts)):
-        u0, q0, p0, _ = pts[i - 1]
-        u1, q1, p1, _ = pts[i]
-        if u1 >= u:
-            s = (u - u0) / (u1 - u0) if u1 > u0 else 1.0
-            return (q0 + s * (q1 - q0)) / (p0 + s * (p1 - p0))
-    return None
+    c = first_crossing(pts, 0, u)
+    if c is None:
+        return None
+    i, s = c
+    return between(pts, i, s, 1) / between(pts, i, s, 2)
 
 
 def stats(v):
@@ -102,16 +110,10 @@ def stats(v):
     return m, sd, len(v)
 
 
-def case_order(name):
-    fam, _, rest = name.partition("-")
-    parts = rest.split("-")
-    return (fam != "wsp", [float(p) for p in parts][::-1])
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--ramps", default=os.path.join(DATA, "reference-ramps.csv"))
-    ap.add_argument("--members", default=os.path.join(DATA, "reference-members.csv"))
+    ap.add_argument("--ramps", default=RAMPS_CSV)
+    ap.add_argument("--members", default=MEMBERS_CSV)
     ap.add_argument("--thresholds", default="0.95,0.98,0.99")
     ap.add_argument("--kt", type=float, default=0.05)
     ap.add_argument("--csv", help="write every member's readings here too")
@@ -123,31 +125,29 @@ def main():
                  "(0, 1] expected" % a.thresholds)
     if any(not 0.0 < x <= 1.0 for x in xs):
         sys.exit("ramp-readings.py: --thresholds %r: each must be in (0, 1]" % a.thresholds)
+    if not 0.0 < a.kt < 1.0:
+        sys.exit("ramp-readings.py: --kt %g: must be in (0, 1)" % a.kt)
     ramps = load_ramps(a.ramps)
     members = load_members(a.members)
-    cases = sorted({k[0] for k in ramps}, key=case_order)
+    cases = [c[0] for c in held_set() if any(k[0] == c[0] for k in ramps)]
+    order = {c: n for n, c in enumerate(cases)}
     names = ["as run"] + ["f>=%g" % x for x in xs] + ["KT %g" % a.kt, "at ux"]
     read = {}  # (case, level) -> list of per-member reading lists
     ucommon = {}
-    for c in cases:
-        ends = [pts[-1][0] for k, pts in ramps.items() if k[0] == c]
-        ucommon[c] = min(ends)
+    for (c, lev, j), pts in ramps.items():
+        ucommon[c] = min(ucommon.get(c, pts[-1][0]), pts[-1][0])
+    cols = ["case", "mesh_level", "member"] + [n.replace(" ", "_").replace(">=", "_")
+                                               for n in names]
     rows = []
-    for (c, lev, j), pts in sorted(ramps.items(), key=lambda kv: (case_order(kv[0][0]),
+    for (c, lev, j), pts in sorted(ramps.items(), key=lambda kv: (order.get(kv[0][0], -1),
                                                                    kv[0][1], kv[0][2])):
         r = [members.get((c, lev, j))] + [at_fraction(pts, x) for x in xs] + \
             [at_stiffness(pts, a.kt), at_ux(pts, ucommon[c])]
         read.setdefault((c, lev), []).append(r)
-        rows.append([c, lev, j] + r)
+        rows.append(dict(zip(cols, [c, lev, j] + ["" if v is None else "%.6f" % v
+                                                  for v in r])))
     if a.csv:
-        tmp = a.csv + ".tmp"
-        with open(tmp, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["case", "mesh_level", "member"] +
-                        [n.replace(" ", "_").replace(">=", "_") for n in names])
-            for row in rows:
-                w.writerow(row[:3] + ["" if v is None else "%.6f" % v for v in row[3:]])
-        os.replace(tmp, a.csv)
+        write_csv(a.csv, cols, rows)
     print("Each cell: level-0 mean / level-1 mean, their difference (%), and the level-1 "
           "members' standard deviation (%); n/4 where fewer members reach the reading.")
     print("'at ux' reads every member at the case's common ux (in um).\n")
@@ -163,8 +163,9 @@ def main():
                 continue
             d = 100.0 * (s[0][0] / s[1][0] - 1.0)
             cell = "%.4f / %.4f, %+.1f, %.1f" % (s[0][0], s[1][0], d, 100.0 * s[1][1] / s[1][0])
-            if min(s[0][2], s[1][2]) < len(read[(c, 0)]):
-                cell += " (%d/%d)" % (min(s[0][2], s[1][2]), len(read[(c, 0)]))
+            n = max(len(read.get((c, lev), [])) for lev in (0, 1))
+            if min(s[0][2], s[1][2]) < n:
+                cell += " (%d/%d)" % (min(s[0][2], s[1][2]), n)
             cells.append(cell)
         label = c + (" (%.3g um)" % (1e3 * ucommon[c]))
         print("| " + label + " | " + " | ".join(cells) + " |")
