@@ -149,7 +149,7 @@ def main():
     if a.csv:
         write_csv(a.csv, cols, rows)
     print("Each cell: level-0 mean / level-1 mean, their difference (%), and the level-1 "
-          "members' standard deviation (%); n/4 where fewer members reach the reading.")
+          "members' standard deviation (%); (n/K) where only n of K members reach the reading.")
     print("'at ux' reads every member at the case's common ux (in um).\n")
     print("| case | " + " | ".join(names) + " |")
     print("|---" * (len(names) + 1) + "|")

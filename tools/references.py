@@ -4,17 +4,22 @@ ensembles on the default 3D mesh (level 0) and one full refinement finer
 (level 1), stored in data/fe/ (docs/design.md section 4.6).
 
 references.py CLI WORKDIR [--levels 0,1] [--jobs N] [--only CASE,...]
-              [--max-runs M] [--retry-failed] [--collect]
+              [--members K] [--max-runs M] [--retry-failed] [--collect]
 
 Held set: the Wu-Shi-Polycarpou sphere (wsp_case.WSP, slip normal step) at
 omega/omega_c 0.5, 1, 3, 6, 12, 24, 48, 72, and the coated spheres of the
 thesis family (the CLI's default materials, stick normal step) at t/R 0.005
 and 0.05, Eco/Esu 2 and 4, delta/omega_c_su 1 and 30.
 
-Each (case, level) is a K = 4 node-placement ensemble, the members run one
-by one as single `stiction asperity --shear --mesh L --threads 1 --json`
-meshes with elements per contact N_j = N_0 + j T / K (T = a_max / a0 of
-member 0; the spacing of `--placements`), so a run stopped at any moment
+Each (case, level) is a node-placement ensemble of K = 4 members (--members
+8, 16, ... for more), the members run one by one as single `stiction
+asperity --shear --mesh L --threads 1 --json` meshes with elements per
+contact N_j = N_0 + phase(j) T (T = a_max / a0 of member 0).  Members 0-3
+sit at phases 0, 1/4, 1/2, 3/4 (the spacing of `--placements 4`), members
+4-7 halfway between them (1/8, 3/8, 5/8, 7/8), members 8-15 halfway
+between those, so the first K members, K a power of two, are always K
+evenly spaced placements and an ensemble grows without running its members
+again.  A run stopped at any moment
 keeps every finished member (WORKDIR/CASE-LLEVEL/mJ.json, written by rename,
 with the stiction version and commit that made it)
 and the next run goes on from there.  Each member's ramp, shear.csv of
@@ -28,9 +33,14 @@ order, finer levels by the cost of their level-0 members), N at a time, a
 member j > 0 once its member 0 is done.
 
 Every finished member is a row of data/fe/reference-members.csv; every
-(case, level) whose K members are done is a row of data/fe/references.csv:
-the members' mean, their standard error of the mean, extremes, mean P/Pc,
-and the CPU time.  Member 0 at level 0 is the default single run.
+(case, level) whose first 4 members are done is a row of
+data/fe/references.csv, over its largest complete evenly spaced set (the
+first 4, 8, 16, ... members): the members' mean, their standard error of
+the mean, extremes, mean P/Pc, and the CPU time.  Member 0 at level 0 is
+the default single run.  A member whose row and ramp are both stored in
+data/fe counts as done (a stored member without its ramp runs again, to keep
+it); a member j > 0 is placed from its member 0's run in WORKDIR, or else
+from member 0's stored row.
 """
 import argparse
 import csv
@@ -45,7 +55,30 @@ import time
 
 from wsp_case import WSP, write_csv
 
-K = 4
+K = 4  # the members of an ensemble unless --members says more
+MAX_MEMBERS = 64
+
+
+def phase(j):
+    """member j's offset in elements per contact, as a fraction of the
+    period: 0, 1/4, 1/2, 3/4, then 1/8, 3/8, 5/8, 7/8, then 1/16, 3/16, ..."""
+    if j < 4:
+        return j / 4.0
+    m = 1 << (j.bit_length() - 1)
+    return (2 * (j - m) + 1) / (2.0 * m)
+
+
+def complete(n):
+    """the largest evenly spaced set (4, 8, 16, ... members) within the first
+    n members; 0 below 4"""
+    if n < 4:
+        return 0
+    k = 4
+    while 2 * k <= n:
+        k *= 2
+    return k
+
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data", "fe")
 MEMBERS_CSV = os.path.join(DATA, "reference-members.csv")
@@ -98,9 +131,29 @@ def write_atomic(path, text):
     os.replace(path + ".tmp", path)
 
 
+def stored_members():
+    """{(case, level, member): row} of data/fe/reference-members.csv whose
+    ramp is in data/fe/reference-ramps.csv too"""
+    if not os.path.exists(MEMBERS_CSV):
+        return {}
+    with open(MEMBERS_CSV) as f:
+        rows = {(r["case"], int(r["mesh_level"]), int(r["member"])): r
+                for r in csv.DictReader(f)}
+    ramps = set()
+    if os.path.exists(RAMPS_CSV):
+        with open(RAMPS_CSV) as f:
+            ramps = {(r["case"], int(r["mesh_level"]), int(r["member"]))
+                     for r in csv.DictReader(f)}
+    return {k: r for k, r in rows.items() if k in ramps}
+
+
 class Member:
-    def __init__(self, work, case, level, j):
+    """member j of a case's ensemble at a mesh level; stored: the rows of
+    stored_members(), whose members count as done and place the others"""
+    def __init__(self, work, case, level, j, stored=None):
         self.case, self.level, self.j = case, level, j
+        self.row = (stored or {}).get((case[0], level, j))
+        self.row0 = (stored or {}).get((case[0], level, 0))
         self.dir = os.path.join(work, "%s-L%d" % (case[0], level))
         self.json = os.path.join(self.dir, "m%d.json" % j)
         self.fail = os.path.join(self.dir, "m%d.fail" % j)
@@ -109,7 +162,7 @@ class Member:
         self.curve = os.path.join(self.dir, "m%d.shear.csv" % j)
 
     def done(self):
-        return os.path.exists(self.json)
+        return os.path.exists(self.json) or self.row is not None
 
     def failed(self):
         return os.path.exists(self.fail)
@@ -123,30 +176,38 @@ class Member:
         shutil.rmtree(self.run, ignore_errors=True)
 
     def ready(self):
-        return self.j == 0 or os.path.exists(self.m0)
+        return self.j == 0 or os.path.exists(self.m0) or self.row0 is not None
 
     def command(self, cli):
         cmd = [cli, "asperity"] + self.case[5] + ["--shear", "--model", "3d", "--mesh",
                                                   str(self.level), "--threads", "1", "--json",
                                                   "--progress-every", "0", "--out", self.run]
         if self.j > 0:
-            r0 = load(self.m0)
-            period = r0["a_max_mm"] / r0["a_mm"]
-            n = r0["elements_per_contact"] + self.j * period / K
+            if os.path.exists(self.m0):
+                r0 = load(self.m0)
+                n0, a0, amax = r0["elements_per_contact"], r0["a_mm"], r0["a_max_mm"]
+            else:
+                n0, a0, amax = (float(self.row0[k]) for k in
+                                ("elements_per_contact", "a0_mm", "a_max_mm"))
+            n = n0 + phase(self.j) * amax / a0
             cmd += ["--elements-per-contact", "%.6f" % n]
         return cmd
 
 
-def cost_order(work, cases, level):
+def cost_order(work, cases, level, stored):
     """cases cheapest first at a level > 0: by their level-0 members' run time
     (the finer mesh costs 10-20 times as much), unknown ones last"""
     if level == 0:
         return cases
 
     def cost(c):
-        t = [load(m.json).get("run_wall_s", 0.0) for m in
-             (Member(work, c, 0, j) for j in range(K)) if m.done()]
-        return sum(t) * K / len(t) if t else float("inf")
+        t = []
+        for m in (Member(work, c, 0, j, stored) for j in range(K)):
+            if os.path.exists(m.json):
+                t.append(load(m.json).get("run_wall_s", 0.0))
+            elif m.row is not None:
+                t.append(float(m.row["wall_s"]))
+        return sum(t) / len(t) if t else float("inf")
     return sorted(cases, key=cost)
 
 
@@ -212,10 +273,10 @@ def collect(work, cases, levels):
     for level in levels:
         for c in cases:
             got = []
-            for j in range(K):
+            for j in range(MAX_MEMBERS):
                 m = Member(work, c, level, j)
                 key = (c[0], str(level), str(j))
-                if m.done():
+                if os.path.exists(m.json):
                     r = load(m.json)
                     row = {"case": c[0], "family": c[1], "delta_over_omega_c": c[2],
                            "t_over_R": c[3], "E_ratio": c[4], "mesh_level": level, "member": j,
@@ -232,7 +293,7 @@ def collect(work, cases, levels):
                     row = old[key]
                 else:
                     continue
-                if m.done() and os.path.exists(m.curve):
+                if os.path.exists(m.json) and os.path.exists(m.curve):
                     with open(m.curve) as f:
                         ramps += [dict({"case": c[0], "mesh_level": level, "member": j},
                                        **{k: p[k] for k in RAMP_COLS})
@@ -240,19 +301,22 @@ def collect(work, cases, levels):
                 else:
                     ramps += old_ramps.get(key, [])
                 mrows.append(row)
-                got.append(row)
-            if len(got) < K:
+                if len(got) == j:  # the members 0 .. j are all there
+                    got.append(row)
+            k = complete(len(got))
+            if not k:
                 continue
+            got = got[:k]
             mu = [float(r["mu_s"]) for r in got]
-            mean = sum(mu) / K
-            se = math.sqrt(sum((x - mean) ** 2 for x in mu) / (K - 1) / K)
+            mean = sum(mu) / k
+            se = math.sqrt(sum((x - mean) ** 2 for x in mu) / (k - 1) / k)
             rrows.append({"case": c[0], "family": c[1], "delta_over_omega_c": c[2],
                           "t_over_R": c[3], "E_ratio": c[4], "mesh_level": level,
-                          "placements": K, "mu_s": "%.6f" % mean, "mu_s_err": "%.6f" % se,
+                          "placements": k, "mu_s": "%.6f" % mean, "mu_s_err": "%.6f" % se,
                           "mu_s_min": "%.6f" % min(mu), "mu_s_max": "%.6f" % max(mu),
                           "mu_s_single": got[0]["mu_s"],
                           "P_over_P_c": "%.6f" % (sum(float(r["P_over_P_c"])
-                                                      for r in got) / K),
+                                                      for r in got) / k),
                           "wall_s": "%.0f" % sum(float(r["wall_s"]) for r in got),
                           "version": got[0]["version"]})
     write_csv(MEMBERS_CSV, mcols, mrows)
@@ -269,6 +333,8 @@ def main():
     ap.add_argument("--levels", default="0,1")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--only", default="", help="case ids, comma-separated")
+    ap.add_argument("--members", type=int, default=K,
+                    help="members per (case, level): 4, 8, 16, ... (default %d)" % K)
     ap.add_argument("--max-runs", type=int, default=0, help="start at most M member runs")
     ap.add_argument("--retry-failed", action="store_true")
     ap.add_argument("--collect", action="store_true",
@@ -282,9 +348,14 @@ def main():
             sys.exit("--only: unknown case %s (cases: %s)" %
                      (", ".join(bad), ", ".join(c[0] for c in cases)))
         cases = [c for c in cases if c[0] in want]
+    if a.members < 4 or a.members > MAX_MEMBERS or complete(a.members) != a.members:
+        sys.exit("--members: %d is not a power of two from 4 to %d" % (a.members, MAX_MEMBERS))
     levels = [int(x) for x in a.levels.split(",")]
-    members = [Member(a.work, c, lv, j) for lv in levels for c in cost_order(a.work, cases, lv)
-               for j in range(K)]
+    stored = stored_members()
+    # level by level, the first 4 members of every case, then the next 4, 8, ...
+    members = [Member(a.work, c, lv, j, stored) for lv in levels
+               for lo, hi in [(0, 4)] + [(k, 2 * k) for k in (4, 8, 16, 32) if k < a.members]
+               for c in cost_order(a.work, cases, lv, stored) for j in range(lo, hi)]
     if a.retry_failed:
         for m in members:
             if m.failed():

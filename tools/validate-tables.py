@@ -165,16 +165,16 @@ def refined(cli, table, rep):
     pts = sorted(have)
     rep.out("## Point accuracy: table points against one full refinement\n")
     rep.out("Reference: the same point on the 3D mesh one level finer (twice the elements "
-            "across the contact) with four node placements: `stiction table build --config "
-            "examples/thesis-table.ini --deltas D --t-over-R T --E-ratio E --mesh-level 1 "
+            "across the contact) with K evenly spaced node placements: `stiction table build "
+            "--config examples/thesis-table.ini --deltas D --t-over-R T --E-ratio E --mesh-level 1 "
             "--placements 4`, stored in data/fe/table-refined.csv (%d of its %d points; "
             "`tools/validate-tables.py ... --refine N` computes the others, about one CPU hour "
             "each), or the same ensemble member by member for the shear held set "
             "(data/fe/references.csv, tools/references.py; the coated cases are nodes of this "
-            "grid).\n" % (sum(pt in have for pt in REFINED), len(REFINED)))
-    rep.out("| delta/wc | t/R | Eco/Esu | mu_s table | stored error | mu_s refined | +- | "
+            "grid, with 4 or more members).\n" % (sum(pt in have for pt in REFINED), len(REFINED)))
+    rep.out("| delta/wc | t/R | Eco/Esu | mu_s table | stored error | mu_s refined | +- | K | "
             "diff | covered | P/Pc diff | CPU s refined | source |")
-    rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     n = within = covered = 0
     worst = 0.0
     for pt in pts:
@@ -188,8 +188,8 @@ def refined(cli, table, rep):
         within += abs(d) <= 0.02
         covered += et >= abs(mt - mr)
         worst = max(worst, abs(d))
-        rep.out("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %+.2f %% | %s | %+.2f %% | "
-                "%.0f | %s |" % (pt + (mt, et, mr, er, 100 * d,
+        rep.out("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %s | %+.2f %% | %s | %+.2f %% | "
+                "%.0f | %s |" % (pt + (mt, et, mr, er, f["placements"], 100 * d,
                                        "yes" if et >= abs(mt - mr) else "no", 100 * dp,
                                        float(f["cpu_s"]), f["source"])))
     rep.out("")
