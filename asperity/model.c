@@ -83,6 +83,19 @@ static stc_status layer_material(const stc_params *p, asp_layer layer, stc_mater
     return STC_OK;
 }
 
+/* A model of one layer of p's materials, named NAME (a closed form's constructor). */
+static stc_status model_alloc_layer(const stc_params *p, double t_mm, asp_layer layer,
+                                    const char *name, asp_model **out)
+{
+    stc_material mat;
+    const char *lname;
+    STC_CALL(layer_material(p, layer, &mat, &lname));
+    STC_CALL(model_alloc(&mat, t_mm, out));
+    snprintf((*out)->name, sizeof (*out)->name, "%s", name);
+    (*out)->layer_name = lname;
+    return STC_OK;
+}
+
 /* ------------------------------------------------------------ hertz */
 
 /* Hertz in normalised form: P/Pc = w^{3/2}, A/Ac = w (docs/design.md §6.1: Pc, Ac are
@@ -108,13 +121,8 @@ static double hertz_load(const asp_model *m, double w, double tR)
 stc_status asp_model_create_hertz(const stc_params *p, double t_mm, asp_layer layer,
                                   asp_model **out)
 {
-    stc_material mat;
-    const char *lname;
-    STC_CALL(layer_material(p, layer, &mat, &lname));
-    STC_CALL(model_alloc(&mat, t_mm, out));
+    STC_CALL(model_alloc_layer(p, t_mm, layer, "hertz", out));
     asp_model *m = *out;
-    snprintf(m->name, sizeof m->name, "hertz");
-    m->layer_name = lname;
     m->norm = hertz_norm;
     m->load = hertz_load;
     /* elastic: exact for any δ in small-strain theory, but only physical up
@@ -182,13 +190,8 @@ static unsigned wsp_norm(const asp_model *m, double w, double tR, double *p, dou
 stc_status asp_model_create_wsp(const stc_params *p, double t_mm, asp_layer layer,
                                 asp_model **out)
 {
-    stc_material mat;
-    const char *lname;
-    STC_CALL(layer_material(p, layer, &mat, &lname));
-    STC_CALL(model_alloc(&mat, t_mm, out));
+    STC_CALL(model_alloc_layer(p, t_mm, layer, "wsp", out));
     asp_model *m = *out;
-    snprintf(m->name, sizeof m->name, "wsp");
-    m->layer_name = lname;
     m->norm = wsp_norm;
     m->load = ke_load;
     /* in range where every output is a fit inside its data: the WSP μs fit's
