@@ -4,8 +4,9 @@
 
 validate-report.py RESULTS_DIR OUT.md
 
-A part that was not run (make validate ONLY=...) is listed as such; a part's
-own date says when it ran.
+A part that was not run this time (make validate ONLY=...) keeps its section
+and its summary row from the report already at OUT.md, if that has it, and is
+listed as not run otherwise; each part's own date says when it ran.
 """
 import os
 import re
@@ -45,10 +46,18 @@ def main():
             "* **target**: an accuracy goal not met yet, with the measured value.", "",
             "| part | checks | failed | findings | targets not met |", "|---|---|---|---|---|"]
     body = []
+    kept = earlier(out)
+    carried = []
     for key, title in PARTS:
         path = os.path.join(res, "validate-%s.md" % key)
         if not os.path.exists(path):
-            head.append("| %s | not run | | | |" % title)
+            if title in kept:
+                row, section = kept[title]
+                head.append(row)
+                body += section + ([] if section[-1] == "" else ["", ""])
+                carried.append(title)
+            else:
+                head.append("| %s | not run | | | |" % title)
             continue
         text = open(path).read()
         s = summary(text)
@@ -62,10 +71,35 @@ def main():
                 continue
             body.append("#" + line if line.startswith("#") else line)
         body.append("")
+    if carried:
+        head[2] = head[2].replace(" Three kinds", " Not run this time and kept from the "
+                                  "previous report, each with its own date: %s. Three kinds"
+                                  % ", ".join(carried))
     with open(out + ".tmp", "w") as f:
         f.write("\n".join(head + [""] + body).rstrip() + "\n")
     os.replace(out + ".tmp", out)
     print("wrote %s" % out)
+
+
+def earlier(path):
+    """The parts of the report already at PATH: title -> (its summary row, the
+    lines of its section), for the parts that row links to a section."""
+    if not os.path.exists(path):
+        return {}
+    lines = open(path).read().rstrip().splitlines()
+    sections, cur = {}, None
+    for line in lines:
+        if line.startswith("## "):
+            cur = anchor(line[1:])
+            sections[cur] = []
+        if cur is not None:
+            sections[cur].append(line)
+    kept = {}
+    for line in lines:
+        m = re.match(r"\| \[(.+?)\]\(#(.+?)\) \|", line)
+        if m and m.group(2) in sections:
+            kept[m.group(1)] = (line, sections[m.group(2)])
+    return kept
 
 
 def anchor(text):
