@@ -255,7 +255,9 @@ stc_status asp_solver_create(const stc_params *p, const asp_options *o, double d
     int small = s->dim == 2 && s->ndof < ASP_SERIAL_MAX_DOF;
     s->nthr = s->opt.threads > 0 ? s->opt.threads : small ? 1 : omp_get_max_threads();
     STC_CALL_GOTO(asp_asm_create(s), st, fail);
-    STC_CALL_GOTO(make_linsolve(s, small), st, fail);
+    /* one thread asked for: the factorization too (CHOLMOD's and OpenBLAS's
+     * threads would take a second core from a run beside it) */
+    STC_CALL_GOTO(make_linsolve(s, small || s->nthr == 1), st, fail);
     STC_CALL_GOTO(asp_asm_maps(s), st, fail);
     for (int k = 0; k < 2; k++) s->yt[k].y.reached = 0;
     *out = s;

@@ -17,10 +17,11 @@
  *
  * Process-wide state: asp_solver_load, _load_tail, _load_to_P,
  * asp_solver_shear and asp_shear_placements set OpenBLAS to one thread
- * while a Krylov solve (3D), a small axisymmetric factorization or an
- * ensemble's members run (openblas_set_num_threads: the linked pthread
- * build of OpenBLAS has no per-call control), and restore the count they
- * found when the last such section of the process ends.  No other
+ * while a Krylov solve (3D), a small axisymmetric factorization, any
+ * factorization of a solver with threads = 1 or an ensemble's members run
+ * (openblas_set_num_threads: the linked pthread build of OpenBLAS has no
+ * per-call control), and restore the count they found when the last such
+ * section of the process ends.  No other
  * process-wide or caller setting changes (CHOLMOD's OpenMP regions are
  * serialized inside the library's own one-thread region).
  */
@@ -103,7 +104,9 @@ typedef struct asp_options {
     int max_active_set;      /* active-set passes per increment; default 40 */
     int max_cutbacks;        /* consecutive increment halvings; default 10 */
     int threads;             /* OpenMP threads for assembly and the Krylov kernels (at
-                                most 2 used there), 0 = runtime default */
+                                most 2 used there), 0 = runtime default; 1 also
+                                factorizes on one thread (no CHOLMOD or OpenBLAS
+                                threads) */
     int surface_layers;      /* axisymmetric: the top element row is split into
                                 N + 1 rows halving towards the surface (h/2^N
                                 there; resolves a stuck-surface stress maximum),

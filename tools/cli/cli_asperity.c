@@ -123,7 +123,8 @@ static const cli_opt opts[] = {
      "factorization costs many PCG iterations, i.e. 3D; default auto)"},
     {"krylov-max", "N", "PCG iterations before refactorizing (default 50)"},
     {"threads", "N",
-     "OpenMP threads for the element loop and the Krylov solves (default: runtime)"},
+     "OpenMP threads for the element loop and the Krylov solves; 1 runs the factorizations on "
+     "one thread too (default: runtime)"},
     {NULL, NULL, NULL},
 };
 
