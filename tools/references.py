@@ -211,16 +211,17 @@ def cost_order(work, cases, level, stored):
     return sorted(cases, key=cost)
 
 
-def schedule(cli, members, jobs, max_runs, ver, done=lambda: None):
+def schedule(cli, members, jobs, max_runs, done=lambda: None):
     """Run the members, at most jobs at a time, each once its member 0 is done;
-    done() after each finished one."""
+    done() after each finished one.  Each member records the version of the
+    binary it started with (the binary may be rebuilt while a schedule runs)."""
     pending = [m for m in members if not m.done() and not m.failed()]
     running, started = [], 0
     while pending or running:
-        for m, p, t0 in list(running):
+        for m, p, t0, ver in list(running):
             if p.poll() is None:
                 continue
-            running.remove((m, p, t0))
+            running.remove((m, p, t0, ver))
             out, err = p.communicate()
             m.keep_curve()
             if p.returncode == 0:
@@ -245,9 +246,10 @@ def schedule(cli, members, jobs, max_runs, ver, done=lambda: None):
                 break
             pending.remove(nxt)
             os.makedirs(nxt.dir, exist_ok=True)
+            ver = version(cli)
             running.append((nxt, subprocess.Popen(nxt.command(cli), stdout=subprocess.PIPE,
                                                   stderr=subprocess.PIPE, text=True),
-                            time.time()))
+                            time.time(), ver))
             started += 1
         if not running:
             break
@@ -361,7 +363,7 @@ def main():
             if m.failed():
                 os.remove(m.fail)
     if not a.collect:
-        schedule(a.cli, members, a.jobs, a.max_runs, version(a.cli),
+        schedule(a.cli, members, a.jobs, a.max_runs,
                  lambda: collect(a.work, held_set(), [0, 1, 2]))
     _, rrows = collect(a.work, held_set(), [0, 1, 2])
     fails = [m for m in members if m.failed()]
