@@ -4,7 +4,8 @@ ensembles on the default 3D mesh (level 0) and one full refinement finer
 (level 1), stored in data/fe/ (docs/design.md section 4.6).
 
 references.py CLI WORKDIR [--levels 0,1] [--jobs N] [--only CASE,...]
-              [--members K] [--max-runs M] [--retry-failed] [--collect]
+              [--members K] [--max-runs M] [--retry-failed] [--no-ramp-reruns]
+              [--collect]
 
 Held set: the Wu-Shi-Polycarpou sphere (wsp_case.WSP, slip normal step) at
 omega/omega_c 0.5, 1, 3, 6, 12, 24, 48, 72, and the coated spheres of the
@@ -39,7 +40,7 @@ first 4, 8, 16, ... members): the members' mean, their standard error of
 the mean, extremes, mean P/Pc, and the CPU time.  Member 0 at level 0 is
 the default single run.  A member whose row and ramp are both stored in
 data/fe counts as done (a stored member without its ramp runs again, to keep
-it); a member j > 0 is placed from its member 0's run in WORKDIR, or else
+it, unless --no-ramp-reruns); a member j > 0 is placed from its member 0's run in WORKDIR, or else
 from member 0's stored row.
 """
 import argparse
@@ -131,9 +132,9 @@ def write_atomic(path, text):
     os.replace(path + ".tmp", path)
 
 
-def stored_members():
+def stored_members(need_ramp=True):
     """{(case, level, member): row} of data/fe/reference-members.csv whose
-    ramp is in data/fe/reference-ramps.csv too"""
+    ramp is in data/fe/reference-ramps.csv too (every row: need_ramp 0)"""
     if not os.path.exists(MEMBERS_CSV):
         return {}
     with open(MEMBERS_CSV) as f:
@@ -144,7 +145,7 @@ def stored_members():
         with open(RAMPS_CSV) as f:
             ramps = {(r["case"], int(r["mesh_level"]), int(r["member"]))
                      for r in csv.DictReader(f)}
-    return {k: r for k, r in rows.items() if k in ramps}
+    return {k: r for k, r in rows.items() if k in ramps or not need_ramp}
 
 
 class Member:
@@ -339,6 +340,8 @@ def main():
                     help="members per (case, level): 4, 8, 16, ... (default %d)" % K)
     ap.add_argument("--max-runs", type=int, default=0, help="start at most M member runs")
     ap.add_argument("--retry-failed", action="store_true")
+    ap.add_argument("--no-ramp-reruns", action="store_true",
+                    help="a stored member without its ramp counts as done too")
     ap.add_argument("--collect", action="store_true",
                     help="run nothing: write the CSV files from WORKDIR's finished members")
     a = ap.parse_args()
@@ -353,7 +356,7 @@ def main():
     if a.members < 4 or a.members > MAX_MEMBERS or complete(a.members) != a.members:
         sys.exit("--members: %d is not a power of two from 4 to %d" % (a.members, MAX_MEMBERS))
     levels = [int(x) for x in a.levels.split(",")]
-    stored = stored_members()
+    stored = stored_members(not a.no_ramp_reruns)
     # level by level, the first 4 members of every case, then the next 4, 8, ...
     members = [Member(a.work, c, lv, j, stored) for lv in levels
                for lo, hi in [(0, 4)] + [(k, 2 * k) for k in (4, 8, 16, 32) if k < a.members]
