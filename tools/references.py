@@ -40,8 +40,8 @@ first 4, 8, 16, ... members): the members' mean, their standard error of
 the mean, extremes, mean P/Pc, and the CPU time.  Member 0 at level 0 is
 the default single run.  A member whose row and ramp are both stored in
 data/fe counts as done (a stored member without its ramp runs again, to keep
-it, unless --no-ramp-reruns); a member j > 0 is placed from its member 0's run in WORKDIR, or else
-from member 0's stored row.
+it, unless --no-ramp-reruns); a member j > 0 is placed from its member 0's
+run in WORKDIR, or else from member 0's stored row.
 """
 import argparse
 import csv
