@@ -217,13 +217,13 @@ static stc_status make_mesh(asp_solver *s, double delta_max)
     return STC_OK;
 }
 
-/* The linear solver on the pattern of the mesh (linsolve.c); small:
+/* The linear solver on the pattern of the mesh (linsolve.c); serial:
  * factorize on one thread (see asp_solver_create). */
-static stc_status make_linsolve(asp_solver *s, int small)
+static stc_status make_linsolve(asp_solver *s, int serial)
 {
     int *Kp = NULL, *Ki = NULL;
     STC_CALL(asp_asm_pattern(s, &Kp, &Ki));
-    asp_ls_options lo = {s->opt.krylov, s->opt.krylov_max, s->nthr, small, s->dim == 3};
+    asp_ls_options lo = {s->opt.krylov, s->opt.krylov_max, s->nthr, serial, s->dim == 3};
     stc_status st = asp_ls_create(s->ndof, Kp, Ki, s->fixed, &lo, &s->ls);
     free(Kp), free(Ki);
     return st;

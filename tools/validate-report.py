@@ -35,8 +35,8 @@ def main():
     version = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
                              text=True).stdout.strip() or "unknown"
     head = ["# Validation report", "",
-            "Written by `make validate` (tools/validate-report.py) from the parts in "
-            "`results/`; source tree %s. Three kinds of rows, kept apart:" % version, "",
+            None,  # who wrote it, filled in once the carried parts are known
+            "",
             "* **check**: a measured value against a verified reference (a closed form, the "
             "same model's mesh-converged answer, an independent code). A failed check fails "
             "`make validate`.",
@@ -71,10 +71,10 @@ def main():
                 continue
             body.append("#" + line if line.startswith("#") else line)
         body.append("")
-    if carried:
-        head[2] = head[2].replace(" Three kinds", " Not run this time and kept from the "
-                                  "previous report, each with its own date: %s. Three kinds"
-                                  % ", ".join(carried))
+    head[2] = ("Written by `make validate` (tools/validate-report.py) from the parts in "
+               "`results/`; source tree %s.%s Three kinds of rows, kept apart:"
+               % (version, " Not run this time and kept from the previous report, each with "
+                  "its own date: %s." % ", ".join(carried) if carried else ""))
     with open(out + ".tmp", "w") as f:
         f.write("\n".join(head + [""] + body).rstrip() + "\n")
     os.replace(out + ".tmp", out)
