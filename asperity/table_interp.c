@@ -17,8 +17,13 @@
  * μs carries a few per cent of node-placement noise per point, so it is not
  * interpolated but smoothed: a Gaussian process (asperity/table_fit.h) on
  * r = ln μs − ln μs_WSP(w), the Wu–Shi–Polycarpou (2012) curve as the trend,
- * in (ln w, ln t/R, ln Eco/Esu), each point weighted by its own error
- * estimate.  The query returns the posterior mean and standard deviation. */
+ * in (ln w, ln t/R − ½ ln w, ln Eco/Esu), each point weighted by its own
+ * error estimate.  The second input is the coating thickness over the
+ * contact's size, ln(t / √(R δ)) up to a constant: a layered contact
+ * responds to t/a, so a feature that moves to larger δ on a thicker coating
+ * lies along one input instead of across two (docs/table-format.md has the
+ * measurements that chose it).  The query returns the posterior mean and
+ * standard deviation. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +43,16 @@ static double trend(double w)
     return log(stc_wsp_mu(w, &fl));
 }
 
+/* The surrogate's inputs at (w, t/R, Eco/Esu).  With one t/R value the
+ * second input is that constant (the fit then ignores it) rather than a
+ * copy of the first. */
+static void gp_inputs(const tbl_table *t, double w, double tR, double E, double *x)
+{
+    x[0] = log(w);
+    x[1] = t->n[1] > 1 ? log(tR) - 0.5 * log(w) : log(tR);
+    x[2] = log(E);
+}
+
 stc_status tbl_fit(tbl_table *t)
 {
     STC_CHECK(t, STC_EINVAL, "tbl_fit: table required");
@@ -53,7 +68,7 @@ stc_status tbl_fit(tbl_table *t)
         if (p->state != TBL_DONE) continue;
         double w, tR, E;
         tbl_coords(t, i, &w, &tR, &E);
-        x[3 * n] = log(w), x[3 * n + 1] = log(tR), x[3 * n + 2] = log(E);
+        gp_inputs(t, w, tR, E, x + 3 * n);
         y[n] = log(p->mu_s) - trend(w);
         sy[n] = p->mu_s_err / p->mu_s; /* relative error = error of ln μs */
         n++;
@@ -294,7 +309,8 @@ stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_rat
     STC_CHECK(!bad, STC_ERANGE, "table query at t/R = %g, E-ratio = %g: a neighbouring "
               "(t/R, E-ratio) column has fewer than 2 done points", t_over_R, E_ratio);
     if (gap) out->flags |= TBL_GAP;
-    double xq[3] = {log(clamp_axis(t, 0, w)), log(tR), log(E)}, m, sd;
+    double xq[3], m, sd;
+    gp_inputs(t, clamp_axis(t, 0, w), tR, E, xq);
     tbl_gp_predict(t->gp, xq, &m, &sd);
     out->mu_s = exp(trend(w) + m);
     out->mu_s_err = out->mu_s * sd;
