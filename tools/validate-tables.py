@@ -31,7 +31,10 @@
 Usage: validate-tables.py CLI WORKDIR REPORT.md [--table FILE] [--config INI]
        [--jobs N] [--refine N]
 The held-out runs are kept in WORKDIR/heldout/ and WORKDIR/heldout8/ (each a
-resumable table build), so an interrupted validation goes on where it stopped.
+resumable table build), so an interrupted validation goes on where it stopped,
+and each finished one is stored in data/fe/table-heldout.csv with the version
+that computed it; a later validation reads them from there (they do not depend
+on the table) unless --fresh asks for new runs.
 """
 import argparse
 import concurrent.futures
@@ -42,6 +45,7 @@ import math
 import os
 import subprocess
 import sys
+import threading
 import time
 
 from vreport import Report
@@ -49,6 +53,10 @@ from vreport import Report
 REFINED_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "fe",
                            "table-refined.csv")
 HELD_CSV = os.path.join(os.path.dirname(REFINED_CSV), "references.csv")
+HELDOUT_CSV = os.path.join(os.path.dirname(REFINED_CSV), "table-heldout.csv")
+HELDOUT_COLS = ["delta_over_omega_c", "t_over_R", "E_ratio", "placements", "config", "state",
+                "mu_s", "mu_s_err", "mu_s_min", "mu_s_max", "P_over_P_c", "A_over_A_c",
+                "members", "cpu_s", "wall_s", "version"]
 
 # delta/omega_c_su, t/R, Eco/Esu: each between nodes of examples/thesis-table.ini
 # on one axis or more (axes 0.5 1 2 4 8 15 30 60; 0.005 0.025 0.05; 1 2 4)
@@ -99,6 +107,63 @@ def fe_point(cli, config, work, k, pt, sub="heldout", extra=()):
     r = rows[0]
     r["wall_run_s"] = time.time() - t0
     return r
+
+
+def stored_heldout():
+    """{(delta, t/R, Eco/Esu, placements, config): row} of HELDOUT_CSV."""
+    have = {}
+    if os.path.exists(HELDOUT_CSV):
+        with open(HELDOUT_CSV) as f:
+            for r in csv.DictReader(f):
+                key = tuple(float(r[k]) for k in ("delta_over_omega_c", "t_over_R", "E_ratio"))
+                have[key + (int(r["placements"]), r["config"])] = r
+    return have
+
+
+def save_heldout(have):
+    """Writes every stored held-out run to HELDOUT_CSV (atomically), in the
+    order of HELD_OUT."""
+    order = {pt: i for i, pt in enumerate(HELD_OUT)}
+    rows = sorted(have.values(), key=lambda r: (
+        r["config"], int(r["placements"]),
+        order.get(tuple(float(r[k]) for k in ("delta_over_omega_c", "t_over_R", "E_ratio")),
+                  len(order))))
+    with open(HELDOUT_CSV + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=HELDOUT_COLS, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(HELDOUT_CSV + ".tmp", HELDOUT_CSV)
+
+
+def heldout_runs(cli, config, work, jobs, fresh, K):
+    """The held-out FE points with the table's numerics ('x2') and with K
+    placements: stored ones from HELDOUT_CSV unless fresh, the others run
+    (concurrently, jobs at a time) and stored as each finishes."""
+    have = {} if fresh else stored_heldout()
+    keep = stored_heldout()
+    version = run([cli, "--version"]).stdout.strip()
+    lock = threading.Lock()
+
+    def one(job):
+        k, pt, placements = job
+        key = pt + (placements, config)
+        if key in have:
+            return have[key]
+        extra = () if placements == 2 else ("--placements", str(placements))
+        sub = "heldout" if placements == 2 else "heldout%d" % placements
+        r = fe_point(cli, config, work, k, pt, sub, extra)
+        if "error" not in r and r.get("state") == "done":
+            r = dict(r, placements=placements, config=config, version=version)
+            with lock:
+                keep[key] = r
+                save_heldout(keep)
+        return r
+
+    jobs_list = [(k, pt, pl) for pl in (2, K) for k, pt in enumerate(HELD_OUT)]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
+        res = list(ex.map(one, jobs_list))
+    n = len(HELD_OUT)
+    return res[:n], res[n:]
 
 
 def table_point(cli, table, pt):
@@ -244,16 +309,10 @@ def axisym_point(cli, table, info, axis, pt):
     sys.exit("no row at delta %g in the axisymmetric curve" % d)
 
 
-def held_out(cli, table, config, work, jobs, rep):
+def held_out(cli, table, config, work, jobs, fresh, rep):
     os.makedirs(os.path.join(work, "heldout"), exist_ok=True)
     os.makedirs(os.path.join(work, "heldout%d" % HELD_OUT_PLACEMENTS), exist_ok=True)
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
-        fe = list(ex.map(lambda kp: fe_point(cli, config, work, *kp),
-                         enumerate(HELD_OUT)))
-        fe8 = list(ex.map(lambda kp: fe_point(cli, config, work, kp[0], kp[1],
-                                              "heldout%d" % HELD_OUT_PLACEMENTS,
-                                              ("--placements", str(HELD_OUT_PLACEMENTS))),
-                          enumerate(HELD_OUT)))
+    fe, fe8 = heldout_runs(cli, config, work, jobs, fresh, HELD_OUT_PLACEMENTS)
     info = json.loads(run([cli, "table", "info", table, "--json"]).stdout)
     axis = normal_axis(cli, table)
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
@@ -272,7 +331,10 @@ def held_out(cli, table, config, work, jobs, rep):
             "held-out t/R and Eco/Esu (`stiction asperity --delta` through the grid's %d "
             "delta values and the held-out one, as the grid's curves are computed); 'P/Pc "
             "3D' is the fresh 3D point's own preload, whose difference is the coarse 3D "
-            "mesh's.\n" % (config, K, K, K, table, K, K, len(axis)))
+            "mesh's. The FE points are stored in data/fe/table-heldout.csv with the version "
+            "that computed them (%s; `tools/validate-tables.py ... --fresh` runs them "
+            "again).\n" % (config, K, K, K, table, K, K, len(axis),
+                           ", ".join(sorted({f.get("version", "?") for f in fe + fe8}))))
     rep.out("| delta/wc | t/R | Eco/Esu | mu_s FE x2 | mu_s FE x%d | mu_s table +- sigma_t | "
             "diff vs x%d | z | diff vs x2 | P/Pc axisym | P/Pc table | diff P | diff A | "
             "P/Pc 3D | 3D vs table | CPU s x2, x%d |" % (K, K, K))
@@ -407,6 +469,9 @@ def main():
                     help="first compute up to N missing refined references (about one CPU "
                          "hour each, cheapest first) into WORKDIR/refined/ and add them to "
                          "data/fe/table-refined.csv")
+    ap.add_argument("--fresh", action="store_true",
+                    help="run the held-out FE points again instead of reading the stored "
+                         "ones (data/fe/table-heldout.csv), and store the new runs there")
     a = ap.parse_args()
     if not os.path.exists(a.table):
         sys.exit("%s: no such table (make tables builds it)" % a.table)
@@ -422,7 +487,7 @@ def main():
                                             100 * info["loo_rms_rel"], 100 * info["loo_max_rel"],
                                             100 * info["loo_cover2"]))
     checks = surface(a.cli, a.table, rep)
-    checks += held_out(a.cli, a.table, a.config, a.work, a.jobs, rep)
+    checks += held_out(a.cli, a.table, a.config, a.work, a.jobs, a.fresh, rep)
     checks += refined(a.cli, a.table, rep)
     rep.out("## Verdicts\n")
     # ("check", name, reference, tolerance, measured, passed) and
