@@ -237,26 +237,36 @@ def refined(cli, table, rep):
             "each), or the same ensemble member by member for the shear held set "
             "(data/fe/references.csv, tools/references.py; the coated cases are nodes of this "
             "grid, with 4 or more members).\n" % (sum(pt in have for pt in REFINED), len(REFINED)))
+    rep.out("'query' is what `stiction table query` returns at the node (the smoothed "
+            "surrogate, with its standard error); z its difference over the two standard "
+            "errors in quadrature.\n")
     rep.out("| delta/wc | t/R | Eco/Esu | mu_s table | stored error | mu_s refined | +- | K | "
-            "diff | covered | P/Pc diff | CPU s refined | source |")
-    rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    n = within = covered = 0
-    worst = 0.0
+            "diff | covered | query | diff | z | P/Pc diff | CPU s refined | source |")
+    rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    n = within = covered = qwithin = qcovered = 0
+    worst = qworst = 0.0
     for pt in pts:
         f = have[pt]
         r = table_point(cli, table, pt)
+        q = query(cli, table, pt)
         mt, et = float(r["mu_s"]), float(r["mu_s_err"])
         mr, er = float(f["mu_s"]), float(f["mu_s_err"])
         d = (mt - mr) / mr
+        dq = (q["mu_s"] - mr) / mr
+        zq = abs(q["mu_s"] - mr) / math.hypot(q["mu_s_err"], er)
         dp = (float(r["P_over_P_c"]) - float(f["P_over_P_c"])) / float(f["P_over_P_c"])
         n += 1
         within += abs(d) <= 0.02
         covered += et >= abs(mt - mr)
         worst = max(worst, abs(d))
-        rep.out("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %s | %+.2f %% | %s | %+.2f %% | "
-                "%.0f | %s |" % (pt + (mt, et, mr, er, f["placements"], 100 * d,
-                                       "yes" if et >= abs(mt - mr) else "no", 100 * dp,
-                                       float(f["cpu_s"]), f["source"])))
+        qwithin += abs(dq) <= 0.02
+        qcovered += zq <= 2
+        qworst = max(qworst, abs(dq))
+        rep.out("| %g | %g | %g | %.4f | %.4f | %.4f | %.4f | %s | %+.2f %% | %s | "
+                "%.4f +- %.4f | %+.2f %% | %.2f | %+.2f %% | %.0f | %s |"
+                % (pt + (mt, et, mr, er, f["placements"], 100 * d,
+                         "yes" if et >= abs(mt - mr) else "no", q["mu_s"], q["mu_s_err"],
+                         100 * dq, zq, 100 * dp, float(f["cpu_s"]), f["source"])))
     rep.out("")
     ref = "one full refinement (data/fe/table-refined.csv, data/fe/references.csv)"
     checks = []
@@ -271,6 +281,12 @@ def refined(cli, table, rep):
                    "%d of %d within (largest %.2f %%); the references %s the grid's ends"
                    % (within, n, 100 * worst, "span" if spread else "do not yet span"),
                    within == n and n >= 6 and spread))
+    if n:
+        checks.append(("target", "table query at a node within 2 % of one full refinement, "
+                       "and within two standard errors of it", "every reference node",
+                       "%d of %d within 2 %% (largest %.2f %%), %d of %d within two standard "
+                       "errors" % (qwithin, n, 100 * qworst, qcovered, n),
+                       qwithin == n and qcovered == n))
     return checks
 
 
