@@ -283,7 +283,8 @@ STC_API stc_status tbl_fit(tbl_table *t);
 
 typedef struct tbl_fit_info {
     int n;                /* done points fitted */
-    double ell[3];        /* length scales in ln w, ln t/R, ln Eco/Esu (inf: one value) */
+    double ell[3];        /* length scales in ln w, ln t/R - ½ ln w (ln t/R with one t/R
+                             value), ln Eco/Esu (inf: one value) */
     double noise_scale;   /* factor on the points' error estimates the data asked for */
     double loo_rms, loo_max; /* leave-one-out relative μs errors, rms and largest */
     double loo_cover2;    /* share of points within 2 LOO standard deviations */
