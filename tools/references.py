@@ -48,12 +48,12 @@ import csv
 import json
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
 import time
 
+from refdata import binary_version
 from wsp_case import WSP, write_csv
 
 K = 4  # the members of an ensemble unless --members says more
@@ -106,17 +106,6 @@ def stored_refs():
     """{(case, mesh level): row} of data/fe/references.csv"""
     with open(REFS_CSV) as f:
         return {(r["case"], int(r["mesh_level"])): r for r in csv.DictReader(f)}
-
-
-def version(cli):
-    """stiction's version and the commit its binary was built from
-    (`stiction --version`: "stiction 0.1.0 (commit abc1234)"); "?" for the
-    commit of a binary that does not say."""
-    p = subprocess.run([cli, "--version"], capture_output=True, text=True)
-    m = re.match(r"stiction (\S+)(?: \(commit (\S+)\))?", p.stdout.strip())
-    if not m:
-        return "?"
-    return m.group(1) + "+" + (m.group(2) or "?")
 
 
 def load(path):
@@ -247,7 +236,7 @@ def schedule(cli, members, jobs, max_runs, done=lambda: None):
                 break
             pending.remove(nxt)
             os.makedirs(nxt.dir, exist_ok=True)
-            ver = version(cli)
+            ver = binary_version(cli)
             running.append((nxt, subprocess.Popen(nxt.command(cli), stdout=subprocess.PIPE,
                                                   stderr=subprocess.PIPE, text=True),
                             time.time(), ver))

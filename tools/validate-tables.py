@@ -48,6 +48,7 @@ import sys
 import threading
 import time
 
+from refdata import binary_version
 from vreport import Report
 
 REFINED_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "fe",
@@ -141,7 +142,7 @@ def heldout_runs(cli, config, work, jobs, fresh, K):
     (concurrently, jobs at a time) and stored as each finishes."""
     have = {} if fresh else stored_heldout()
     keep = stored_heldout()
-    version = run([cli, "--version"]).stdout.strip()
+    version = binary_version(cli)
     lock = threading.Lock()
 
     def one(job):
