@@ -1,9 +1,11 @@
 #!/bin/sh
 # make validate fragment: the bundled thesis-family FE friction table against
-# fresh FE runs at held-out points between its nodes, and the surface checks
-# on it (stiffer coating, coated versus uncoated).  10 FE points, each with
-# the table's two node placements and with eight (some 65 CPU minutes); the
-# runs are kept in RESULTS_DIR/tables/, so an interrupted validation resumes.
+# FE runs at held-out points between its nodes, and the surface checks on it
+# (stiffer coating, coated versus uncoated).  10 FE points, each with the
+# table's two node placements and with eight, read from
+# data/fe/table-heldout.csv (computed there once, about an hour of CPU, when
+# missing; runs in progress are kept in RESULTS_DIR/tables/, so an interrupted
+# validation resumes).
 # Called as: 60-tables.sh CLI RESULTS_DIR; writes
 # RESULTS_DIR/validate-tables.md; exits non-zero if a check fails.
 set -eu
