@@ -29,7 +29,7 @@
    error band.
 
 Usage: validate-tables.py CLI WORKDIR REPORT.md [--table FILE] [--config INI]
-       [--jobs N] [--refine N]
+       [--jobs N] [--refine N] [--fresh]
 The held-out runs are kept in WORKDIR/heldout/ and WORKDIR/heldout8/ (each a
 resumable table build), so an interrupted validation goes on where it stopped,
 and each finished one is stored in data/fe/table-heldout.csv with the version
