@@ -55,6 +55,7 @@ REFINED_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "da
                            "table-refined.csv")
 HELD_CSV = os.path.join(os.path.dirname(REFINED_CSV), "references.csv")
 HELDOUT_CSV = os.path.join(os.path.dirname(REFINED_CSV), "table-heldout.csv")
+POINT_COLS = ("delta_over_omega_c", "t_over_R", "E_ratio")
 HELDOUT_COLS = ["delta_over_omega_c", "t_over_R", "E_ratio", "placements", "config", "state",
                 "mu_s", "mu_s_err", "mu_s_min", "mu_s_max", "P_over_P_c", "A_over_A_c",
                 "members", "cpu_s", "wall_s", "version"]
@@ -110,14 +111,18 @@ def fe_point(cli, config, work, k, pt, sub="heldout", extra=()):
     return r
 
 
+def point_key(r):
+    """(delta/omega_c, t/R, Eco/Esu) of a CSV row, as floats."""
+    return tuple(float(r[k]) for k in POINT_COLS)
+
+
 def stored_heldout():
     """{(delta, t/R, Eco/Esu, placements, config): row} of HELDOUT_CSV."""
     have = {}
     if os.path.exists(HELDOUT_CSV):
         with open(HELDOUT_CSV) as f:
             for r in csv.DictReader(f):
-                key = tuple(float(r[k]) for k in ("delta_over_omega_c", "t_over_R", "E_ratio"))
-                have[key + (int(r["placements"]), r["config"])] = r
+                have[point_key(r) + (int(r["placements"]), r["config"])] = r
     return have
 
 
@@ -126,9 +131,7 @@ def save_heldout(have):
     order of HELD_OUT."""
     order = {pt: i for i, pt in enumerate(HELD_OUT)}
     rows = sorted(have.values(), key=lambda r: (
-        r["config"], int(r["placements"]),
-        order.get(tuple(float(r[k]) for k in ("delta_over_omega_c", "t_over_R", "E_ratio")),
-                  len(order))))
+        r["config"], int(r["placements"]), order.get(point_key(r), len(order))))
     with open(HELDOUT_CSV + ".tmp", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=HELDOUT_COLS, extrasaction="ignore")
         w.writeheader()
@@ -140,8 +143,8 @@ def heldout_runs(cli, config, work, jobs, fresh, K):
     """The held-out FE points with the table's numerics ('x2') and with K
     placements: stored ones from HELDOUT_CSV unless fresh, the others run
     (concurrently, jobs at a time) and stored as each finishes."""
-    have = {} if fresh else stored_heldout()
     keep = stored_heldout()
+    have = {} if fresh else dict(keep)
     version = binary_version(cli)
     lock = threading.Lock()
 
@@ -167,11 +170,15 @@ def heldout_runs(cli, config, work, jobs, fresh, K):
     return res[:n], res[n:]
 
 
-def table_point(cli, table, pt):
+def table_points(cli, table):
+    """The table's points: {(delta, t/R, Eco/Esu): row of `table info --points`}."""
     rows = csv.DictReader(io.StringIO(run([cli, "table", "info", table, "--points"]).stdout))
-    for r in rows:
-        if all(abs(float(r[k]) - v) <= 1e-9 * v for k, v in
-               zip(("delta_over_omega_c", "t_over_R", "E_ratio"), pt)):
+    return {point_key(r): r for r in rows}
+
+
+def table_point(points, table, pt):
+    for key, r in points.items():
+        if all(abs(a - b) <= 1e-9 * b for a, b in zip(key, pt)):
             return r
     sys.exit("%s: no point at delta %g, t/R %g, E-ratio %g" % ((table,) + pt))
 
@@ -181,18 +188,16 @@ def stored_refined(held=True):
     and, with held, the thesis-family cases of the shear held set one level
     finer (data/fe/references.csv, tools/references.py: the same ensemble,
     its members run one by one; cpu_s is their single-thread run time)."""
-    key = ("delta_over_omega_c", "t_over_R", "E_ratio")
     have = {}
     if held and os.path.exists(HELD_CSV):
         with open(HELD_CSV) as f:
             for r in csv.DictReader(f):
                 if r["family"] == "thesis" and r["mesh_level"] == "1":
-                    have[tuple(float(r[k]) for k in key)] = dict(r, cpu_s=r["wall_s"],
-                                                                 source="references.csv")
+                    have[point_key(r)] = dict(r, cpu_s=r["wall_s"], source="references.csv")
     if os.path.exists(REFINED_CSV):
         with open(REFINED_CSV) as f:
             for r in csv.DictReader(f):
-                have[tuple(float(r[k]) for k in key)] = dict(r, source="table-refined.csv")
+                have[point_key(r)] = dict(r, source="table-refined.csv")
     return have
 
 
@@ -214,8 +219,7 @@ def refine(cli, config, work, jobs, count):
             continue
         rows.append(dict({c: f[c] for c in cols}, mesh_level="1", placements="4"))
     order = {pt: i for i, pt in enumerate(REFINED)}
-    rows.sort(key=lambda r: order.get(tuple(float(r[k]) for k in
-                                            ("delta_over_omega_c", "t_over_R", "E_ratio")), 99))
+    rows.sort(key=lambda r: order.get(point_key(r), 99))
     with open(REFINED_CSV + ".tmp", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=cols + ["mesh_level", "placements"],
                            extrasaction="ignore")
@@ -246,9 +250,10 @@ def refined(cli, table, rep):
     rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     n = within = covered = qwithin = qcovered = 0
     worst = qworst = 0.0
+    points = table_points(cli, table)
     for pt in pts:
         f = have[pt]
-        r = table_point(cli, table, pt)
+        r = table_point(points, table, pt)
         q = query(cli, table, pt)
         mt, et = float(r["mu_s"]), float(r["mu_s_err"])
         mr, er = float(f["mu_s"]), float(f["mu_s_err"])
