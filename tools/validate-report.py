@@ -34,9 +34,37 @@ def main():
     res, out = sys.argv[1], sys.argv[2]
     version = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
                              text=True).stdout.strip() or "unknown"
+    rows, body, carried = [], [], []
+    kept = earlier(out)
+    for key, title in PARTS:
+        path = os.path.join(res, "validate-%s.md" % key)
+        if not os.path.exists(path):
+            if title in kept:
+                row, section = kept[title]
+                rows.append(row)
+                body += section + ([] if section[-1] == "" else ["", ""])
+                carried.append(title)
+            else:
+                rows.append("| %s | not run | | | |" % title)
+            continue
+        text = open(path).read()
+        s = summary(text)
+        if s and len(s) == 5:
+            rows.append("| [%s](#%s) | %d | %d | %d | %d |" % (title, anchor(text), s[0], s[1],
+                                                              s[2], s[4]))
+        else:
+            rows.append("| %s | (no summary) | | | |" % title)
+        for line in text.rstrip().splitlines():
+            if line.startswith(SUMMARY):
+                continue
+            body.append("#" + line if line.startswith("#") else line)
+        body.append("")
+    kept_note = (" Not run this time and kept from the previous report, each with its own "
+                 "date: %s." % ", ".join(carried) if carried else "")
     head = ["# Validation report", "",
-            None,  # who wrote it, filled in once the carried parts are known
-            "",
+            "Written by `make validate` (tools/validate-report.py) from the parts in "
+            "`results/`; source tree %s.%s Three kinds of rows, kept apart:"
+            % (version, kept_note), "",
             "* **check**: a measured value against a verified reference (a closed form, the "
             "same model's mesh-converged answer, an independent code). A failed check fails "
             "`make validate`.",
@@ -45,36 +73,7 @@ def main():
             "a *finding*, given with its numbers and the evidence that decides it.",
             "* **target**: an accuracy goal not met yet, with the measured value.", "",
             "| part | checks | failed | findings | targets not met |", "|---|---|---|---|---|"]
-    body = []
-    kept = earlier(out)
-    carried = []
-    for key, title in PARTS:
-        path = os.path.join(res, "validate-%s.md" % key)
-        if not os.path.exists(path):
-            if title in kept:
-                row, section = kept[title]
-                head.append(row)
-                body += section + ([] if section[-1] == "" else ["", ""])
-                carried.append(title)
-            else:
-                head.append("| %s | not run | | | |" % title)
-            continue
-        text = open(path).read()
-        s = summary(text)
-        if s and len(s) == 5:
-            head.append("| [%s](#%s) | %d | %d | %d | %d |" % (title, anchor(text), s[0], s[1],
-                                                              s[2], s[4]))
-        else:
-            head.append("| %s | (no summary) | | | |" % title)
-        for line in text.rstrip().splitlines():
-            if line.startswith(SUMMARY):
-                continue
-            body.append("#" + line if line.startswith("#") else line)
-        body.append("")
-    head[2] = ("Written by `make validate` (tools/validate-report.py) from the parts in "
-               "`results/`; source tree %s.%s Three kinds of rows, kept apart:"
-               % (version, " Not run this time and kept from the previous report, each with "
-                  "its own date: %s." % ", ".join(carried) if carried else ""))
+    head += rows
     with open(out + ".tmp", "w") as f:
         f.write("\n".join(head + [""] + body).rstrip() + "\n")
     os.replace(out + ".tmp", out)
