@@ -27,7 +27,7 @@
 #include "table_fit.h"
 
 #define MAXDIM 3
-#define MAXPAR (MAXDIM + 1)
+#define MAXPAR (MAXDIM + 2)
 
 /* ell >= 0.25 x the smallest spacing: the kernel between neighbours is then
  * at most exp(-8), below which the fit would only interpolate noise. */
@@ -37,6 +37,10 @@
 #define ELL_HI_RANGE 20.0
 #define ELL_START_RANGE 0.5 /* start: ell = half the range */
 #define C_MAX 10.0          /* noise scale c in [1, C_MAX] */
+/* Modulated length scales: |gamma| x half the range of the modulating
+ * input <= MOD_MAX, i.e. ell varies at most e^1.5 = 4.5-fold either way
+ * from its value at the middle of that range. */
+#define MOD_MAX 1.5
 /* sf in [SF_LO, SF_HI] x s0, s0 = max(sd(y), rms(sy)): from "no signal" to
  * far beyond any variation the data can show. */
 #define SF_LO 1e-3
@@ -71,6 +75,8 @@
 struct tbl_gp {
     int n, dim, nact;
     int act[MAXDIM];          /* input dims that vary */
+    int mod;                  /* input dim modulating the length scales, -1: none */
+    double gam, mcen;         /* ell_d(x) = ell_d exp(gam (x[mod] - mcen)) */
     double *x;                /* [n][dim] inputs */
     double *y, *sy;           /* [n] values, given noise sd */
     double inv_ell2[MAXDIM];  /* 1/ell^2 per varying dim (index into act) */
@@ -93,14 +99,17 @@ typedef struct grid {
     double tab[MAXDIM][GRID_MAX * GRID_MAX];
 } grid;
 
-/* Searched parameters: log ell per varying dim, log lambda = log(c / sf). */
+/* Searched parameters: log ell per varying dim, log lambda = log(c / sf),
+ * and with modulation gamma x half the modulating input's range. */
 typedef struct hyp {
-    double lell[MAXDIM], llam;
+    double lell[MAXDIM], llam, gmod;
 } hyp;
 
 typedef struct fit_ctx {
     tbl_gp *g;
-    int np;                        /* searched parameters: nact + 1, or 0 if nact = 0 */
+    int np;                        /* searched parameters: nact + 1 (+ 1 with modulation), or
+                                      0 if nact = 0 */
+    double mhalf;                  /* half the range of the modulating input */
     double lo[MAXPAR], hi[MAXPAR]; /* bounds of the log parameters, order lell.., llam */
     double sf_lo, sf_hi;           /* bounds of sf */
     double inv_range[MAXDIM];      /* 1 / range per varying dim */
@@ -129,6 +138,7 @@ static void unpack(const fit_ctx *c, const double *t, hyp *h)
     int k = 0;
     for (; k < c->g->nact; k++) h->lell[k] = from_angle(t[k], c->lo[k], c->hi[k]);
     if (c->np > 0) h->llam = from_angle(t[k], c->lo[k], c->hi[k]);
+    h->gmod = c->np > k + 1 ? from_angle(t[k + 1], c->lo[k + 1], c->hi[k + 1]) : 0.0;
 }
 
 static void pack(const fit_ctx *c, const hyp *h, double *t)
@@ -136,12 +146,15 @@ static void pack(const fit_ctx *c, const hyp *h, double *t)
     int k = 0;
     for (; k < c->g->nact; k++) t[k] = to_angle(h->lell[k], c->lo[k], c->hi[k]);
     if (c->np > 0) t[k] = to_angle(h->llam, c->lo[k], c->hi[k]);
+    if (c->np > k + 1) t[k + 1] = to_angle(h->gmod, c->lo[k + 1], c->hi[k + 1]);
 }
 
-/* K = A = R + lambda^2 S (s = 1); with no varying input A = S (sf = 0). */
-static void set_shape(tbl_gp *g, const hyp *h)
+/* K = A = R + lambda^2 S (s = 1); with no varying input A = S (sf = 0).
+ * mhalf: half the modulating input's range (unused without modulation). */
+static void set_shape(tbl_gp *g, const hyp *h, double mhalf)
 {
     for (int a = 0; a < g->nact; a++) g->inv_ell2[a] = exp(-2.0 * h->lell[a]);
+    g->gam = g->mod >= 0 ? h->gmod / mhalf : 0.0;
     g->sf2 = g->nact > 0 ? 1.0 : 0.0;
     g->c2 = g->nact > 0 ? exp(2.0 * h->llam) : 1.0;
     grid *G = g->grid;
@@ -156,7 +169,12 @@ static void set_shape(tbl_gp *g, const hyp *h)
 
 /* ---- covariance and its factorisation --------------------------------- */
 
-/* sf^2 exp(-1/2 sum_d (dx_d / ell_d)^2) over the varying dims. */
+/* sf^2 exp(-1/2 sum_d (dx_d / ell_d)^2) over the varying dims; with
+ * modulation, every ell_d scaled by r(x) = exp(gam (x[mod] - mcen)) at
+ * each end (Gibbs 1997; Paciorek & Schervish 2004, eq. 3):
+ *   sf^2 prod_d (2 r r' / (r^2 + r'^2))^(1/2) exp(-sum_d dx_d^2 / (ell_d^2 (r^2 + r'^2))),
+ * positive definite for any r(x) > 0 and equal to the stationary kernel
+ * at gam = 0. */
 static double kern(const tbl_gp *g, const double *xa, const double *xb)
 {
     double s = 0.0;
@@ -164,7 +182,10 @@ static double kern(const tbl_gp *g, const double *xa, const double *xb)
         double d = xa[g->act[a]] - xb[g->act[a]];
         s += d * d * g->inv_ell2[a];
     }
-    return g->sf2 * exp(-0.5 * s);
+    if (g->mod < 0 || g->gam == 0.0) return g->sf2 * exp(-0.5 * s);
+    double ra = exp(g->gam * (xa[g->mod] - g->mcen)), rb = exp(g->gam * (xb[g->mod] - g->mcen));
+    double q = ra * ra + rb * rb;
+    return g->sf2 * pow(2.0 * ra * rb / q, 0.5 * g->nact) * exp(-s / q);
 }
 
 /* Lower triangle of K = sf^2 R + diag(c^2 sy_i^2 + jitter) into K [n][n]. */
@@ -298,7 +319,7 @@ static double objective(const gsl_vector *t, void *p)
     hyp h;
     c->evals++;
     unpack(c, t->data, &h);
-    set_shape(c->g, &h);
+    set_shape(c->g, &h, c->mhalf);
     c->jitter = factor(c->g);
     if (c->jitter < 0.0) return PENALTY;
     gls q = gls_parts(c->g, c->a, c->b);
@@ -520,10 +541,17 @@ static void setup(fit_ctx *c, hyp *h, double *scratch)
     g->nact = 0;
     grid *G = malloc(sizeof *G);
     for (int d = 0; d < MAXDIM; d++) g->info.ell[d] = g->info.ell_lo[d] = g->info.ell_hi[d] = INFINITY;
+    int mod = g->mod;
+    g->mod = -1;
     for (int d = 0; d < g->dim; d++) {
         double range, spacing;
         int u = dim_spread(g, d, scratch, &range, &spacing);
         if (!(range > 0.0)) continue; /* constant input: ignored */
+        if (d == mod) { /* a constant modulating input modulates nothing */
+            g->mod = d;
+            c->mhalf = 0.5 * range;
+            g->mcen = scratch[0] + c->mhalf;
+        }
         int k = g->nact++;
         g->act[k] = d;
         if (G) {
@@ -537,7 +565,8 @@ static void setup(fit_ctx *c, hyp *h, double *scratch)
         g->info.ell_hi[d] = exp(c->hi[k]);
         h->lell[k] = log(ELL_START_RANGE * range);
     }
-    if (g->nact > 0) grid_setup(g, G);
+    /* the modulated kernel is not a product of per-dim factors */
+    if (g->nact > 0 && g->mod < 0) grid_setup(g, G);
     else free(G);
     double ym = 0.0, yv = 0.0, s2 = 0.0;
     for (int i = 0; i < n; i++) ym += g->y[i] / n;
@@ -557,6 +586,14 @@ static void setup(fit_ctx *c, hyp *h, double *scratch)
         c->hi[k] = log(C_MAX / c->sf_lo); /* lambda <= C_MAX / sf_lo */
         h->llam = -log(sf);
         c->np = k + 1;
+        h->gmod = 0.0;
+        if (g->mod >= 0) {
+            c->lo[k + 1] = -MOD_MAX;
+            c->hi[k + 1] = MOD_MAX;
+            c->np = k + 2;
+        }
+    } else {
+        g->mod = -1;
     }
 }
 
@@ -614,7 +651,7 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
 {
     tbl_gp *g = c->g;
     tbl_gp_info *in = &g->info;
-    set_shape(g, h);
+    set_shape(g, h, c->mhalf);
     double rel = factor(g);
     STC_CHECK(rel >= 0.0, STC_ESOLVER,
               "tbl_gp_fit: covariance not positive definite at the optimum even with jitter "
@@ -639,6 +676,14 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
         in->ell_at_bound[d] = h->lell[a] <= c->lo[a] + tol ? -1 : h->lell[a] >= c->hi[a] - tol;
     }
     in->sf = sqrt(g->sf2);
+    in->mod_dim = g->mod;
+    in->gamma = g->gam;
+    in->mod_centre = g->mod >= 0 ? g->mcen : 0.0;
+    if (g->mod >= 0) {
+        int k = g->nact + 1;
+        double tol = AT_BOUND_TOL * (c->hi[k] - c->lo[k]);
+        in->gamma_at_bound = h->gmod <= c->lo[k] + tol ? -1 : h->gmod >= c->hi[k] - tol;
+    }
     in->noise_scale = sqrt(g->c2);
     in->log_ml = reml(g->n, gls_parts(g, c->a, c->b), 1.0);
     in->evaluations = c->evals;
@@ -650,7 +695,15 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
 stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const double *sy,
                       tbl_gp **out)
 {
+    return tbl_gp_fit_modulated(n, dim, x, y, sy, -1, out);
+}
+
+stc_status tbl_gp_fit_modulated(int n, int dim, const double *x, const double *y,
+                                const double *sy, int mod_dim, tbl_gp **out)
+{
     STC_CALL(check_args(n, dim, x, y, sy, out));
+    STC_CHECK(mod_dim >= -1 && mod_dim < dim, STC_EINVAL,
+              "mod_dim = %d: must be -1 (none) or an input dim in 0..%d", mod_dim, dim - 1);
     stc_status st = STC_OK;
     /* GSL's error handler is process-wide, so it is left alone: no GSL call
      * of the fit can reach it but an allocation failure.  Nelder-Mead
@@ -665,7 +718,7 @@ stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const do
     c.b = malloc((size_t)n * sizeof *c.b);
     STC_CHECK_GOTO(g && c.a && c.b, st, done, STC_ENOMEM,
                    "tbl_gp_fit: out of memory (n = %d points)", n);
-    g->n = n, g->dim = dim;
+    g->n = n, g->dim = dim, g->mod = mod_dim;
     memcpy(g->x, x, (size_t)n * dim * sizeof *x);
     memcpy(g->y, y, (size_t)n * sizeof *y);
     memcpy(g->sy, sy, (size_t)n * sizeof *sy);

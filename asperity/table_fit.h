@@ -8,6 +8,8 @@
  *   f ~ GP(0, sf^2 exp(-1/2 sum_d ((x_d - x'_d) / ell_d)^2)),
  *   e_i ~ N(0, (c sy_i)^2),
  *
+ * (or, with tbl_gp_fit_modulated, length scales that vary along one input),
+ *
  * with m a constant estimated by generalised least squares (universal
  * kriging: the predictive variance includes m's uncertainty; Santner,
  * Williams & Notz 2003, ch. 3).  ell_d, sf and c maximise the restricted
@@ -55,6 +57,12 @@ typedef struct tbl_gp_info {
                             whose inputs are all equal */
     double sf;           /* fitted signal standard deviation (0 when every dim is constant) */
     double noise_scale;  /* fitted factor c >= 1 multiplying every given noise sd */
+    int mod_dim;         /* input dim modulating the length scales (tbl_gp_fit_modulated),
+                            -1: none (stationary) */
+    double gamma;        /* fitted modulation: ell_d(x) = ell[d] exp(gamma (x[mod_dim] -
+                            mod_centre)); 0 without */
+    double mod_centre;   /* the middle of the modulating input's range (0 without) */
+    int gamma_at_bound;  /* -1 / +1 when gamma ended at its lower / upper bound, else 0 */
     double mean;         /* GLS estimate of the constant mean */
     double log_ml;       /* restricted log marginal likelihood (R&W eq. 2.45) at the optimum */
     double loo_rms;      /* rms of leave-one-out residuals y_i - mu_{-i} */
@@ -88,6 +96,27 @@ typedef struct tbl_gp_info {
  * is not an error: info.converged = 0. */
 stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const double *sy,
                       tbl_gp **out);
+
+/* The same with length scales that vary along input mod_dim (-1: none,
+ * i.e. tbl_gp_fit): ell_d(x) = ell_d exp(gamma (x[mod_dim] - centre)),
+ * centre the middle of that input's range, the same factor for every dim,
+ * in the non-stationary squared exponential of Gibbs (1997) (Paciorek &
+ * Schervish 2004):
+ *
+ *   k(x, x') = sf^2 prod_d (2 l_d l'_d / (l_d^2 + l'_d^2))^(1/2)
+ *              exp(-sum_d (x_d - x'_d)^2 / (l_d^2 + l'_d^2)),  l_d = ell_d(x).
+ *
+ * gamma is fitted with the other hyperparameters (one more), confined to
+ * |gamma| x half that range <= 1.5 (ell at most 4.5-fold either way from the
+ * centre).  gamma = 0 is the stationary kernel.  For a function that is
+ * rougher in one part of the input space than in another, e.g. a table
+ * whose response turns sharply in one corner.  The fit does not use the
+ * per-dim factor tables of grid-like inputs (each likelihood evaluation
+ * evaluates the kernel per pair: about three times the fill cost at
+ * n = 1000).  A constant mod_dim is ignored (info.mod_dim = -1).
+ * Errors: as tbl_gp_fit; STC_EINVAL for mod_dim outside -1..dim-1. */
+stc_status tbl_gp_fit_modulated(int n, int dim, const double *x, const double *y,
+                                const double *sy, int mod_dim, tbl_gp **out);
 
 /* Posterior mean and standard deviation of the latent (noise-free)
  * function m + f at x[dim] (borrowed); sd includes the uncertainty of the

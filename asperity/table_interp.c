@@ -75,7 +75,9 @@ stc_status tbl_fit(tbl_table *t)
     }
     STC_CHECK_GOTO(n >= 3, st, done, STC_ERANGE, "table fit: %d done points: need at least 3",
                    n);
-    STC_CALL_GOTO(tbl_gp_fit(n, 3, x, y, sy, &t->gp), st, done);
+    /* length scales modulated along t/a: the coating's response turns more
+     * sharply where it is thin against the contact (docs/table-format.md) */
+    STC_CALL_GOTO(tbl_gp_fit_modulated(n, 3, x, y, sy, t->n[1] > 1 ? 1 : -1, &t->gp), st, done);
     tbl_gp_info gi;
     tbl_gp_get_info(t->gp, &gi);
     tbl_gp_loo(t->gp, lm, ls);
@@ -87,7 +89,7 @@ stc_status tbl_fit(tbl_table *t)
         mx = fmax(mx, fabs(rel));
         in2 += fabs(y[i] - lm[i]) <= 2.0 * ls[i];
     }
-    t->fit = (tbl_fit_info){n, {gi.ell[0], gi.ell[1], gi.ell[2]}, gi.noise_scale,
+    t->fit = (tbl_fit_info){n, {gi.ell[0], gi.ell[1], gi.ell[2]}, gi.gamma, gi.noise_scale,
                             sqrt(ss / n), mx, (double)in2 / n};
 done:
     free(x), free(y), free(sy), free(lm), free(ls);

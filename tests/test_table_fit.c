@@ -3,8 +3,9 @@
  * understated noise recovered by the noise scale, held-out points of a 3D
  * grid, a constant input dimension, interpolation at tiny noise, the
  * closed-form leave-one-out against refits without each point, the
- * likelihood against a direct computation and its optimality, invalid
- * input, and bit-identical refits. */
+ * likelihood against a direct computation and its optimality, length
+ * scales modulated along one input (Gibbs's kernel), invalid input, and
+ * bit-identical refits. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -260,16 +261,25 @@ static void test_interpolation(void **state)
  * covariance of the points in keep[0..m), kernel to a point, restricted log
  * likelihood, universal-kriging prediction. */
 typedef struct direct {
-    int dim;
-    double ell[3], sf, c, jitter;
+    int dim, mod;
+    double ell[3], sf, c, jitter, gamma, centre;
 } direct;
 
+/* Gibbs's kernel dimension by dimension, l = ell_d r(x) at each end (for
+ * gamma = 0 the squared exponential). */
 static double dk(const direct *p, const double *a, const double *b)
 {
-    double s = 0.0;
-    for (int d = 0; d < p->dim; d++)
-        if (isfinite(p->ell[d])) s += pow((a[d] - b[d]) / p->ell[d], 2);
-    return p->sf * p->sf * exp(-0.5 * s);
+    double ra = 1.0, rb = 1.0, v = p->sf * p->sf;
+    if (p->mod >= 0) {
+        ra = exp(p->gamma * (a[p->mod] - p->centre));
+        rb = exp(p->gamma * (b[p->mod] - p->centre));
+    }
+    for (int d = 0; d < p->dim; d++) {
+        if (!isfinite(p->ell[d])) continue;
+        double la = p->ell[d] * ra, lb = p->ell[d] * rb, q = la * la + lb * lb;
+        v *= sqrt(2.0 * la * lb / q) * exp(-pow(a[d] - b[d], 2) / q);
+    }
+    return v;
 }
 
 /* K of the m points idx[] (factorised), K^-1 y, K^-1 1. */
@@ -349,7 +359,8 @@ static void direct_loo(const direct *p, int n, const double *x, const double *y,
 
 static direct direct_from(const tbl_gp_info *in)
 {
-    direct p = {.dim = in->dim, .sf = in->sf, .c = in->noise_scale, .jitter = in->jitter};
+    direct p = {.dim = in->dim, .sf = in->sf, .c = in->noise_scale, .jitter = in->jitter,
+                .mod = in->mod_dim, .gamma = in->gamma, .centre = in->mod_centre};
     for (int d = 0; d < 3; d++) p.ell[d] = in->ell[d];
     return p;
 }
@@ -357,9 +368,11 @@ static direct direct_from(const tbl_gp_info *in)
 /* Closed-form LOO against refits without each point, log_ml against the
  * direct computation, and optimality of the fitted hyperparameters. */
 static void check_exact(const char *what, int n, int dim, const double *x, const double *y,
-                        const double *sy)
+                        const double *sy, int mod)
 {
-    tbl_gp *g = fit_ok(n, dim, x, y, sy);
+    tbl_gp *g = NULL;
+    stc_error_clear();
+    assert_int_equal(tbl_gp_fit_modulated(n, dim, x, y, sy, mod, &g), STC_OK);
     tbl_gp_info in;
     tbl_gp_get_info(g, &in);
     print_info(what, &in);
@@ -379,9 +392,10 @@ static void check_exact(const char *what, int n, int dim, const double *x, const
     assert_true(emu < 1e-8 && esd < 1e-8);
     assert_true(fabs(lml - in.log_ml) < 1e-8 * fmax(1.0, fabs(lml)));
 
-    /* optimality: +-5 % in each interior hyperparameter lowers the likelihood */
+    /* optimality: +-5 % in each interior hyperparameter (gamma: +-0.05 / half
+     * the modulating input's range) lowers the likelihood */
     double worst_gain = -INFINITY;
-    for (int k = 0; k < dim + 2; k++) {
+    for (int k = 0; k < dim + 3; k++) {
         for (int sgn = -1; sgn <= 1; sgn += 2) {
             direct q = p;
             double fac = exp(0.05 * sgn);
@@ -390,6 +404,9 @@ static void check_exact(const char *what, int n, int dim, const double *x, const
                 q.ell[k] *= fac;
             } else if (k == dim) {
                 q.sf *= fac;
+            } else if (k == dim + 2) {
+                if (in.mod_dim < 0 || in.gamma_at_bound) continue;
+                q.gamma += 0.02 * sgn;
             } else {
                 if (q.c * fac < 1.0 || q.c * fac > 10.0) continue;
                 q.c *= fac;
@@ -415,7 +432,7 @@ static void test_loo_and_likelihood(void **state)
         sy[i] = 0.05 * (1 + unif(&s));
         y[i] = sin(3 * x[i][0]) * cos(x[i][1]) + sy[i] * gauss(&s);
     }
-    check_exact("2D scattered, n = 24", N, 2, &x[0][0], y, sy);
+    check_exact("2D scattered, n = 24", N, 2, &x[0][0], y, sy, -1);
     /* a grid: K is built from per-dim tables of kernel factors */
     double xg[NG][3], yg[NG], sg[NG];
     int k = 0;
@@ -426,7 +443,86 @@ static void test_loo_and_likelihood(void **state)
                 sg[k] = 0.02;
                 yg[k] = f3(xg[k]) + sg[k] * gauss(&s);
             }
-    check_exact("3D grid 6x3x3", NG, 3, &xg[0][0], yg, sg);
+    check_exact("3D grid 6x3x3", NG, 3, &xg[0][0], yg, sg, -1);
+}
+
+/* ---- length scales modulated along one input ------------------------------ */
+
+/* Rough at small x_1, smooth at large: sin(2 pi x_0 nu(x_1)), nu from 2
+ * cycles to 0.4 over x_1 in [0, 2]. */
+static double frough(const double *x) { return sin(2.0 * M_PI * x[0] * 2.0 * exp(-0.8 * x[1])); }
+
+/* On a function whose roughness changes along x_1 the modulated kernel
+ * finds it (gamma > 0: longer scales where it is smoother), fits better and
+ * predicts better between the nodes than the stationary one; its closed
+ * forms hold as the stationary kernel's do. */
+static void test_modulated(void **state)
+{
+    (void)state;
+    enum { NA = 12, NB = 9, N = NA * NB, NS = 40 };
+    double x[N][2], y[N], sy[N];
+    uint64_t s = 4242u;
+    for (int a = 0, k = 0; a < NA; a++)
+        for (int b = 0; b < NB; b++, k++) {
+            x[k][0] = (double)a / (NA - 1);
+            x[k][1] = 2.0 * b / (NB - 1);
+            sy[k] = 0.03;
+            y[k] = frough(x[k]) + sy[k] * gauss(&s);
+        }
+    tbl_gp *gs = fit_ok(N, 2, &x[0][0], y, sy), *gm = NULL;
+    stc_error_clear();
+    assert_int_equal(tbl_gp_fit_modulated(N, 2, &x[0][0], y, sy, 1, &gm), STC_OK);
+    tbl_gp_info is, im;
+    tbl_gp_get_info(gs, &is);
+    tbl_gp_get_info(gm, &im);
+    print_info("rough-to-smooth 12x9, stationary", &is);
+    print_info("rough-to-smooth 12x9, modulated", &im);
+    double ss[2] = {0, 0};
+    int m = 0, inside = 0;
+    for (int a = 0; a + 1 < NA; a++)
+        for (int b = 0; b + 1 < NB; b++, m++) {
+            double q[2] = {(a + 0.5) / (NA - 1), 2.0 * (b + 0.5) / (NB - 1)}, mu, sd;
+            tbl_gp_predict(gs, q, &mu, NULL);
+            ss[0] += pow(mu - frough(q), 2);
+            tbl_gp_predict(gm, q, &mu, &sd);
+            ss[1] += pow(mu - frough(q), 2);
+            inside += fabs(mu - frough(q)) <= 2.0 * sd;
+        }
+    double rs = sqrt(ss[0] / m), rm = sqrt(ss[1] / m);
+    printf("modulated: gamma %.3f (centre %.2f), log_ml %.2f vs stationary %.2f; cell centres: "
+           "rms error %.4f vs %.4f, %d of %d within 2 sd\n", im.gamma, im.mod_centre, im.log_ml,
+           is.log_ml, rm, rs, inside, m);
+    assert_int_equal(im.mod_dim, 1);
+    assert_int_equal(is.mod_dim, -1);
+    assert_true(im.gamma > 0.0 && !im.gamma_at_bound);
+    assert_true(im.log_ml > is.log_ml + 2.0);
+    assert_true(rm < 0.8 * rs);
+    assert_true(inside >= 0.9 * m);
+    tbl_gp_destroy(&gs);
+    tbl_gp_destroy(&gm);
+
+    /* closed-form LOO and likelihood against direct computation */
+    double xs[NS][2], ys[NS], ss2[NS];
+    for (int i = 0; i < NS; i++) {
+        xs[i][0] = unif(&s);
+        xs[i][1] = 2.0 * unif(&s);
+        ss2[i] = 0.03 * (1 + unif(&s));
+        ys[i] = frough(xs[i]) + ss2[i] * gauss(&s);
+    }
+    check_exact("2D scattered, modulated along x_1, n = 40", NS, 2, &xs[0][0], ys, ss2, 1);
+
+    /* a constant modulating input modulates nothing; a bad index is refused */
+    for (int i = 0; i < NS; i++) xs[i][1] = 1.0;
+    assert_int_equal(tbl_gp_fit_modulated(NS, 2, &xs[0][0], ys, ss2, 1, &gm), STC_OK);
+    tbl_gp_get_info(gm, &im);
+    assert_int_equal(im.mod_dim, -1);
+    assert_true(im.gamma == 0.0);
+    tbl_gp_destroy(&gm);
+    stc_error_clear();
+    assert_int_equal(tbl_gp_fit_modulated(NS, 2, &xs[0][0], ys, ss2, 2, &gm), STC_EINVAL);
+    assert_null(gm);
+    printf("refused: %s\n", stc_errmsg());
+    assert_non_null(strstr(stc_errmsg(), "mod_dim = 2"));
 }
 
 /* ---- invalid input and determinism ------------------------------------------ */
@@ -539,7 +635,8 @@ int main(void)
         cmocka_unit_test(test_smooth_1d),          cmocka_unit_test(test_understated_noise),
         cmocka_unit_test(test_grid_3d),            cmocka_unit_test(test_constant_dim),
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_loo_and_likelihood),
-        cmocka_unit_test(test_invalid),            cmocka_unit_test(test_determinism),
+        cmocka_unit_test(test_modulated),          cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_determinism),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

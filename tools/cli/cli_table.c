@@ -406,6 +406,10 @@ static void info_json(const tbl_table *t, const char *path)
         cj_num(&j, "loo_max_rel", fi.loo_max);
         cj_num(&j, "loo_cover2", fi.loo_cover2);
         cj_num(&j, "noise_scale", fi.noise_scale);
+        cj_num(&j, "ell_ln_w", fi.ell[0]);
+        cj_num(&j, "ell_ln_t_over_a", fi.ell[1]);
+        cj_num(&j, "ell_ln_E_ratio", fi.ell[2]);
+        cj_num(&j, "gamma", fi.gamma);
     }
     int cd, cf, cp;
     tbl_curve_count(t, &cd, &cf, &cp);
