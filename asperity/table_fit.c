@@ -27,7 +27,7 @@
 #include "table_fit.h"
 
 #define MAXDIM 3
-#define MAXPAR (MAXDIM + 2)
+#define MAXPAR (2 * MAXDIM + 3)
 
 /* ell >= 0.25 x the smallest spacing: the kernel between neighbours is then
  * at most exp(-8), below which the fit would only interpolate noise. */
@@ -41,6 +41,9 @@
  * input <= MOD_MAX, i.e. ell varies at most e^1.5 = 4.5-fold either way
  * from its value at the middle of that range. */
 #define MOD_MAX 1.5
+/* The base term's sd over the main term's, rho, in [RHO_LO, RHO_HI]. */
+#define RHO_LO 1e-3
+#define RHO_HI 1e3
 /* sf in [SF_LO, SF_HI] x s0, s0 = max(sd(y), rms(sy)): from "no signal" to
  * far beyond any variation the data can show. */
 #define SF_LO 1e-3
@@ -48,7 +51,7 @@
 #define NM_STEP 0.6         /* initial simplex step in the transformed (angle) variables, rad */
 #define NM_RESTART_STEP 0.05 /* step of a restart, and of the all-points run after a subset */
 #define NM_TOL 1e-3         /* simplex size (rad) that ends a Nelder-Mead run */
-#define NM_MAXEVAL 600      /* evaluations per run */
+#define NM_MAXEVAL 150      /* evaluations per run and searched parameter, at least 600 */
 #define NM_RESTARTS 2       /* restarts from the optimum: a collapsed simplex can stall */
 /* Log-likelihood gain under which restarting stops: far below the ~0.5
  * that separates statistically distinguishable hyperparameters. */
@@ -77,6 +80,10 @@ struct tbl_gp {
     int act[MAXDIM];          /* input dims that vary */
     int mod;                  /* input dim modulating the length scales, -1: none */
     double gam, mcen;         /* ell_d(x) = ell_d exp(gam (x[mod] - mcen)) */
+    int scale;                /* input dim whose value multiplies the main term, -1: none */
+    int nbase, bact[MAXDIM];  /* with scale: the base term's varying dims (index into act) */
+    double inv_bell2[MAXDIM]; /* 1/ell^2 of the base term per entry of bact */
+    double rho2;              /* base term's variance over the main term's */
     double *x;                /* [n][dim] inputs */
     double *y, *sy;           /* [n] values, given noise sd */
     double inv_ell2[MAXDIM];  /* 1/ell^2 per varying dim (index into act) */
@@ -100,15 +107,17 @@ typedef struct grid {
 } grid;
 
 /* Searched parameters: log ell per varying dim, log lambda = log(c / sf),
- * and with modulation gamma x half the modulating input's range. */
+ * with modulation gamma x half the modulating input's range, with a scaled
+ * main term log ell of each base dim and log rho. */
 typedef struct hyp {
-    double lell[MAXDIM], llam, gmod;
+    double lell[MAXDIM], llam, gmod, lbell[MAXDIM], lrho;
 } hyp;
 
 typedef struct fit_ctx {
     tbl_gp *g;
-    int np;                        /* searched parameters: nact + 1 (+ 1 with modulation), or
-                                      0 if nact = 0 */
+    int np;                        /* searched parameters: nact + 1 (+ 1 with modulation,
+                                      + nbase + 1 with a scaled term), or 0 if nact = 0 */
+    int kmod, kbase;               /* index of gmod and of the first lbell among them, -1 */
     double mhalf;                  /* half the range of the modulating input */
     double lo[MAXPAR], hi[MAXPAR]; /* bounds of the log parameters, order lell.., llam */
     double sf_lo, sf_hi;           /* bounds of sf */
@@ -138,7 +147,12 @@ static void unpack(const fit_ctx *c, const double *t, hyp *h)
     int k = 0;
     for (; k < c->g->nact; k++) h->lell[k] = from_angle(t[k], c->lo[k], c->hi[k]);
     if (c->np > 0) h->llam = from_angle(t[k], c->lo[k], c->hi[k]);
-    h->gmod = c->np > k + 1 ? from_angle(t[k + 1], c->lo[k + 1], c->hi[k + 1]) : 0.0;
+    if (c->kmod >= 0) h->gmod = from_angle(t[c->kmod], c->lo[c->kmod], c->hi[c->kmod]);
+    if (c->kbase >= 0) {
+        int b = c->kbase;
+        for (int j = 0; j < c->g->nbase; j++, b++) h->lbell[j] = from_angle(t[b], c->lo[b], c->hi[b]);
+        h->lrho = from_angle(t[b], c->lo[b], c->hi[b]);
+    }
 }
 
 static void pack(const fit_ctx *c, const hyp *h, double *t)
@@ -146,7 +160,12 @@ static void pack(const fit_ctx *c, const hyp *h, double *t)
     int k = 0;
     for (; k < c->g->nact; k++) t[k] = to_angle(h->lell[k], c->lo[k], c->hi[k]);
     if (c->np > 0) t[k] = to_angle(h->llam, c->lo[k], c->hi[k]);
-    if (c->np > k + 1) t[k + 1] = to_angle(h->gmod, c->lo[k + 1], c->hi[k + 1]);
+    if (c->kmod >= 0) t[c->kmod] = to_angle(h->gmod, c->lo[c->kmod], c->hi[c->kmod]);
+    if (c->kbase >= 0) {
+        int b = c->kbase;
+        for (int j = 0; j < c->g->nbase; j++, b++) t[b] = to_angle(h->lbell[j], c->lo[b], c->hi[b]);
+        t[b] = to_angle(h->lrho, c->lo[b], c->hi[b]);
+    }
 }
 
 /* K = A = R + lambda^2 S (s = 1); with no varying input A = S (sf = 0).
@@ -155,6 +174,8 @@ static void set_shape(tbl_gp *g, const hyp *h, double mhalf)
 {
     for (int a = 0; a < g->nact; a++) g->inv_ell2[a] = exp(-2.0 * h->lell[a]);
     g->gam = g->mod >= 0 ? h->gmod / mhalf : 0.0;
+    for (int j = 0; j < g->nbase; j++) g->inv_bell2[j] = exp(-2.0 * h->lbell[j]);
+    g->rho2 = g->scale >= 0 ? exp(2.0 * h->lrho) : 0.0;
     g->sf2 = g->nact > 0 ? 1.0 : 0.0;
     g->c2 = g->nact > 0 ? exp(2.0 * h->llam) : 1.0;
     grid *G = g->grid;
@@ -169,23 +190,37 @@ static void set_shape(tbl_gp *g, const hyp *h, double mhalf)
 
 /* ---- covariance and its factorisation --------------------------------- */
 
-/* sf^2 exp(-1/2 sum_d (dx_d / ell_d)^2) over the varying dims; with
- * modulation, every ell_d scaled by r(x) = exp(gam (x[mod] - mcen)) at
- * each end (Gibbs 1997; Paciorek & Schervish 2004, eq. 3):
- *   sf^2 prod_d (2 r r' / (r^2 + r'^2))^(1/2) exp(-sum_d dx_d^2 / (ell_d^2 (r^2 + r'^2))),
+/* The main term's correlation: exp(-1/2 sum_d (dx_d / ell_d)^2) over the
+ * varying dims; with modulation, every ell_d scaled by
+ * r(x) = exp(gam (x[mod] - mcen)) at each end (Gibbs 1997; Paciorek &
+ * Schervish 2004, eq. 3):
+ *   prod_d (2 r r' / (r^2 + r'^2))^(1/2) exp(-sum_d dx_d^2 / (ell_d^2 (r^2 + r'^2))),
  * positive definite for any r(x) > 0 and equal to the stationary kernel
  * at gam = 0. */
-static double kern(const tbl_gp *g, const double *xa, const double *xb)
+static double kern_main(const tbl_gp *g, const double *xa, const double *xb)
 {
     double s = 0.0;
     for (int a = 0; a < g->nact; a++) {
         double d = xa[g->act[a]] - xb[g->act[a]];
         s += d * d * g->inv_ell2[a];
     }
-    if (g->mod < 0 || g->gam == 0.0) return g->sf2 * exp(-0.5 * s);
+    if (g->mod < 0 || g->gam == 0.0) return exp(-0.5 * s);
     double ra = exp(g->gam * (xa[g->mod] - g->mcen)), rb = exp(g->gam * (xb[g->mod] - g->mcen));
     double q = ra * ra + rb * rb;
-    return g->sf2 * pow(2.0 * ra * rb / q, 0.5 * g->nact) * exp(-s / q);
+    return pow(2.0 * ra * rb / q, 0.5 * g->nact) * exp(-s / q);
+}
+
+/* With a scaled main term (tbl_gp_kernel.scale_dim):
+ *   sf^2 (rho^2 exp(-1/2 sum_base (dx_d / bell_d)^2) + x[scale] x'[scale] main(x, x')). */
+static double kern(const tbl_gp *g, const double *xa, const double *xb)
+{
+    if (g->scale < 0) return g->sf2 * kern_main(g, xa, xb);
+    double s = 0.0;
+    for (int j = 0; j < g->nbase; j++) {
+        double d = xa[g->act[g->bact[j]]] - xb[g->act[g->bact[j]]];
+        s += d * d * g->inv_bell2[j];
+    }
+    return g->sf2 * (g->rho2 * exp(-0.5 * s) + xa[g->scale] * xb[g->scale] * kern_main(g, xa, xb));
 }
 
 /* Lower triangle of K = sf^2 R + diag(c^2 sy_i^2 + jitter) into K [n][n]. */
@@ -207,7 +242,8 @@ static void fill_cov(const tbl_gp *g, double jitter, double *K)
             const double *xi = g->x + (size_t)i * dim;
             for (int j = 0; j < i; j++) Ki[j] = kern(g, xi, g->x + (size_t)j * dim);
         }
-        Ki[i] = g->sf2 + g->c2 * g->sy[i] * g->sy[i] + jitter;
+        const double *xi = g->x + (size_t)i * dim;
+        Ki[i] = (g->scale < 0 ? g->sf2 : kern(g, xi, xi)) + g->c2 * g->sy[i] * g->sy[i] + jitter;
     }
 }
 
@@ -347,7 +383,7 @@ static stc_status nm_run(fit_ctx *c, gsl_multimin_fminimizer *s, gsl_vector *t, 
             *converged = 1;
             break;
         }
-        if (c->evals - start >= NM_MAXEVAL) break;
+        if (c->evals - start >= (c->np > 4 ? NM_MAXEVAL * c->np : 4 * NM_MAXEVAL)) break;
     }
     gsl_vector_memcpy(t, gsl_multimin_fminimizer_x(s));
     *fmin = gsl_multimin_fminimizer_minimum(s);
@@ -534,15 +570,16 @@ static tbl_gp *alloc_handle(int n, int dim)
 
 /* Bounds and deterministic start (ell = half the range, sf = sd(y), c = 1)
  * of the searched parameters; the input part of g->info.  scratch: [n]. */
-static void setup(fit_ctx *c, hyp *h, double *scratch)
+static void setup(fit_ctx *c, hyp *h, double *scratch, unsigned base_dims)
 {
     tbl_gp *g = c->g;
     int n = g->n;
     g->nact = 0;
     grid *G = malloc(sizeof *G);
     for (int d = 0; d < MAXDIM; d++) g->info.ell[d] = g->info.ell_lo[d] = g->info.ell_hi[d] = INFINITY;
-    int mod = g->mod;
-    g->mod = -1;
+    int mod = g->mod, scale = g->scale;
+    g->mod = g->scale = -1;
+    g->nbase = 0;
     for (int d = 0; d < g->dim; d++) {
         double range, spacing;
         int u = dim_spread(g, d, scratch, &range, &spacing);
@@ -552,6 +589,7 @@ static void setup(fit_ctx *c, hyp *h, double *scratch)
             c->mhalf = 0.5 * range;
             g->mcen = scratch[0] + c->mhalf;
         }
+        if (d == scale) g->scale = d; /* a constant scale would only rescale sf */
         int k = g->nact++;
         g->act[k] = d;
         if (G) {
@@ -565,8 +603,8 @@ static void setup(fit_ctx *c, hyp *h, double *scratch)
         g->info.ell_hi[d] = exp(c->hi[k]);
         h->lell[k] = log(ELL_START_RANGE * range);
     }
-    /* the modulated kernel is not a product of per-dim factors */
-    if (g->nact > 0 && g->mod < 0) grid_setup(g, G);
+    /* the modulated or scaled kernel is not a product of per-dim factors */
+    if (g->nact > 0 && g->mod < 0 && g->scale < 0) grid_setup(g, G);
     else free(G);
     double ym = 0.0, yv = 0.0, s2 = 0.0;
     for (int i = 0; i < n; i++) ym += g->y[i] / n;
@@ -587,13 +625,30 @@ static void setup(fit_ctx *c, hyp *h, double *scratch)
         h->llam = -log(sf);
         c->np = k + 1;
         h->gmod = 0.0;
+        c->kmod = c->kbase = -1;
         if (g->mod >= 0) {
-            c->lo[k + 1] = -MOD_MAX;
-            c->hi[k + 1] = MOD_MAX;
-            c->np = k + 2;
+            c->kmod = c->np++;
+            c->lo[c->kmod] = -MOD_MAX;
+            c->hi[c->kmod] = MOD_MAX;
+        }
+        if (g->scale >= 0) {
+            c->kbase = c->np;
+            for (int a = 0; a < g->nact; a++) {
+                if (!(base_dims & 1u << g->act[a])) continue;
+                int b = c->np++;
+                g->bact[g->nbase] = a;
+                c->lo[b] = c->lo[a];
+                c->hi[b] = c->hi[a];
+                h->lbell[g->nbase++] = h->lell[a];
+            }
+            c->lo[c->np] = log(RHO_LO);
+            c->hi[c->np] = log(RHO_HI);
+            c->np++;
+            h->lrho = 0.0;
         }
     } else {
-        g->mod = -1;
+        g->mod = g->scale = -1;
+        c->kmod = c->kbase = -1;
     }
 }
 
@@ -677,6 +732,10 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
     }
     in->sf = sqrt(g->sf2);
     in->mod_dim = g->mod;
+    in->scale_dim = g->scale;
+    for (int d = 0; d < MAXDIM; d++) in->base_ell[d] = INFINITY;
+    for (int j = 0; j < g->nbase; j++) in->base_ell[g->act[g->bact[j]]] = exp(h->lbell[j]);
+    in->base_sd = sqrt(g->rho2 * g->sf2);
     in->gamma = g->gam;
     in->mod_centre = g->mod >= 0 ? g->mcen : 0.0;
     if (g->mod >= 0) {
@@ -695,15 +754,22 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
 stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const double *sy,
                       tbl_gp **out)
 {
-    return tbl_gp_fit_modulated(n, dim, x, y, sy, -1, out);
+    return tbl_gp_fit_kernel(n, dim, x, y, sy, NULL, out);
 }
 
-stc_status tbl_gp_fit_modulated(int n, int dim, const double *x, const double *y,
-                                const double *sy, int mod_dim, tbl_gp **out)
+stc_status tbl_gp_fit_kernel(int n, int dim, const double *x, const double *y, const double *sy,
+                             const tbl_gp_kernel *kernel, tbl_gp **out)
 {
     STC_CALL(check_args(n, dim, x, y, sy, out));
-    STC_CHECK(mod_dim >= -1 && mod_dim < dim, STC_EINVAL,
-              "mod_dim = %d: must be -1 (none) or an input dim in 0..%d", mod_dim, dim - 1);
+    tbl_gp_kernel kd = kernel ? *kernel : (tbl_gp_kernel){-1, -1, 0};
+    STC_CHECK(kd.mod_dim >= -1 && kd.mod_dim < dim, STC_EINVAL,
+              "mod_dim = %d: must be -1 (none) or an input dim in 0..%d", kd.mod_dim, dim - 1);
+    STC_CHECK(kd.scale_dim >= -1 && kd.scale_dim < dim, STC_EINVAL,
+              "scale_dim = %d: must be -1 (none) or an input dim in 0..%d", kd.scale_dim,
+              dim - 1);
+    STC_CHECK(kd.base_dims < 1u << dim, STC_EINVAL,
+              "base_dims = %#x: must name input dims 0..%d only (bits below %#x)", kd.base_dims,
+              dim - 1, 1u << dim);
     stc_status st = STC_OK;
     /* GSL's error handler is process-wide, so it is left alone: no GSL call
      * of the fit can reach it but an allocation failure.  Nelder-Mead
@@ -718,13 +784,13 @@ stc_status tbl_gp_fit_modulated(int n, int dim, const double *x, const double *y
     c.b = malloc((size_t)n * sizeof *c.b);
     STC_CHECK_GOTO(g && c.a && c.b, st, done, STC_ENOMEM,
                    "tbl_gp_fit: out of memory (n = %d points)", n);
-    g->n = n, g->dim = dim, g->mod = mod_dim;
+    g->n = n, g->dim = dim, g->mod = kd.mod_dim, g->scale = kd.scale_dim;
     memcpy(g->x, x, (size_t)n * dim * sizeof *x);
     memcpy(g->y, y, (size_t)n * sizeof *y);
     memcpy(g->sy, sy, (size_t)n * sizeof *sy);
 
     hyp h;
-    setup(&c, &h, c.a);
+    setup(&c, &h, c.a, kd.base_dims);
     int converged = 1;
     if (c.np > 0) {
         t = gsl_vector_alloc((size_t)c.np);
@@ -780,7 +846,8 @@ void tbl_gp_predict(const tbl_gp *g, const double *x, double *mean, double *sd)
     }
     /* R&W eq. 2.42 with h = 1: sf^2 - k'K^-1 k + (1 - 1'K^-1 k)^2 / 1'K^-1 1 */
     cblas_dtrsv(CblasRowMajor, CblasLower, CblasNoTrans, CblasNonUnit, n, g->L, n, k, 1);
-    double var = g->sf2 - dot(n, k, k) + (1.0 - kw) * (1.0 - kw) / g->wsum;
+    double kxx = g->scale < 0 ? g->sf2 : kern(g, x, x);
+    double var = kxx - dot(n, k, k) + (1.0 - kw) * (1.0 - kw) / g->wsum;
     *sd = sqrt(fmax(var, 0.0));
     if (k != stack) free(k);
 }

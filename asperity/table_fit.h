@@ -8,7 +8,8 @@
  *   f ~ GP(0, sf^2 exp(-1/2 sum_d ((x_d - x'_d) / ell_d)^2)),
  *   e_i ~ N(0, (c sy_i)^2),
  *
- * (or, with tbl_gp_fit_modulated, length scales that vary along one input),
+ * (or, with tbl_gp_fit_kernel, length scales that vary along one input and a
+ * main term scaled by one input over a base term),
  *
  * with m a constant estimated by generalised least squares (universal
  * kriging: the predictive variance includes m's uncertainty; Santner,
@@ -55,14 +56,19 @@ typedef struct tbl_gp_info {
     int n, dim;          /* points, input dimensions (1..3) */
     double ell[3];       /* fitted length scales per input dim (input units); inf for a dim
                             whose inputs are all equal */
-    double sf;           /* fitted signal standard deviation (0 when every dim is constant) */
+    double sf;           /* fitted signal standard deviation (0 when every dim is constant); with
+                            scale_dim, the main term's per unit of x[scale_dim]^2 */
     double noise_scale;  /* fitted factor c >= 1 multiplying every given noise sd */
-    int mod_dim;         /* input dim modulating the length scales (tbl_gp_fit_modulated),
+    int mod_dim;         /* input dim modulating the length scales (tbl_gp_fit_kernel),
                             -1: none (stationary) */
     double gamma;        /* fitted modulation: ell_d(x) = ell[d] exp(gamma (x[mod_dim] -
                             mod_centre)); 0 without */
     double mod_centre;   /* the middle of the modulating input's range (0 without) */
     int gamma_at_bound;  /* -1 / +1 when gamma ended at its lower / upper bound, else 0 */
+    int scale_dim;       /* input dim scaling the main term (tbl_gp_fit_kernel), -1: none */
+    double base_ell[3];  /* with scale_dim: the base term's length scales (inf for a dim
+                            not in it) */
+    double base_sd;      /* with scale_dim: the base term's sd, rho sf (0 without) */
     double mean;         /* GLS estimate of the constant mean */
     double log_ml;       /* restricted log marginal likelihood (R&W eq. 2.45) at the optimum */
     double loo_rms;      /* rms of leave-one-out residuals y_i - mu_{-i} */
@@ -97,26 +103,48 @@ typedef struct tbl_gp_info {
 stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const double *sy,
                       tbl_gp **out);
 
-/* The same with length scales that vary along input mod_dim (-1: none,
- * i.e. tbl_gp_fit): ell_d(x) = ell_d exp(gamma (x[mod_dim] - centre)),
- * centre the middle of that input's range, the same factor for every dim,
- * in the non-stationary squared exponential of Gibbs (1997) (Paciorek &
- * Schervish 2004):
+/* Kernel options of tbl_gp_fit_kernel; {-1, -1, 0} (or NULL) is tbl_gp_fit's
+ * stationary squared exponential.
  *
- *   k(x, x') = sf^2 prod_d (2 l_d l'_d / (l_d^2 + l'_d^2))^(1/2)
- *              exp(-sum_d (x_d - x'_d)^2 / (l_d^2 + l'_d^2)),  l_d = ell_d(x).
+ * mod_dim: length scales that vary along that input,
+ * ell_d(x) = ell_d exp(gamma (x[mod_dim] - centre)), centre the middle of
+ * its range, the same factor for every dim, in the non-stationary squared
+ * exponential of Gibbs (1997) (Paciorek & Schervish 2004):
  *
- * gamma is fitted with the other hyperparameters (one more), confined to
+ *   main(x, x') = prod_d (2 l_d l'_d / (l_d^2 + l'_d^2))^(1/2)
+ *                 exp(-sum_d (x_d - x'_d)^2 / (l_d^2 + l'_d^2)),  l_d = ell_d(x),
+ *
+ * gamma fitted with the other hyperparameters (one more), confined to
  * |gamma| x half that range <= 1.5 (ell at most 4.5-fold either way from the
- * centre).  gamma = 0 is the stationary kernel.  For a function that is
- * rougher in one part of the input space than in another, e.g. a table
- * whose response turns sharply in one corner.  The fit does not use the
- * per-dim factor tables of grid-like inputs (each likelihood evaluation
- * evaluates the kernel per pair: about three times the fill cost at
- * n = 1000).  A constant mod_dim is ignored (info.mod_dim = -1).
- * Errors: as tbl_gp_fit; STC_EINVAL for mod_dim outside -1..dim-1. */
-stc_status tbl_gp_fit_modulated(int n, int dim, const double *x, const double *y,
-                                const double *sy, int mod_dim, tbl_gp **out);
+ * centre); gamma = 0 is the stationary kernel.  For a function that is
+ * rougher in one part of the input space than in another.
+ *
+ * scale_dim: the main term multiplied by that input's values at both ends,
+ * plus a stationary base term over the inputs of base_dims (bit d for
+ * input d):
+ *
+ *   k(x, x') = sf^2 (rho^2 exp(-1/2 sum_{d in base} ((x_d - x'_d) / bell_d)^2)
+ *                    + x[scale] x'[scale] main(x, x')),
+ *
+ * so that where x[scale] = 0 the function is the base term's alone, a
+ * function of the base inputs only, and the main term is an effect that
+ * grows from there in proportion to x[scale] (times the main term's own
+ * variation).  bell_d and rho (in [1e-3, 1e3]) are fitted: one more
+ * parameter per base input and one.
+ *
+ * Either option evaluates the kernel per pair (no per-dim factor tables:
+ * about three times the fill cost of a grid at n = 1000).  A constant
+ * mod_dim or scale_dim is ignored (info.mod_dim / scale_dim = -1).
+ * Errors: as tbl_gp_fit; STC_EINVAL for mod_dim or scale_dim outside
+ * -1..dim-1 or base_dims naming a dim >= dim. */
+typedef struct tbl_gp_kernel {
+    int mod_dim;        /* input modulating the length scales, -1: none */
+    int scale_dim;      /* input scaling the main term, -1: none */
+    unsigned base_dims; /* with scale_dim: the base term's inputs, bit d = input d */
+} tbl_gp_kernel;
+
+stc_status tbl_gp_fit_kernel(int n, int dim, const double *x, const double *y, const double *sy,
+                             const tbl_gp_kernel *kernel, tbl_gp **out);
 
 /* Posterior mean and standard deviation of the latent (noise-free)
  * function m + f at x[dim] (borrowed); sd includes the uncertainty of the

@@ -75,9 +75,13 @@ stc_status tbl_fit(tbl_table *t)
     }
     STC_CHECK_GOTO(n >= 3, st, done, STC_ERANGE, "table fit: %d done points: need at least 3",
                    n);
-    /* length scales modulated along t/a: the coating's response turns more
-     * sharply where it is thin against the contact (docs/table-format.md) */
-    STC_CALL_GOTO(tbl_gp_fit_modulated(n, 3, x, y, sy, t->n[1] > 1 ? 1 : -1, &t->gp), st, done);
+    /* The uncoated sphere (ln Eco/Esu = 0) is one curve in δ whatever t/R: a
+     * base term in ln δ, plus the coating's effect in proportion to
+     * ln Eco/Esu; its length scales modulated along t/a, the coating's
+     * response turning more sharply where it is thin against the contact
+     * (docs/table-format.md). */
+    tbl_gp_kernel k = {t->n[1] > 1 ? 1 : -1, t->n[2] > 1 ? 2 : -1, 1u};
+    STC_CALL_GOTO(tbl_gp_fit_kernel(n, 3, x, y, sy, &k, &t->gp), st, done);
     tbl_gp_info gi;
     tbl_gp_get_info(t->gp, &gi);
     tbl_gp_loo(t->gp, lm, ls);
@@ -89,8 +93,8 @@ stc_status tbl_fit(tbl_table *t)
         mx = fmax(mx, fabs(rel));
         in2 += fabs(y[i] - lm[i]) <= 2.0 * ls[i];
     }
-    t->fit = (tbl_fit_info){n, {gi.ell[0], gi.ell[1], gi.ell[2]}, gi.gamma, gi.noise_scale,
-                            sqrt(ss / n), mx, (double)in2 / n};
+    t->fit = (tbl_fit_info){n, {gi.ell[0], gi.ell[1], gi.ell[2]}, gi.gamma, gi.base_ell[0],
+                            gi.noise_scale, sqrt(ss / n), mx, (double)in2 / n};
 done:
     free(x), free(y), free(sy), free(lm), free(ls);
     return st;

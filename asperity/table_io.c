@@ -180,14 +180,16 @@ static int write_fit(hid_t f, const tbl_table *t)
     const tbl_fit_info *fi = &t->fit;
     hid_t g = H5Gcreate2(f, "fit", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (g < 0) return -1;
-    int e = stc_h5_put_s(g, "model", "Gaussian process on ln mu_s - ln mu_WSP(w) in (ln w, "
-                                     "x2 = ln t/R - ln w / 2, ln E_ratio), length scales "
-                                     "times exp(gamma (x2 - middle of its range)); recomputed "
-                                     "when read") |
+    int e = stc_h5_put_s(g, "model", "Gaussian process on ln mu_s - ln mu_WSP(w): a term in "
+                                     "ln w plus ln E_ratio times a term in (ln w, x2 = ln t/R - "
+                                     "ln w / 2, ln E_ratio) whose length scales are times "
+                                     "exp(gamma (x2 - middle of its range)); recomputed when "
+                                     "read") |
             stc_h5_put_i(g, "n", fi->n) | stc_h5_put_d(g, "ell_ln_w", fi->ell[0]) |
             stc_h5_put_d(g, "ell_ln_t_over_a", fi->ell[1]) |
             stc_h5_put_d(g, "ell_ln_E_ratio", fi->ell[2]) |
             stc_h5_put_d(g, "gamma", fi->gamma) |
+            stc_h5_put_d(g, "ell_base_ln_w", fi->ell_base) |
             stc_h5_put_d(g, "noise_scale", fi->noise_scale) |
             stc_h5_put_d(g, "loo_rms_rel", fi->loo_rms) |
             stc_h5_put_d(g, "loo_max_rel", fi->loo_max) |

@@ -4,7 +4,8 @@
  * grid, a constant input dimension, interpolation at tiny noise, the
  * closed-form leave-one-out against refits without each point, the
  * likelihood against a direct computation and its optimality, length
- * scales modulated along one input (Gibbs's kernel), invalid input, and
+ * scales modulated along one input (Gibbs's kernel), a main term scaled by
+ * one input over a base term, invalid input, and
  * bit-identical refits. */
 #include <math.h>
 #include <setjmp.h>
@@ -261,15 +262,15 @@ static void test_interpolation(void **state)
  * covariance of the points in keep[0..m), kernel to a point, restricted log
  * likelihood, universal-kriging prediction. */
 typedef struct direct {
-    int dim, mod;
-    double ell[3], sf, c, jitter, gamma, centre;
+    int dim, mod, scale;
+    double ell[3], sf, c, jitter, gamma, centre, bell[3], bsd;
 } direct;
 
 /* Gibbs's kernel dimension by dimension, l = ell_d r(x) at each end (for
  * gamma = 0 the squared exponential). */
-static double dk(const direct *p, const double *a, const double *b)
+static double dk_main(const direct *p, const double *a, const double *b)
 {
-    double ra = 1.0, rb = 1.0, v = p->sf * p->sf;
+    double ra = 1.0, rb = 1.0, v = 1.0;
     if (p->mod >= 0) {
         ra = exp(p->gamma * (a[p->mod] - p->centre));
         rb = exp(p->gamma * (b[p->mod] - p->centre));
@@ -280,6 +281,18 @@ static double dk(const direct *p, const double *a, const double *b)
         v *= sqrt(2.0 * la * lb / q) * exp(-pow(a[d] - b[d], 2) / q);
     }
     return v;
+}
+
+/* With a scaled main term: the base term's squared exponential plus the
+ * scaled main term. */
+static double dk(const direct *p, const double *a, const double *b)
+{
+    if (p->scale < 0) return p->sf * p->sf * dk_main(p, a, b);
+    double s = 0.0;
+    for (int d = 0; d < p->dim; d++)
+        if (isfinite(p->bell[d])) s += pow((a[d] - b[d]) / p->bell[d], 2);
+    return p->bsd * p->bsd * exp(-0.5 * s) +
+           p->sf * p->sf * a[p->scale] * b[p->scale] * dk_main(p, a, b);
 }
 
 /* K of the m points idx[] (factorised), K^-1 y, K^-1 1. */
@@ -360,19 +373,20 @@ static void direct_loo(const direct *p, int n, const double *x, const double *y,
 static direct direct_from(const tbl_gp_info *in)
 {
     direct p = {.dim = in->dim, .sf = in->sf, .c = in->noise_scale, .jitter = in->jitter,
-                .mod = in->mod_dim, .gamma = in->gamma, .centre = in->mod_centre};
-    for (int d = 0; d < 3; d++) p.ell[d] = in->ell[d];
+                .mod = in->mod_dim, .gamma = in->gamma, .centre = in->mod_centre,
+                .scale = in->scale_dim, .bsd = in->base_sd};
+    for (int d = 0; d < 3; d++) p.ell[d] = in->ell[d], p.bell[d] = in->base_ell[d];
     return p;
 }
 
 /* Closed-form LOO against refits without each point, log_ml against the
  * direct computation, and optimality of the fitted hyperparameters. */
 static void check_exact(const char *what, int n, int dim, const double *x, const double *y,
-                        const double *sy, int mod)
+                        const double *sy, const tbl_gp_kernel *kernel)
 {
     tbl_gp *g = NULL;
     stc_error_clear();
-    assert_int_equal(tbl_gp_fit_modulated(n, dim, x, y, sy, mod, &g), STC_OK);
+    assert_int_equal(tbl_gp_fit_kernel(n, dim, x, y, sy, kernel, &g), STC_OK);
     tbl_gp_info in;
     tbl_gp_get_info(g, &in);
     print_info(what, &in);
@@ -395,7 +409,7 @@ static void check_exact(const char *what, int n, int dim, const double *x, const
     /* optimality: +-5 % in each interior hyperparameter (gamma: +-0.05 / half
      * the modulating input's range) lowers the likelihood */
     double worst_gain = -INFINITY;
-    for (int k = 0; k < dim + 3; k++) {
+    for (int k = 0; k < 2 * dim + 4; k++) {
         for (int sgn = -1; sgn <= 1; sgn += 2) {
             direct q = p;
             double fac = exp(0.05 * sgn);
@@ -404,9 +418,16 @@ static void check_exact(const char *what, int n, int dim, const double *x, const
                 q.ell[k] *= fac;
             } else if (k == dim) {
                 q.sf *= fac;
+                q.bsd *= fac; /* both terms: sf^2 is the profiled common scale */
             } else if (k == dim + 2) {
                 if (in.mod_dim < 0 || in.gamma_at_bound) continue;
                 q.gamma += 0.02 * sgn;
+            } else if (k == dim + 3) {
+                if (in.scale_dim < 0) continue;
+                q.bsd *= fac;
+            } else if (k > dim + 3) {
+                if (!isfinite(q.bell[k - dim - 4])) continue;
+                q.bell[k - dim - 4] *= fac;
             } else {
                 if (q.c * fac < 1.0 || q.c * fac > 10.0) continue;
                 q.c *= fac;
@@ -414,7 +435,8 @@ static void check_exact(const char *what, int n, int dim, const double *x, const
             worst_gain = fmax(worst_gain, direct_reml(&q, n, x, y, sy) - lml);
         }
     }
-    printf("%s: best change of log_ml under +-5 %% steps in ell, sf, c: %.3e (must be <= 0)\n",
+    printf("%s: best change of log_ml under +-5 %% steps in ell, sf, c (gamma, base sd and ell): "
+           "%.3e (must be <= 0)\n",
            what, worst_gain);
     assert_true(worst_gain <= 1e-9);
     tbl_gp_destroy(&g);
@@ -432,7 +454,7 @@ static void test_loo_and_likelihood(void **state)
         sy[i] = 0.05 * (1 + unif(&s));
         y[i] = sin(3 * x[i][0]) * cos(x[i][1]) + sy[i] * gauss(&s);
     }
-    check_exact("2D scattered, n = 24", N, 2, &x[0][0], y, sy, -1);
+    check_exact("2D scattered, n = 24", N, 2, &x[0][0], y, sy, NULL);
     /* a grid: K is built from per-dim tables of kernel factors */
     double xg[NG][3], yg[NG], sg[NG];
     int k = 0;
@@ -443,7 +465,7 @@ static void test_loo_and_likelihood(void **state)
                 sg[k] = 0.02;
                 yg[k] = f3(xg[k]) + sg[k] * gauss(&s);
             }
-    check_exact("3D grid 6x3x3", NG, 3, &xg[0][0], yg, sg, -1);
+    check_exact("3D grid 6x3x3", NG, 3, &xg[0][0], yg, sg, NULL);
 }
 
 /* ---- length scales modulated along one input ------------------------------ */
@@ -471,7 +493,8 @@ static void test_modulated(void **state)
         }
     tbl_gp *gs = fit_ok(N, 2, &x[0][0], y, sy), *gm = NULL;
     stc_error_clear();
-    assert_int_equal(tbl_gp_fit_modulated(N, 2, &x[0][0], y, sy, 1, &gm), STC_OK);
+    const tbl_gp_kernel km = {.mod_dim = 1, .scale_dim = -1};
+    assert_int_equal(tbl_gp_fit_kernel(N, 2, &x[0][0], y, sy, &km, &gm), STC_OK);
     tbl_gp_info is, im;
     tbl_gp_get_info(gs, &is);
     tbl_gp_get_info(gm, &im);
@@ -509,20 +532,91 @@ static void test_modulated(void **state)
         ss2[i] = 0.03 * (1 + unif(&s));
         ys[i] = frough(xs[i]) + ss2[i] * gauss(&s);
     }
-    check_exact("2D scattered, modulated along x_1, n = 40", NS, 2, &xs[0][0], ys, ss2, 1);
+    check_exact("2D scattered, modulated along x_1, n = 40", NS, 2, &xs[0][0], ys, ss2, &km);
 
     /* a constant modulating input modulates nothing; a bad index is refused */
     for (int i = 0; i < NS; i++) xs[i][1] = 1.0;
-    assert_int_equal(tbl_gp_fit_modulated(NS, 2, &xs[0][0], ys, ss2, 1, &gm), STC_OK);
+    assert_int_equal(tbl_gp_fit_kernel(NS, 2, &xs[0][0], ys, ss2, &km, &gm), STC_OK);
     tbl_gp_get_info(gm, &im);
     assert_int_equal(im.mod_dim, -1);
     assert_true(im.gamma == 0.0);
     tbl_gp_destroy(&gm);
     stc_error_clear();
-    assert_int_equal(tbl_gp_fit_modulated(NS, 2, &xs[0][0], ys, ss2, 2, &gm), STC_EINVAL);
+    const tbl_gp_kernel bad = {.mod_dim = 2, .scale_dim = -1};
+    assert_int_equal(tbl_gp_fit_kernel(NS, 2, &xs[0][0], ys, ss2, &bad, &gm), STC_EINVAL);
     assert_null(gm);
     printf("refused: %s\n", stc_errmsg());
     assert_non_null(strstr(stc_errmsg(), "mod_dim = 2"));
+}
+
+/* ---- a main term scaled by one input over a base term ------------------- */
+
+/* A base curve in x_0 plus an effect in proportion to x_2 that depends on
+ * x_0 and x_1, as a table's uncoated curve (ln Eco/Esu = 0) and its
+ * coating's effect. */
+static double base0(double u) { return 0.5 * sin(2.0 * u) - 0.3 * u; }
+static double fscaled(const double *x)
+{
+    return base0(x[0]) + x[2] * (0.4 + 0.3 * x[0] * x[1] - 0.2 * x[1] * x[1]);
+}
+
+/* The scaled kernel fits such data better than the stationary one, reads
+ * the same at x_2 = 0 whatever x_1 (the base term alone), and its closed
+ * forms hold. */
+static void test_scaled(void **state)
+{
+    (void)state;
+    enum { NA = 5, NB = 3, NC = 3, N = NA * NB * NC };
+    double x[N][3], y[N], sy[N];
+    const double cv[NC] = {0.0, log(2.0), log(4.0)};
+    uint64_t s = 515u;
+    int k = 0;
+    for (int a = 0; a < NA; a++)
+        for (int b = 0; b < NB; b++)
+            for (int c = 0; c < NC; c++, k++) {
+                x[k][0] = 0.5 * a, x[k][1] = 0.5 * b, x[k][2] = cv[c];
+                sy[k] = 0.02;
+                y[k] = fscaled(x[k]) + sy[k] * gauss(&s);
+            }
+    const tbl_gp_kernel ks = {.mod_dim = -1, .scale_dim = 2, .base_dims = 1u};
+    tbl_gp *gs = fit_ok(N, 3, &x[0][0], y, sy), *gk = NULL;
+    stc_error_clear();
+    assert_int_equal(tbl_gp_fit_kernel(N, 3, &x[0][0], y, sy, &ks, &gk), STC_OK);
+    tbl_gp_info is, ik;
+    tbl_gp_get_info(gs, &is);
+    tbl_gp_get_info(gk, &ik);
+    print_info("base + x_2 effect 5x3x3, stationary", &is);
+    print_info("base + x_2 effect 5x3x3, scaled", &ik);
+    assert_int_equal(ik.scale_dim, 2);
+    assert_true(isfinite(ik.base_ell[0]) && !isfinite(ik.base_ell[1]) && !isfinite(ik.base_ell[2]));
+    assert_true(ik.log_ml > is.log_ml + 2.0);
+    /* at x_2 = 0 the prediction does not depend on x_1 */
+    double spread = 0.0, ss[2] = {0, 0};
+    int m = 0;
+    for (int a = 0; a + 1 < NA; a++) {
+        double q0[3] = {0.5 * a + 0.25, 0.0, 0.0}, q1[3] = {0.5 * a + 0.25, 1.0, 0.0}, m0, m1;
+        tbl_gp_predict(gk, q0, &m0, NULL);
+        tbl_gp_predict(gk, q1, &m1, NULL);
+        spread = fmax(spread, fabs(m1 - m0));
+        for (int b = 0; b + 1 < NB; b++, m++) {
+            double q[3] = {0.5 * a + 0.25, 0.5 * b + 0.25, log(1.4)}, mu;
+            tbl_gp_predict(gs, q, &mu, NULL);
+            ss[0] += pow(mu - fscaled(q), 2);
+            tbl_gp_predict(gk, q, &mu, NULL);
+            ss[1] += pow(mu - fscaled(q), 2);
+        }
+    }
+    printf("scaled: at x_2 = 0 the prediction moves by %.1e from x_1 = 0 to 1; log_ml %.2f vs "
+           "stationary %.2f; between the nodes at x_2 = ln 1.4: rms error %.4f vs %.4f\n", spread,
+           ik.log_ml, is.log_ml, sqrt(ss[1] / m), sqrt(ss[0] / m));
+    assert_true(spread < 1e-12);
+    assert_true(ss[1] < ss[0]);
+    tbl_gp_destroy(&gs);
+    tbl_gp_destroy(&gk);
+    /* closed forms, on a subset small enough for the direct refits */
+    check_exact("base + x_2 effect, scaled, n = 45", N, 3, &x[0][0], y, sy, &ks);
+    const tbl_gp_kernel both = {.mod_dim = 1, .scale_dim = 2, .base_dims = 1u};
+    check_exact("base + x_2 effect, scaled and modulated, n = 45", N, 3, &x[0][0], y, sy, &both);
 }
 
 /* ---- invalid input and determinism ------------------------------------------ */
@@ -635,7 +729,8 @@ int main(void)
         cmocka_unit_test(test_smooth_1d),          cmocka_unit_test(test_understated_noise),
         cmocka_unit_test(test_grid_3d),            cmocka_unit_test(test_constant_dim),
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_loo_and_likelihood),
-        cmocka_unit_test(test_modulated),          cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_modulated),          cmocka_unit_test(test_scaled),
+        cmocka_unit_test(test_invalid),
         cmocka_unit_test(test_determinism),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

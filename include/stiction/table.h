@@ -276,9 +276,10 @@ enum {
 
 /* Fit the μs surrogate (required before tbl_query / tbl_model_create; done
  * by tbl_read for a table with done points): a Gaussian process in (ln w,
- * ln t/R - ½ ln w, ln Eco/Esu) on ln μs less the Wu–Shi–Polycarpou trend,
- * its length scales varying along the second input, each point weighted by
- * its own error estimate (asperity/table_fit.h).  STC_ERANGE with
+ * ln t/R - ½ ln w, ln Eco/Esu) on ln μs less the Wu–Shi–Polycarpou trend:
+ * a term in ln w (the uncoated sphere) plus ln Eco/Esu times a term in all
+ * three, whose length scales vary along the second; each point weighted by
+ * its own error estimate (asperity/table_fit.h, docs/table-format.md).  STC_ERANGE with
  * fewer than 3 done points. */
 STC_API stc_status tbl_fit(tbl_table *t);
 
@@ -289,6 +290,8 @@ typedef struct tbl_fit_info {
                              second input's range */
     double gamma;         /* their modulation: each scaled by exp(gamma (x2 - middle)),
                              x2 = ln t/R - ½ ln w; 0 with one t/R value */
+    double ell_base;      /* length scale in ln w of the uncoated term (inf with one
+                             Eco/Esu value: no separate term) */
     double noise_scale;   /* factor on the points' error estimates the data asked for */
     double loo_rms, loo_max; /* leave-one-out relative μs errors, rms and largest */
     double loo_cover2;    /* share of points within 2 LOO standard deviations */
