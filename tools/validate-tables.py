@@ -21,7 +21,8 @@
    than the 3 % to be resolved, so the same point is also computed with eight
    placements (HELD_OUT_PLACEMENTS; their errors 1.6-3.2 % on the thesis
    table's ten points) and the table is held to that one: mu_s within two standard errors (table and point combined)
-   for 90 % of the points is a check, within 3 % a target.
+   for 90 % of the points is a check; within 3 % and two standard errors for
+   90 % of the points a target, and within 3 % at every point another.
 2. Surface checks: Greenwood-Williamson sums over a Gaussian summit
    population from the table at Eco/Esu = 1 (uncoated: one material), 2 and 4:
    a stiffer coating gives a higher surface mu_s (the single-asperity trend of
@@ -362,7 +363,7 @@ def held_out(cli, table, config, work, jobs, fresh, rep):
             "P/Pc 3D | 3D vs table | CPU s x2, x%d |" % (K, K, K))
     rep.out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     n = 0
-    within3 = within2c = p1 = a1 = 0
+    within3 = within2c = both = p1 = a1 = 0
     worst_mu = worst_p = worst_a = 0.0
     failed = []
     for pt, f, f8, axp in zip(HELD_OUT, fe, fe8, ax):
@@ -387,6 +388,7 @@ def held_out(cli, table, config, work, jobs, fresh, rep):
         n += 1
         within3 += abs(dmu) <= 0.03
         within2c += zc <= 2
+        both += abs(dmu) <= 0.03 and zc <= 2
         p1 += abs(dp) <= 0.01
         a1 += abs(da) <= 0.01
         worst_mu = max(worst_mu, abs(dmu))
@@ -410,6 +412,9 @@ def held_out(cli, table, config, work, jobs, fresh, rep):
              "%d of %d within (largest %.2f %%)" % (p1, n, 100 * worst_p), p1 == n),
             ("check", "held-out A/Ac", curve, "1 %",
              "%d of %d within (largest %.2f %%)" % (a1, n, 100 * worst_a), a1 == n),
+            ("target", "held-out mu_s within 3 %% of the fresh %d-placement FE point and "
+             "within two standard errors" % K, ">= 90 % of points",
+             "%d of %d" % (both, n), both >= 0.9 * n),
             ("target", "held-out mu_s within 3 %% of the fresh %d-placement FE point" % K,
              "every point", "%d of %d (largest %.2f %%)" % (within3, n, 100 * worst_mu),
              within3 == n),
