@@ -132,8 +132,10 @@ stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const do
  * variation).  bell_d and rho (in [1e-3, 1e3]) are fitted: one more
  * parameter per base input and one.
  *
- * Either option evaluates the kernel per pair (no per-dim factor tables:
- * about three times the fill cost of a grid at n = 1000).  A constant
+ * Either option evaluates the kernel per pair (no per-dim factor tables)
+ * and adds parameters, so the fit takes longer: measured on 2 cores, 3D
+ * grids, both options against none: n = 72 in 0.10 / 0.01 s, n = 300 in
+ * 2.5 / 0.19 s, n = 1024 in 12 / 3.2 s (815 / 267 evaluations).  A constant
  * mod_dim or scale_dim is ignored (info.mod_dim / scale_dim = -1).
  * Errors: as tbl_gp_fit; STC_EINVAL for mod_dim or scale_dim outside
  * -1..dim-1 or base_dims naming a dim >= dim. */
