@@ -375,7 +375,7 @@ static stc_status nm_run(fit_ctx *c, gsl_multimin_fminimizer *s, gsl_vector *t, 
     gsl_vector_set_all(step, h);
     STC_CHECK(gsl_multimin_fminimizer_set(s, &F, t, step) == GSL_SUCCESS, STC_ESOLVER,
               "Nelder-Mead set-up failed");
-    int start = c->evals;
+    int start = c->evals, limit = NM_MAXEVAL * (c->np > 4 ? c->np : 4);
     *converged = 0;
     for (;;) {
         if (gsl_multimin_fminimizer_iterate(s) != GSL_SUCCESS) break; /* no progress possible */
@@ -383,7 +383,7 @@ static stc_status nm_run(fit_ctx *c, gsl_multimin_fminimizer *s, gsl_vector *t, 
             *converged = 1;
             break;
         }
-        if (c->evals - start >= (c->np > 4 ? NM_MAXEVAL * c->np : 4 * NM_MAXEVAL)) break;
+        if (c->evals - start >= limit) break;
     }
     gsl_vector_memcpy(t, gsl_multimin_fminimizer_x(s));
     *fmin = gsl_multimin_fminimizer_minimum(s);
