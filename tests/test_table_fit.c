@@ -48,6 +48,22 @@ static tbl_gp *fit_ok(int n, int dim, const double *x, const double *y, const do
     return g;
 }
 
+static void print_info(const char *what, const tbl_gp_info *in);
+
+/* A fit with kernel options, its summary in *in, printed as what. */
+static tbl_gp *fit_kernel_ok(int n, int dim, const double *x, const double *y, const double *sy,
+                             const tbl_gp_kernel *kernel, const char *what, tbl_gp_info *in)
+{
+    tbl_gp *g = NULL;
+    stc_error_clear();
+    stc_status st = tbl_gp_fit_kernel(n, dim, x, y, sy, kernel, &g);
+    if (st != STC_OK) fail_msg("tbl_gp_fit_kernel: %s: %s", stc_strerror(st), stc_errmsg());
+    assert_non_null(g);
+    tbl_gp_get_info(g, in);
+    print_info(what, in);
+    return g;
+}
+
 static void print_info(const char *what, const tbl_gp_info *in)
 {
     printf("%s: ell = (", what);
@@ -384,12 +400,8 @@ static direct direct_from(const tbl_gp_info *in)
 static void check_exact(const char *what, int n, int dim, const double *x, const double *y,
                         const double *sy, const tbl_gp_kernel *kernel)
 {
-    tbl_gp *g = NULL;
-    stc_error_clear();
-    assert_int_equal(tbl_gp_fit_kernel(n, dim, x, y, sy, kernel, &g), STC_OK);
     tbl_gp_info in;
-    tbl_gp_get_info(g, &in);
-    print_info(what, &in);
+    tbl_gp *g = fit_kernel_ok(n, dim, x, y, sy, kernel, what, &in);
     direct p = direct_from(&in);
     double mu[64], sd[64], emu = 0, esd = 0;
     tbl_gp_loo(g, mu, sd);
@@ -491,15 +503,10 @@ static void test_modulated(void **state)
             sy[k] = 0.03;
             y[k] = frough(x[k]) + sy[k] * gauss(&s);
         }
-    tbl_gp *gs = fit_ok(N, 2, &x[0][0], y, sy), *gm = NULL;
-    stc_error_clear();
     const tbl_gp_kernel km = {.mod_dim = 1, .scale_dim = -1};
-    assert_int_equal(tbl_gp_fit_kernel(N, 2, &x[0][0], y, sy, &km, &gm), STC_OK);
     tbl_gp_info is, im;
-    tbl_gp_get_info(gs, &is);
-    tbl_gp_get_info(gm, &im);
-    print_info("rough-to-smooth 12x9, stationary", &is);
-    print_info("rough-to-smooth 12x9, modulated", &im);
+    tbl_gp *gs = fit_kernel_ok(N, 2, &x[0][0], y, sy, NULL, "rough-to-smooth 12x9, stationary", &is);
+    tbl_gp *gm = fit_kernel_ok(N, 2, &x[0][0], y, sy, &km, "rough-to-smooth 12x9, modulated", &im);
     double ss[2] = {0, 0};
     int m = 0, inside = 0;
     for (int a = 0; a + 1 < NA; a++)
@@ -579,14 +586,10 @@ static void test_scaled(void **state)
                 y[k] = fscaled(x[k]) + sy[k] * gauss(&s);
             }
     const tbl_gp_kernel ks = {.mod_dim = -1, .scale_dim = 2, .base_dims = 1u};
-    tbl_gp *gs = fit_ok(N, 3, &x[0][0], y, sy), *gk = NULL;
-    stc_error_clear();
-    assert_int_equal(tbl_gp_fit_kernel(N, 3, &x[0][0], y, sy, &ks, &gk), STC_OK);
     tbl_gp_info is, ik;
-    tbl_gp_get_info(gs, &is);
-    tbl_gp_get_info(gk, &ik);
-    print_info("base + x_2 effect 5x3x3, stationary", &is);
-    print_info("base + x_2 effect 5x3x3, scaled", &ik);
+    tbl_gp *gs = fit_kernel_ok(N, 3, &x[0][0], y, sy, NULL, "base + x_2 effect 5x3x3, stationary",
+                               &is);
+    tbl_gp *gk = fit_kernel_ok(N, 3, &x[0][0], y, sy, &ks, "base + x_2 effect 5x3x3, scaled", &ik);
     assert_int_equal(ik.scale_dim, 2);
     assert_true(isfinite(ik.base_ell[0]) && !isfinite(ik.base_ell[1]) && !isfinite(ik.base_ell[2]));
     assert_true(ik.log_ml > is.log_ml + 2.0);
