@@ -79,7 +79,8 @@ struct tbl_gp {
     int n, dim, nact;
     int act[MAXDIM];          /* input dims that vary */
     int mod;                  /* input dim modulating the length scales, -1: none */
-    double gam, mcen;         /* ell_d(x) = ell_d exp(gam (x[mod] - mcen)) */
+    double gam, mcen;         /* ell_d(x) = ell_d r(x), r(x) = exp(gam (x[mod] - mcen)) */
+    double *r;                /* [n] r(x_i) of the current shape (1 without modulation) */
     int scale;                /* input dim whose value multiplies the main term, -1: none */
     int nbase, bact[MAXDIM];  /* with scale: the base term's varying dims (index into act) */
     double inv_bell2[MAXDIM]; /* 1/ell^2 of the base term per entry of bact */
@@ -119,7 +120,8 @@ typedef struct fit_ctx {
                                       + nbase + 1 with a scaled term), or 0 if nact = 0 */
     int kmod, kbase;               /* index of gmod and of the first lbell among them, -1 */
     double mhalf;                  /* half the range of the modulating input */
-    double lo[MAXPAR], hi[MAXPAR]; /* bounds of the log parameters, order lell.., llam */
+    double lo[MAXPAR], hi[MAXPAR]; /* bounds of the searched parameters, order lell.., llam,
+                                      gmod, lbell.., lrho */
     double sf_lo, sf_hi;           /* bounds of sf */
     double inv_range[MAXDIM];      /* 1 / range per varying dim */
     double *a, *b;                 /* [n] scratch: L^-1 y, L^-1 1 */
@@ -168,12 +170,19 @@ static void pack(const fit_ctx *c, const hyp *h, double *t)
     }
 }
 
+/* r(x) of the modulated length scales: 1 without modulation. */
+static double mod_factor(const tbl_gp *g, const double *x)
+{
+    return g->mod >= 0 && g->gam != 0.0 ? exp(g->gam * (x[g->mod] - g->mcen)) : 1.0;
+}
+
 /* K = A = R + lambda^2 S (s = 1); with no varying input A = S (sf = 0).
  * mhalf: half the modulating input's range (unused without modulation). */
 static void set_shape(tbl_gp *g, const hyp *h, double mhalf)
 {
     for (int a = 0; a < g->nact; a++) g->inv_ell2[a] = exp(-2.0 * h->lell[a]);
     g->gam = g->mod >= 0 ? h->gmod / mhalf : 0.0;
+    for (int i = 0; i < g->n; i++) g->r[i] = mod_factor(g, g->x + (size_t)i * g->dim);
     for (int j = 0; j < g->nbase; j++) g->inv_bell2[j] = exp(-2.0 * h->lbell[j]);
     g->rho2 = g->scale >= 0 ? exp(2.0 * h->lrho) : 0.0;
     g->sf2 = g->nact > 0 ? 1.0 : 0.0;
@@ -191,13 +200,13 @@ static void set_shape(tbl_gp *g, const hyp *h, double mhalf)
 /* ---- covariance and its factorisation --------------------------------- */
 
 /* The main term's correlation: exp(-1/2 sum_d (dx_d / ell_d)^2) over the
- * varying dims; with modulation, every ell_d scaled by
- * r(x) = exp(gam (x[mod] - mcen)) at each end (Gibbs 1997; Paciorek &
- * Schervish 2004, eq. 3):
+ * varying dims; with modulation, every ell_d scaled by r(x) at each end
+ * (ra = r(xa), rb = r(xb): mod_factor; Gibbs 1997; Paciorek & Schervish
+ * 2004, eq. 3):
  *   prod_d (2 r r' / (r^2 + r'^2))^(1/2) exp(-sum_d dx_d^2 / (ell_d^2 (r^2 + r'^2))),
  * positive definite for any r(x) > 0 and equal to the stationary kernel
  * at gam = 0. */
-static double kern_main(const tbl_gp *g, const double *xa, const double *xb)
+static double kern_main(const tbl_gp *g, const double *xa, double ra, const double *xb, double rb)
 {
     double s = 0.0;
     for (int a = 0; a < g->nact; a++) {
@@ -205,22 +214,23 @@ static double kern_main(const tbl_gp *g, const double *xa, const double *xb)
         s += d * d * g->inv_ell2[a];
     }
     if (g->mod < 0 || g->gam == 0.0) return exp(-0.5 * s);
-    double ra = exp(g->gam * (xa[g->mod] - g->mcen)), rb = exp(g->gam * (xb[g->mod] - g->mcen));
     double q = ra * ra + rb * rb;
     return pow(2.0 * ra * rb / q, 0.5 * g->nact) * exp(-s / q);
 }
 
-/* With a scaled main term (tbl_gp_kernel.scale_dim):
+/* The covariance of f at xa and xb (r(xa) = ra, r(xb) = rb); with a scaled
+ * main term (tbl_gp_kernel.scale_dim):
  *   sf^2 (rho^2 exp(-1/2 sum_base (dx_d / bell_d)^2) + x[scale] x'[scale] main(x, x')). */
-static double kern(const tbl_gp *g, const double *xa, const double *xb)
+static double kern(const tbl_gp *g, const double *xa, double ra, const double *xb, double rb)
 {
-    if (g->scale < 0) return g->sf2 * kern_main(g, xa, xb);
+    if (g->scale < 0) return g->sf2 * kern_main(g, xa, ra, xb, rb);
     double s = 0.0;
     for (int j = 0; j < g->nbase; j++) {
         double d = xa[g->act[g->bact[j]]] - xb[g->act[g->bact[j]]];
         s += d * d * g->inv_bell2[j];
     }
-    return g->sf2 * (g->rho2 * exp(-0.5 * s) + xa[g->scale] * xb[g->scale] * kern_main(g, xa, xb));
+    return g->sf2 * (g->rho2 * exp(-0.5 * s) +
+                     xa[g->scale] * xb[g->scale] * kern_main(g, xa, ra, xb, rb));
 }
 
 /* Lower triangle of K = sf^2 R + diag(c^2 sy_i^2 + jitter) into K [n][n]. */
@@ -230,6 +240,7 @@ static void fill_cov(const tbl_gp *g, double jitter, double *K)
     const grid *G = g->grid;
     for (int i = 0; i < n; i++) {
         double *Ki = K + (size_t)i * n;
+        const double *xi = g->x + (size_t)i * dim;
         if (G) {
             const int *ii = g->gidx + (size_t)i * na;
             for (int j = 0; j < i; j++) {
@@ -239,11 +250,10 @@ static void fill_cov(const tbl_gp *g, double jitter, double *K)
                 Ki[j] = v;
             }
         } else {
-            const double *xi = g->x + (size_t)i * dim;
-            for (int j = 0; j < i; j++) Ki[j] = kern(g, xi, g->x + (size_t)j * dim);
+            for (int j = 0; j < i; j++)
+                Ki[j] = kern(g, xi, g->r[i], g->x + (size_t)j * dim, g->r[j]);
         }
-        const double *xi = g->x + (size_t)i * dim;
-        Ki[i] = (g->scale < 0 ? g->sf2 : kern(g, xi, xi)) + g->c2 * g->sy[i] * g->sy[i] + jitter;
+        Ki[i] = kern(g, xi, g->r[i], xi, g->r[i]) + g->c2 * g->sy[i] * g->sy[i] + jitter;
     }
 }
 
@@ -559,11 +569,12 @@ static tbl_gp *alloc_handle(int n, int dim)
     g->y = malloc(nn * sizeof *g->y);
     g->sy = malloc(nn * sizeof *g->sy);
     g->L = malloc(nn * nn * sizeof *g->L);
+    g->r = malloc(nn * sizeof *g->r);
     g->alpha = malloc(nn * sizeof *g->alpha);
     g->w = malloc(nn * sizeof *g->w);
     g->loo_mu = malloc(nn * sizeof *g->loo_mu);
     g->loo_sd = malloc(nn * sizeof *g->loo_sd);
-    if (!g->x || !g->y || !g->sy || !g->L || !g->alpha || !g->w || !g->loo_mu || !g->loo_sd)
+    if (!g->x || !g->y || !g->sy || !g->r || !g->L || !g->alpha || !g->w || !g->loo_mu || !g->loo_sd)
         tbl_gp_destroy(&g);
     return g;
 }
@@ -738,8 +749,8 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
     in->base_sd = sqrt(g->rho2 * g->sf2);
     in->gamma = g->gam;
     in->mod_centre = g->mod >= 0 ? g->mcen : 0.0;
-    if (g->mod >= 0) {
-        int k = g->nact + 1;
+    if (c->kmod >= 0) {
+        int k = c->kmod;
         double tol = AT_BOUND_TOL * (c->hi[k] - c->lo[k]);
         in->gamma_at_bound = h->gmod <= c->lo[k] + tol ? -1 : h->gmod >= c->hi[k] - tol;
     }
@@ -831,9 +842,9 @@ void tbl_gp_predict(const tbl_gp *g, const double *x, double *mean, double *sd)
     double stack[PREDICT_STACK_N];
     double *k = NULL;
     if (sd) k = n <= PREDICT_STACK_N ? stack : malloc((size_t)n * sizeof *k);
-    double ka = 0.0, kw = 0.0;
+    double ka = 0.0, kw = 0.0, rx = mod_factor(g, x);
     for (int i = 0; i < n; i++) {
-        double ki = kern(g, x, g->x + (size_t)i * g->dim);
+        double ki = kern(g, x, rx, g->x + (size_t)i * g->dim, g->r[i]);
         ka += ki * g->alpha[i];
         kw += ki * g->w[i];
         if (k) k[i] = ki;
@@ -846,8 +857,7 @@ void tbl_gp_predict(const tbl_gp *g, const double *x, double *mean, double *sd)
     }
     /* R&W eq. 2.42 with h = 1: sf^2 - k'K^-1 k + (1 - 1'K^-1 k)^2 / 1'K^-1 1 */
     cblas_dtrsv(CblasRowMajor, CblasLower, CblasNoTrans, CblasNonUnit, n, g->L, n, k, 1);
-    double kxx = g->scale < 0 ? g->sf2 : kern(g, x, x);
-    double var = kxx - dot(n, k, k) + (1.0 - kw) * (1.0 - kw) / g->wsum;
+    double var = kern(g, x, rx, x, rx) - dot(n, k, k) + (1.0 - kw) * (1.0 - kw) / g->wsum;
     *sd = sqrt(fmax(var, 0.0));
     if (k != stack) free(k);
 }
@@ -872,6 +882,7 @@ void tbl_gp_destroy(tbl_gp **g)
     free(p->w);
     free(p->loo_mu);
     free(p->loo_sd);
+    free(p->r);
     free(p->grid);
     free(p->gidx);
     free(p);

@@ -80,7 +80,8 @@ stc_status tbl_fit(tbl_table *t)
      * ln Eco/Esu; its length scales modulated along t/a, the coating's
      * response turning more sharply where it is thin against the contact
      * (docs/table-format.md). */
-    tbl_gp_kernel k = {t->n[1] > 1 ? 1 : -1, t->n[2] > 1 ? 2 : -1, 1u};
+    tbl_gp_kernel k = {.mod_dim = t->n[1] > 1 ? 1 : -1, .scale_dim = t->n[2] > 1 ? 2 : -1,
+                       .base_dims = 1u << 0};
     STC_CALL_GOTO(tbl_gp_fit_kernel(n, 3, x, y, sy, &k, &t->gp), st, done);
     tbl_gp_info gi;
     tbl_gp_get_info(t->gp, &gi);
