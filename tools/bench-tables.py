@@ -6,6 +6,8 @@
    factorizations per point, read from the points' own records.
    The normal grid of each table (axisymmetric load curves for the preload's
    P and A): curves and CPU seconds per curve, from the curves' records.
+   The wall time of reading the table, which fits its mu_s surrogate, with
+   the surrogate's leave-one-out error.
 2. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
    one table point at the thesis family's settings run by `stiction asperity
    --shear` with the normal step and the shear ramp timed apart (the normal
@@ -19,6 +21,7 @@ import json
 import statistics
 import subprocess
 import sys
+import time
 
 
 def run(cmd):
@@ -29,12 +32,17 @@ def run(cmd):
 
 
 def table_costs(cli, path):
+    t0 = time.monotonic()
     info = json.loads(run([cli, "table", "info", path, "--json"]))
+    read_s = time.monotonic() - t0
     rows = [r for r in csv.DictReader(io.StringIO(run([cli, "table", "info", path, "--points"])))
             if r["state"] == "done"]
     print("%s: %d points, %d done, %d failed, %d pending; build %.1f min wall"
           % (path, info["points"], info["done"], info["failed"], info["pending"],
              info["build_wall_s"] / 60))
+    if "loo_rms_rel" in info:
+        print("  read, with the mu_s surrogate's fit: %.2f s wall; its leave-one-out error %.2f %% "
+              "rms, gamma %.2f" % (read_s, 100 * info["loo_rms_rel"], info["gamma"]))
     if not rows:
         return
     cpu = [float(r["cpu_s"]) for r in rows]
