@@ -28,6 +28,7 @@
 
 #define MAXDIM 3
 #define MAXPAR (2 * MAXDIM + 3)
+_Static_assert(MAXPAR == TBL_GP_MAXPAR, "table_fit.h's TBL_GP_MAXPAR");
 
 /* ell >= 0.25 x the smallest spacing: the kernel between neighbours is then
  * at most exp(-8), below which the fit would only interpolate noise. */
@@ -167,6 +168,34 @@ static void pack(const fit_ctx *c, const hyp *h, double *t)
         int b = c->kbase;
         for (int j = 0; j < c->g->nbase; j++, b++) t[b] = to_angle(h->lbell[j], c->lo[b], c->hi[b]);
         t[b] = to_angle(h->lrho, c->lo[b], c->hi[b]);
+    }
+}
+
+/* h as the plain vector of the searched parameters (no angles), in the
+ * order of lo[] and hi[]: the form info.par carries. */
+static void hyp_to_par(const fit_ctx *c, const hyp *h, double *p)
+{
+    int k = 0;
+    for (; k < c->g->nact; k++) p[k] = h->lell[k];
+    if (c->np > 0) p[k] = h->llam;
+    if (c->kmod >= 0) p[c->kmod] = h->gmod;
+    if (c->kbase >= 0) {
+        int b = c->kbase;
+        for (int j = 0; j < c->g->nbase; j++, b++) p[b] = h->lbell[j];
+        p[b] = h->lrho;
+    }
+}
+
+static void par_to_hyp(const fit_ctx *c, const double *p, hyp *h)
+{
+    int k = 0;
+    for (; k < c->g->nact; k++) h->lell[k] = p[k];
+    if (c->np > 0) h->llam = p[k];
+    if (c->kmod >= 0) h->gmod = p[c->kmod];
+    if (c->kbase >= 0) {
+        int b = c->kbase;
+        for (int j = 0; j < c->g->nbase; j++, b++) h->lbell[j] = p[b];
+        h->lrho = p[b];
     }
 }
 
@@ -759,6 +788,8 @@ static stc_status apply(fit_ctx *c, const hyp *h, int converged)
     in->evaluations = c->evals;
     in->converged = converged;
     in->jitter = rel * g->sf2;
+    in->npar = c->np;
+    hyp_to_par(c, h, in->par);
     return STC_OK;
 }
 
@@ -768,8 +799,10 @@ stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const do
     return tbl_gp_fit_kernel(n, dim, x, y, sy, NULL, out);
 }
 
-stc_status tbl_gp_fit_kernel(int n, int dim, const double *x, const double *y, const double *sy,
-                             const tbl_gp_kernel *kernel, tbl_gp **out)
+/* The fit of tbl_gp_fit_kernel; with par (npar of them) at those
+ * hyperparameters instead of searched. */
+static stc_status fit(int n, int dim, const double *x, const double *y, const double *sy,
+                      const tbl_gp_kernel *kernel, int npar, const double *par, tbl_gp **out)
 {
     STC_CALL(check_args(n, dim, x, y, sy, out));
     tbl_gp_kernel kd = kernel ? *kernel : (tbl_gp_kernel){-1, -1, 0};
@@ -803,7 +836,17 @@ stc_status tbl_gp_fit_kernel(int n, int dim, const double *x, const double *y, c
     hyp h;
     setup(&c, &h, c.a, kd.base_dims);
     int converged = 1;
-    if (c.np > 0) {
+    if (par) {
+        STC_CHECK_GOTO(npar == c.np, st, done, STC_EINVAL,
+                       "tbl_gp_fit_at: npar = %d: these data and kernel have %d hyperparameters",
+                       npar, c.np);
+        for (int k = 0; k < npar; k++)
+            STC_CHECK_GOTO(isfinite(par[k]) && par[k] >= c.lo[k] && par[k] <= c.hi[k], st, done,
+                           STC_EINVAL,
+                           "tbl_gp_fit_at: par[%d] = %g: must lie in [%g, %g] for these data",
+                           k, par[k], c.lo[k], c.hi[k]);
+        par_to_hyp(&c, par, &h);
+    } else if (c.np > 0) {
         t = gsl_vector_alloc((size_t)c.np);
         STC_CHECK_GOTO(t, st, done, STC_ENOMEM, "tbl_gp_fit: out of memory (optimiser)");
         pack(&c, &h, t->data);
@@ -832,6 +875,22 @@ done:
     free(c.b);
     tbl_gp_destroy(&g);
     return st;
+}
+
+stc_status tbl_gp_fit_kernel(int n, int dim, const double *x, const double *y, const double *sy,
+                             const tbl_gp_kernel *kernel, tbl_gp **out)
+{
+    return fit(n, dim, x, y, sy, kernel, 0, NULL, out);
+}
+
+stc_status tbl_gp_fit_at(int n, int dim, const double *x, const double *y, const double *sy,
+                         const tbl_gp_kernel *kernel, int npar, const double *par, tbl_gp **out)
+{
+    if (out) *out = NULL;
+    STC_CHECK(par || npar == 0, STC_EINVAL, "tbl_gp_fit_at: par must not be NULL (npar = %d)",
+              npar);
+    static const double none[1] = {0.0};
+    return fit(n, dim, x, y, sy, kernel, npar, par ? par : none, out);
 }
 
 /* ---- queries --------------------------------------------------------------- */

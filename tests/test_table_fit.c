@@ -6,7 +6,7 @@
  * likelihood against a direct computation and its optimality, length
  * scales modulated along one input (Gibbs's kernel), a main term scaled by
  * one input over a base term, invalid input, and
- * bit-identical refits. */
+ * bit-identical refits, searched again or at the found hyperparameters. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -49,6 +49,11 @@ static tbl_gp *fit_ok(int n, int dim, const double *x, const double *y, const do
 }
 
 static void print_info(const char *what, const tbl_gp_info *in);
+
+static void check_ok(stc_status st, const char *what)
+{
+    if (st != STC_OK) fail_msg("%s: %s: %s", what, stc_strerror(st), stc_errmsg());
+}
 
 /* A fit with kernel options, its summary in *in, printed as what. */
 static tbl_gp *fit_kernel_ok(int n, int dim, const double *x, const double *y, const double *sy,
@@ -656,7 +661,9 @@ static void test_invalid(void **state)
     assert_int_equal(tbl_gp_fit(6, 1, x, y, sy, NULL), STC_EINVAL);
 }
 
-static int same_info(const tbl_gp_info *a, const tbl_gp_info *b)
+/* Every field but the search's record (evaluations, converged, subset_n),
+ * bit for bit. */
+static int same_result(const tbl_gp_info *a, const tbl_gp_info *b)
 {
     return a->n == b->n && a->dim == b->dim && !memcmp(a->ell, b->ell, sizeof a->ell) &&
            !memcmp(&a->sf, &b->sf, sizeof a->sf) &&
@@ -665,40 +672,82 @@ static int same_info(const tbl_gp_info *a, const tbl_gp_info *b)
            !memcmp(&a->loo_rms, &b->loo_rms, sizeof a->sf) &&
            !memcmp(&a->loo_max, &b->loo_max, sizeof a->sf) &&
            !memcmp(&a->loo_cover2, &b->loo_cover2, sizeof a->sf) &&
-           a->evaluations == b->evaluations && a->converged == b->converged &&
-           a->subset_n == b->subset_n && !memcmp(a->ell_lo, b->ell_lo, sizeof a->ell_lo) &&
+           !memcmp(a->ell_lo, b->ell_lo, sizeof a->ell_lo) &&
            !memcmp(a->ell_hi, b->ell_hi, sizeof a->ell_hi) &&
            !memcmp(a->ell_at_bound, b->ell_at_bound, sizeof a->ell_at_bound) &&
-           !memcmp(&a->jitter, &b->jitter, sizeof a->sf);
+           !memcmp(&a->jitter, &b->jitter, sizeof a->sf) && a->mod_dim == b->mod_dim &&
+           !memcmp(&a->gamma, &b->gamma, sizeof a->sf) && a->scale_dim == b->scale_dim &&
+           !memcmp(a->base_ell, b->base_ell, sizeof a->base_ell) &&
+           !memcmp(&a->base_sd, &b->base_sd, sizeof a->sf) && a->npar == b->npar &&
+           !memcmp(a->par, b->par, (size_t)a->npar * sizeof *a->par);
 }
 
-/* Two fits of the same data: info, LOO and a prediction bit-identical. */
-static void check_same(const char *what, int n, const double *x, const double *y,
-                       const double *sy)
+static int same_info(const tbl_gp_info *a, const tbl_gp_info *b)
 {
-    double t0 = now();
-    tbl_gp *a = fit_ok(n, 3, x, y, sy);
-    double dt = now() - t0;
-    tbl_gp *b = fit_ok(n, 3, x, y, sy);
+    return same_result(a, b) && a->evaluations == b->evaluations &&
+           a->converged == b->converged && a->subset_n == b->subset_n;
+}
+
+/* Info, LOO and a prediction of a and b bit-identical (all of the info, or
+ * with whole = 0 all but the search's record). */
+static int same_fit(const tbl_gp *a, const tbl_gp *b, int n, int whole)
+{
     tbl_gp_info ia, ib;
     tbl_gp_get_info(a, &ia);
     tbl_gp_get_info(b, &ib);
-    print_info(what, &ia);
     double q[3] = {0.3, 0.6, 0.9}, ma, sa, mb, sb;
     tbl_gp_predict(a, q, &ma, &sa);
     tbl_gp_predict(b, q, &mb, &sb);
     double *la = malloc(4 * (size_t)n * sizeof *la), *lb = la + 2 * n;
     tbl_gp_loo(a, la, la + n);
     tbl_gp_loo(b, lb, lb + n);
-    int same = same_info(&ia, &ib) && !memcmp(&ma, &mb, sizeof ma) &&
-               !memcmp(&sa, &sb, sizeof sa) && !memcmp(la, lb, 2 * (size_t)n * sizeof *la);
-    printf("determinism, %s (fit %.0f ms, subset stage %d points): info, LOO and prediction "
-           "%s\n", what, 1e3 * dt, ia.subset_n, same ? "bit-identical" : "DIFFER");
-    assert_true(same);
-    assert_true(ia.converged);
+    int same = (whole ? same_info(&ia, &ib) : same_result(&ia, &ib)) &&
+               !memcmp(&ma, &mb, sizeof ma) && !memcmp(&sa, &sb, sizeof sa) &&
+               !memcmp(la, lb, 2 * (size_t)n * sizeof *la);
     free(la);
+    return same;
+}
+
+/* Two fits of the same data bit-identical; the fit at the first's
+ * hyperparameters (tbl_gp_fit_at) too, in a fraction of the time; the
+ * hyperparameters refused for a wrong count or out of their bounds. */
+static void check_same(const char *what, int n, const double *x, const double *y,
+                       const double *sy, const tbl_gp_kernel *k)
+{
+    double t0 = now();
+    tbl_gp *a = NULL, *b = NULL, *c = NULL;
+    check_ok(tbl_gp_fit_kernel(n, 3, x, y, sy, k, &a), "fit");
+    double dt = now() - t0;
+    check_ok(tbl_gp_fit_kernel(n, 3, x, y, sy, k, &b), "fit again");
+    tbl_gp_info ia, ic;
+    tbl_gp_get_info(a, &ia);
+    print_info(what, &ia);
+    t0 = now();
+    check_ok(tbl_gp_fit_at(n, 3, x, y, sy, k, ia.npar, ia.par, &c), "tbl_gp_fit_at");
+    double dc = now() - t0;
+    tbl_gp_get_info(c, &ic);
+    int same = same_fit(a, b, n, 1), same_at = same_fit(a, c, n, 0);
+    printf("determinism, %s (fit %.0f ms, subset stage %d points): info, LOO and prediction "
+           "%s; at its %d hyperparameters (%.1f ms, %d evaluations) %s\n", what, 1e3 * dt,
+           ia.subset_n, same ? "bit-identical" : "DIFFER", ia.npar, 1e3 * dc, ic.evaluations,
+           same_at ? "bit-identical" : "DIFFER");
+    assert_true(same && same_at);
+    assert_true(ia.converged);
+    assert_int_equal(ic.evaluations, 0);
+    assert_true(ia.npar >= 4 && dc < dt);
+
+    double bad[TBL_GP_MAXPAR];
+    memcpy(bad, ia.par, sizeof bad);
+    tbl_gp *d = NULL;
+    assert_int_equal(tbl_gp_fit_at(n, 3, x, y, sy, k, ia.npar - 1, bad, &d), STC_EINVAL);
+    assert_null(d);
+    assert_non_null(strstr(stc_errmsg(), "hyperparameters"));
+    bad[0] = ia.ell_hi[0] > 0 ? 1e3 : 0.0; /* log ell far above its bound */
+    assert_int_equal(tbl_gp_fit_at(n, 3, x, y, sy, k, ia.npar, bad, &d), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "par[0] = 1000"));
     tbl_gp_destroy(&a);
     tbl_gp_destroy(&b);
+    tbl_gp_destroy(&c);
 }
 
 static void test_determinism(void **state)
@@ -713,7 +762,9 @@ static void test_determinism(void **state)
         sy[i] = 0.02;
         y[i] = f3(xi) + sy[i] * gauss(&s);
     }
-    check_same("3D scattered, n = 100", N, x, y, sy);
+    check_same("3D scattered, n = 100", N, x, y, sy, NULL);
+    const tbl_gp_kernel both = {.mod_dim = 1, .scale_dim = 2, .base_dims = 1u};
+    check_same("3D scattered, n = 100, scaled and modulated", N, x, y, sy, &both);
     int k = 0; /* a grid above the subset size: subset stage, kernel tables */
     for (int a = 0; a < NA; a++)
         for (int b = 0; b < NB; b++)
@@ -723,7 +774,7 @@ static void test_determinism(void **state)
                 sy[k] = 0.02 * (1 + unif(&s));
                 y[k] = f3(xk) + sy[k] * gauss(&s);
             }
-    check_same("3D grid 10x6x5, n = 300", NG, x, y, sy);
+    check_same("3D grid 10x6x5, n = 300", NG, x, y, sy, NULL);
 }
 
 int main(void)
