@@ -283,6 +283,7 @@ stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double
     }
     t->pt = calloc((size_t)np, sizeof *t->pt);
     t->nrm.level = -1;
+    t->fit_npar = -1;
     if (!t->ax[0] || !t->ax[1] || !t->ax[2] || !t->pt) {
         tbl_destroy(&t);
         return STC_FAIL(STC_ENOMEM, "tbl_create: out of memory");

@@ -40,6 +40,12 @@ struct tbl_table {
     double build_wall_s;
     tbl_gp *gp;        /* μs surrogate, NULL until tbl_fit */
     tbl_fit_info fit;
+    /* The surrogate's hyperparameters and a hash of the data they fit
+     * (tbl_fit sets them, tbl_read takes them from /fit); tbl_fit reuses
+     * them instead of searching while its data hash the same. */
+    unsigned long fit_hash;
+    int fit_npar;      /* -1: none */
+    double fit_par[TBL_GP_MAXPAR];
     tbl_normal nrm;
 };
 

@@ -53,6 +53,31 @@ static void gp_inputs(const tbl_table *t, double w, double tR, double E, double 
     x[2] = log(E);
 }
 
+/* The surrogate's model: part of the hash its stored hyperparameters are
+ * kept under, so that a change of model (inputs, trend, kernel) here makes
+ * stored ones stale.  Raise it with any such change. */
+#define FIT_MODEL 3
+
+/* FNV-1a (Fowler, Noll & Vo) over n bytes, continuing from h. */
+static unsigned long fnv1a(unsigned long h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 1099511628211ul;
+    return h;
+}
+
+/* Hash of what the fit sees: the model, the kernel options and the n
+ * points' inputs, values and errors, bit for bit. */
+static unsigned long fit_hash(int n, const double *x, const double *y, const double *sy,
+                              const tbl_gp_kernel *k)
+{
+    int head[5] = {FIT_MODEL, n, k->mod_dim, k->scale_dim, (int)k->base_dims};
+    unsigned long h = fnv1a(14695981039346656037ul, head, sizeof head);
+    h = fnv1a(h, x, (size_t)n * 3 * sizeof *x);
+    h = fnv1a(h, y, (size_t)n * sizeof *y);
+    return fnv1a(h, sy, (size_t)n * sizeof *sy);
+}
+
 stc_status tbl_fit(tbl_table *t)
 {
     STC_CHECK(t, STC_EINVAL, "tbl_fit: table required");
@@ -82,9 +107,16 @@ stc_status tbl_fit(tbl_table *t)
      * (docs/table-format.md). */
     tbl_gp_kernel k = {.mod_dim = t->n[1] > 1 ? 1 : -1, .scale_dim = t->n[2] > 1 ? 2 : -1,
                        .base_dims = 1u << 0};
-    STC_CALL_GOTO(tbl_gp_fit_kernel(n, 3, x, y, sy, &k, &t->gp), st, done);
+    unsigned long hash = fit_hash(n, x, y, sy, &k);
+    int reused = 0;
+    if (t->fit_npar >= 0 && t->fit_hash == hash) /* the data of the stored fit */
+        reused = tbl_gp_fit_at(n, 3, x, y, sy, &k, t->fit_npar, t->fit_par, &t->gp) == STC_OK;
+    if (!reused) STC_CALL_GOTO(tbl_gp_fit_kernel(n, 3, x, y, sy, &k, &t->gp), st, done);
     tbl_gp_info gi;
     tbl_gp_get_info(t->gp, &gi);
+    t->fit_hash = hash;
+    t->fit_npar = gi.npar;
+    memcpy(t->fit_par, gi.par, sizeof t->fit_par);
     tbl_gp_loo(t->gp, lm, ls);
     double ss = 0.0, mx = 0.0;
     int in2 = 0;
@@ -95,7 +127,7 @@ stc_status tbl_fit(tbl_table *t)
         in2 += fabs(y[i] - lm[i]) <= 2.0 * ls[i];
     }
     t->fit = (tbl_fit_info){n, {gi.ell[0], gi.ell[1], gi.ell[2]}, gi.gamma, gi.base_ell[0],
-                            gi.noise_scale, sqrt(ss / n), mx, (double)in2 / n};
+                            gi.noise_scale, sqrt(ss / n), mx, (double)in2 / n, reused};
 done:
     free(x), free(y), free(sy), free(lm), free(ls);
     return st;

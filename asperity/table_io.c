@@ -183,8 +183,11 @@ static int write_fit(hid_t f, const tbl_table *t)
     int e = stc_h5_put_s(g, "model", "Gaussian process on ln mu_s - ln mu_WSP(w): a term in "
                                      "ln w plus ln E_ratio times a term in (ln w, x2 = ln t/R - "
                                      "ln w / 2, ln E_ratio) whose length scales are times "
-                                     "exp(gamma (x2 - middle of its range)); recomputed when "
-                                     "read") |
+                                     "exp(gamma (x2 - middle of its range)); refitted when "
+                                     "read unless data_hash matches the points") |
+            stc_h5_put_u(g, "data_hash", t->fit_hash) |
+            (t->fit_npar > 0 ? stc_h5_put_dv(g, "hyperparameters", t->fit_npar, t->fit_par)
+                             : 0) |
             stc_h5_put_i(g, "n", fi->n) | stc_h5_put_d(g, "ell_ln_w", fi->ell[0]) |
             stc_h5_put_d(g, "ell_ln_t_over_a", fi->ell[1]) |
             stc_h5_put_d(g, "ell_ln_E_ratio", fi->ell[2]) |
@@ -540,6 +543,28 @@ done:
     return st;
 }
 
+/* The stored fit's hyperparameters and data hash, for tbl_fit to reuse
+ * (absent or unreadable: none; tbl_fit then searches). */
+static void read_fit(hid_t f, tbl_table *t)
+{
+    t->fit_npar = -1;
+    H5E_BEGIN_TRY {
+        hid_t g = H5Gopen2(f, "fit", H5P_DEFAULT);
+        if (g >= 0) {
+            unsigned long hash;
+            int np = 0;
+            if (stc_h5_get_u(g, "data_hash", &hash) == 0) {
+                if (!stc_h5_attr_exists(g, "hyperparameters") ||
+                    stc_h5_get_dv(g, "hyperparameters", TBL_GP_MAXPAR, t->fit_par, &np) == 0) {
+                    t->fit_hash = hash;
+                    t->fit_npar = np;
+                }
+            }
+            H5Gclose(g);
+        }
+    } H5E_END_TRY;
+}
+
 stc_status tbl_read(const char *path, tbl_table **out)
 {
     STC_CHECK(out, STC_EINVAL, "tbl_read: out must not be NULL");
@@ -589,6 +614,7 @@ stc_status tbl_read(const char *path, tbl_table **out)
         stc_h5_get_d(f, "build_wall_s", &wall);
     } H5E_END_TRY;
     tbl_set_provenance(*out, cmd, wall);
+    read_fit(f, *out);
     int done_pts;
     tbl_count(*out, &done_pts, NULL, NULL);
     if (done_pts >= 3) st = tbl_fit(*out);

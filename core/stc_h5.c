@@ -1,4 +1,4 @@
-/* Scalar HDF5 attributes (stc_h5.h). */
+/* Scalar and short vector HDF5 attributes (stc_h5.h). */
 #include <string.h>
 
 #include "stc_h5.h"
@@ -90,5 +90,36 @@ int stc_h5_get_s(hid_t o, const char *n, char *buf, size_t cap)
     }
     H5Tclose(ft);
     H5Aclose(a);
+    return ok ? 0 : -1;
+}
+
+int stc_h5_put_dv(hid_t o, const char *n, int len, const double *v)
+{
+    if (len < 1) return -1;
+    hsize_t d = (hsize_t)len;
+    hid_t sp = H5Screate_simple(1, &d, NULL);
+    hid_t a = H5Acreate2(o, n, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+    int ok = a >= 0 && H5Awrite(a, H5T_NATIVE_DOUBLE, v) >= 0;
+    if (a >= 0) H5Aclose(a);
+    H5Sclose(sp);
+    return ok ? 0 : -1;
+}
+
+int stc_h5_get_dv(hid_t o, const char *n, int cap, double *v, int *len)
+{
+    if (!stc_h5_attr_exists(o, n)) return -1;
+    hid_t a = H5Aopen(o, n, H5P_DEFAULT);
+    if (a < 0) return -1;
+    hid_t sp = H5Aget_space(a);
+    hsize_t d = 0;
+    int ok = sp >= 0 && H5Sget_simple_extent_ndims(sp) == 1 &&
+             H5Sget_simple_extent_dims(sp, &d, NULL) == 1 && d >= 1 && d <= (hsize_t)cap;
+    if (sp >= 0) H5Sclose(sp);
+    hid_t ft = H5Aget_type(a);
+    ok = ok && ft >= 0 && H5Tget_class(ft) == H5T_FLOAT;
+    if (ft >= 0) H5Tclose(ft);
+    ok = ok && H5Aread(a, H5T_NATIVE_DOUBLE, v) >= 0;
+    H5Aclose(a);
+    if (ok) *len = (int)d;
     return ok ? 0 : -1;
 }

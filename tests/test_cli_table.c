@@ -361,6 +361,8 @@ static void test_fill(void **state)
     assert_json(out);
     assert_non_null(strstr(out, "\"done\": 4"));
     assert_non_null(strstr(out, "\"pending\": 6"));
+    /* the filled table carries its surrogate's fit: read without a search */
+    assert_non_null(strstr(out, "\"fit_reused\": 1"));
     /* --points: a CSV row per point, the done ones with their numbers */
     assert_int_equal(run("table info fill.h5 --points", 1, out, sizeof out), 0);
     int rows = 0, done_rows = 0;

@@ -614,6 +614,113 @@ static void test_mu_smoothing(void **state)
     tbl_destroy(&t);
 }
 
+/* The surrogate's hyperparameters go into the file with a hash of the data
+ * they fit: reading the file takes them instead of searching again, and
+ * the surrogate is the writer's bit for bit; a changed point, a stored set
+ * that does not fit the data, or a file without the hash (older files) is
+ * searched again, giving the fresh fit. */
+static int same_query(const tbl_table *a, const tbl_table *b)
+{
+    const double q[][3] = {{0.37, 0.007, 1.3}, {5.1, 0.02, 1.9}, {240.0, 0.04, 1.0}};
+    for (int k = 0; k < 3; k++) {
+        tbl_value va, vb;
+        query_ok(a, q[k][0], q[k][1], q[k][2], &va);
+        query_ok(b, q[k][0], q[k][1], q[k][2], &vb);
+        if (!same_bits(va.mu_s, vb.mu_s) || !same_bits(va.mu_s_err, vb.mu_s_err)) return 0;
+    }
+    return 1;
+}
+
+static int same_fit_info(const tbl_fit_info *a, const tbl_fit_info *b)
+{
+    return a->n == b->n && !memcmp(a->ell, b->ell, sizeof a->ell) &&
+           same_bits(a->gamma, b->gamma) && same_bits(a->ell_base, b->ell_base) &&
+           same_bits(a->noise_scale, b->noise_scale) && same_bits(a->loo_rms, b->loo_rms) &&
+           same_bits(a->loo_max, b->loo_max) && same_bits(a->loo_cover2, b->loo_cover2);
+}
+
+/* Replace (or with v = NULL delete) attribute name of path's /fit. */
+static void edit_fit_attr(const char *path, const char *name, const double *v, int n)
+{
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    assert_true(f >= 0);
+    hid_t g = H5Gopen2(f, "fit", H5P_DEFAULT);
+    assert_true(g >= 0);
+    assert_true(H5Adelete(g, name) >= 0);
+    if (v) {
+        hsize_t d = (hsize_t)n;
+        hid_t sp = H5Screate_simple(1, &d, NULL);
+        hid_t a = H5Acreate2(g, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
+        assert_true(a >= 0 && H5Awrite(a, H5T_NATIVE_DOUBLE, v) >= 0);
+        H5Aclose(a);
+        H5Sclose(sp);
+    }
+    H5Gclose(g);
+    H5Fclose(f);
+}
+
+static void test_fit_reused(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "fit-reused", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/fit.h5", dir);
+    tbl_table *t = hertz_table(0.03, 0.03, 777), *r = NULL;
+    double t0 = now();
+    check_ok(tbl_fit(t), "tbl_fit");
+    double dt_fit = now() - t0;
+    tbl_fit_info ft, fr;
+    check_ok(tbl_get_fit_info(t, &ft), "fit info");
+    assert_int_equal(ft.reused, 0);
+    check_ok(tbl_write(t, path), "tbl_write");
+
+    t0 = now();
+    check_ok(tbl_read(path, &r), "tbl_read");
+    double dt_read = now() - t0;
+    check_ok(tbl_get_fit_info(r, &fr), "fit info (read)");
+    printf("fit reused: %d points, fit %.0f ms, the file read with its stored fit in %.0f ms; "
+           "reused %d, info and queries %s\n", ft.n, 1e3 * dt_fit, 1e3 * dt_read, fr.reused,
+           same_fit_info(&ft, &fr) && same_query(t, r) ? "bit-identical" : "DIFFER");
+    assert_int_equal(fr.reused, 1);
+    assert_true(same_fit_info(&ft, &fr) && same_query(t, r));
+    check_ok(tbl_fit(r), "tbl_fit (unchanged)"); /* data unchanged: reused again */
+    check_ok(tbl_get_fit_info(r, &fr), "fit info (refit)");
+    assert_int_equal(fr.reused, 1);
+
+    /* one point changed: searched again, as a table built with it would be */
+    int i = tbl_points(r) / 3;
+    tbl_point p = *tbl_point_get(r, i);
+    p.mu_s *= 1.02;
+    check_ok(tbl_point_set(r, i, &p), "tbl_point_set");
+    check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+    check_ok(tbl_fit(r), "tbl_fit (changed)");
+    check_ok(tbl_get_fit_info(r, &fr), "fit info (changed)");
+    assert_int_equal(fr.reused, 0);
+    tbl_destroy(&r);
+
+    /* stored hyperparameters of other data (hash intact): searched again */
+    check_ok(tbl_fit(t), "tbl_fit (changed)");
+    check_ok(tbl_get_fit_info(t, &ft), "fit info");
+    check_ok(tbl_write(t, path), "tbl_write (changed)");
+    const double junk[2] = {1e3, 0.0};
+    edit_fit_attr(path, "hyperparameters", junk, 2);
+    check_ok(tbl_read(path, &r), "tbl_read (junk hyperparameters)");
+    check_ok(tbl_get_fit_info(r, &fr), "fit info");
+    assert_int_equal(fr.reused, 0);
+    assert_true(same_fit_info(&ft, &fr) && same_query(t, r));
+    tbl_destroy(&r);
+    /* no hash (a file from before the hash was stored): searched again */
+    check_ok(tbl_write(t, path), "tbl_write");
+    edit_fit_attr(path, "data_hash", NULL, 0);
+    check_ok(tbl_read(path, &r), "tbl_read (no hash)");
+    check_ok(tbl_get_fit_info(r, &fr), "fit info");
+    assert_int_equal(fr.reused, 0);
+    assert_true(same_fit_info(&ft, &fr) && same_query(t, r));
+    printf("fit reused: a changed point, junk hyperparameters and a missing hash each "
+           "searched again, the fresh fit to the bit\n");
+    tbl_destroy(&r);
+    tbl_destroy(&t);
+}
+
 /* ---- 5. refusals ----------------------------------------------------------- */
 
 static void expect_fail(stc_status got, stc_status want, const char *what, const char *part1,
@@ -1312,7 +1419,7 @@ int main(void)
         cmocka_unit_test(test_t_over_R_at_axis_ends),
         cmocka_unit_test(test_bundled_table_quadrature), cmocka_unit_test(test_retry_failed),
         cmocka_unit_test(test_normal_grid),
-        cmocka_unit_test(test_caller_settings),
+        cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_fit_reused),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

@@ -6,8 +6,9 @@
    factorizations per point, read from the points' own records.
    The normal grid of each table (axisymmetric load curves for the preload's
    P and A): curves and CPU seconds per curve, from the curves' records.
-   The wall time of reading the table, which fits its mu_s surrogate, with
-   the surrogate's leave-one-out error.
+   The wall time of reading the table, which rebuilds its mu_s surrogate
+   (from the stored hyperparameters when its points are those they were
+   fitted to, else by a search), with the surrogate's leave-one-out error.
 2. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
    one table point at the thesis family's settings run by `stiction asperity
    --shear` with the normal step and the shear ramp timed apart (the normal
@@ -41,8 +42,10 @@ def table_costs(cli, path):
           % (path, info["points"], info["done"], info["failed"], info["pending"],
              info["build_wall_s"] / 60))
     if "loo_rms_rel" in info:
-        print("  read, with the mu_s surrogate's fit: %.2f s wall; its leave-one-out error %.2f %% "
-              "rms, gamma %.2f" % (read_s, 100 * info["loo_rms_rel"], info["gamma"]))
+        print("  read, with the mu_s surrogate (%s): %.2f s wall; its leave-one-out error "
+              "%.2f %% rms, gamma %.2f"
+              % ("stored fit" if info.get("fit_reused") else "searched", read_s,
+                 100 * info["loo_rms_rel"], info["gamma"]))
     if not rows:
         return
     cpu = [float(r["cpu_s"]) for r in rows]

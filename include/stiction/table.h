@@ -280,7 +280,10 @@ enum {
  * a term in ln w (the uncoated sphere) plus ln Eco/Esu times a term in all
  * three, whose length scales vary along the second; each point weighted by
  * its own error estimate (asperity/table_fit.h, docs/table-format.md).  STC_ERANGE with
- * fewer than 3 done points. */
+ * fewer than 3 done points.  The hyperparameters found are kept with the
+ * table (tbl_write stores them) and reused, with no search, as long as the
+ * done points are unchanged: the same surrogate, bit for bit, at a small
+ * part of the cost (tbl_fit_info.reused). */
 STC_API stc_status tbl_fit(tbl_table *t);
 
 typedef struct tbl_fit_info {
@@ -295,6 +298,8 @@ typedef struct tbl_fit_info {
     double noise_scale;   /* factor on the points' error estimates the data asked for */
     double loo_rms, loo_max; /* leave-one-out relative μs errors, rms and largest */
     double loo_cover2;    /* share of points within 2 LOO standard deviations */
+    int reused;           /* 1: the hyperparameters stored with the table were reused (its
+                             points unchanged since they were fitted), 0: searched anew */
 } tbl_fit_info;
 STC_API stc_status tbl_get_fit_info(const tbl_table *t, tbl_fit_info *out);
 

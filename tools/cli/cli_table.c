@@ -411,6 +411,7 @@ static void info_json(const tbl_table *t, const char *path)
         cj_num(&j, "ell_ln_E_ratio", fi.ell[2]);
         cj_num(&j, "gamma", fi.gamma);
         cj_num(&j, "ell_base_ln_w", fi.ell_base);
+        cj_int(&j, "fit_reused", fi.reused);
     }
     int cd, cf, cp;
     tbl_curve_count(t, &cd, &cf, &cp);
