@@ -6,6 +6,7 @@
 #define STICTION_TABLE_IMPL_H
 
 #include <omp.h>
+#include <stdint.h>
 
 #include "stiction/table.h"
 #include "table_fit.h"
@@ -43,7 +44,7 @@ struct tbl_table {
     /* The surrogate's hyperparameters and a hash of the data they fit
      * (tbl_fit sets them, tbl_read takes them from /fit); tbl_fit reuses
      * them instead of searching while its data hash the same. */
-    unsigned long fit_hash;
+    uint64_t fit_hash;
     int fit_npar;      /* -1: none */
     double fit_par[TBL_GP_MAXPAR];
     tbl_normal nrm;

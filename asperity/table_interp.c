@@ -25,6 +25,7 @@
  * measurements that chose it).  The query returns the posterior mean and
  * standard deviation. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -59,20 +60,20 @@ static void gp_inputs(const tbl_table *t, double w, double tR, double E, double 
 #define FIT_MODEL 3
 
 /* FNV-1a (Fowler, Noll & Vo) over n bytes, continuing from h. */
-static unsigned long fnv1a(unsigned long h, const void *p, size_t n)
+static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
 {
     const unsigned char *b = p;
-    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 1099511628211ul;
+    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * UINT64_C(1099511628211);
     return h;
 }
 
 /* Hash of what the fit sees: the model, the kernel options and the n
  * points' inputs, values and errors, bit for bit. */
-static unsigned long fit_hash(int n, const double *x, const double *y, const double *sy,
+static uint64_t fit_hash(int n, const double *x, const double *y, const double *sy,
                               const tbl_gp_kernel *k)
 {
     int head[5] = {FIT_MODEL, n, k->mod_dim, k->scale_dim, (int)k->base_dims};
-    unsigned long h = fnv1a(14695981039346656037ul, head, sizeof head);
+    uint64_t h = fnv1a(UINT64_C(14695981039346656037), head, sizeof head);
     h = fnv1a(h, x, (size_t)n * 3 * sizeof *x);
     h = fnv1a(h, y, (size_t)n * sizeof *y);
     return fnv1a(h, sy, (size_t)n * sizeof *sy);
@@ -107,7 +108,7 @@ stc_status tbl_fit(tbl_table *t)
      * (docs/table-format.md). */
     tbl_gp_kernel k = {.mod_dim = t->n[1] > 1 ? 1 : -1, .scale_dim = t->n[2] > 1 ? 2 : -1,
                        .base_dims = 1u << 0};
-    unsigned long hash = fit_hash(n, x, y, sy, &k);
+    uint64_t hash = fit_hash(n, x, y, sy, &k);
     int reused = 0;
     if (t->fit_npar >= 0 && t->fit_hash == hash) /* the data of the stored fit */
         reused = tbl_gp_fit_at(n, 3, x, y, sy, &k, t->fit_npar, t->fit_par, &t->gp) == STC_OK;

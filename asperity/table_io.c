@@ -185,7 +185,7 @@ static int write_fit(hid_t f, const tbl_table *t)
                                      "ln w / 2, ln E_ratio) whose length scales are times "
                                      "exp(gamma (x2 - middle of its range)); refitted when "
                                      "read unless data_hash matches the points") |
-            stc_h5_put_u(g, "data_hash", t->fit_hash) |
+            stc_h5_put_u(g, "data_hash", (unsigned long)t->fit_hash) |
             (t->fit_npar > 0 ? stc_h5_put_dv(g, "hyperparameters", t->fit_npar, t->fit_par)
                              : 0) |
             stc_h5_put_i(g, "n", fi->n) | stc_h5_put_d(g, "ell_ln_w", fi->ell[0]) |
