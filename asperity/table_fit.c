@@ -145,34 +145,8 @@ static double to_angle(double p, double lo, double hi)
     return asin(fmin(1.0, fmax(-1.0, u)));
 }
 
-static void unpack(const fit_ctx *c, const double *t, hyp *h)
-{
-    int k = 0;
-    for (; k < c->g->nact; k++) h->lell[k] = from_angle(t[k], c->lo[k], c->hi[k]);
-    if (c->np > 0) h->llam = from_angle(t[k], c->lo[k], c->hi[k]);
-    if (c->kmod >= 0) h->gmod = from_angle(t[c->kmod], c->lo[c->kmod], c->hi[c->kmod]);
-    if (c->kbase >= 0) {
-        int b = c->kbase;
-        for (int j = 0; j < c->g->nbase; j++, b++) h->lbell[j] = from_angle(t[b], c->lo[b], c->hi[b]);
-        h->lrho = from_angle(t[b], c->lo[b], c->hi[b]);
-    }
-}
-
-static void pack(const fit_ctx *c, const hyp *h, double *t)
-{
-    int k = 0;
-    for (; k < c->g->nact; k++) t[k] = to_angle(h->lell[k], c->lo[k], c->hi[k]);
-    if (c->np > 0) t[k] = to_angle(h->llam, c->lo[k], c->hi[k]);
-    if (c->kmod >= 0) t[c->kmod] = to_angle(h->gmod, c->lo[c->kmod], c->hi[c->kmod]);
-    if (c->kbase >= 0) {
-        int b = c->kbase;
-        for (int j = 0; j < c->g->nbase; j++, b++) t[b] = to_angle(h->lbell[j], c->lo[b], c->hi[b]);
-        t[b] = to_angle(h->lrho, c->lo[b], c->hi[b]);
-    }
-}
-
-/* h as the plain vector of the searched parameters (no angles), in the
- * order of lo[] and hi[]: the form info.par carries. */
+/* h as the plain vector of the searched parameters, in the order of lo[]
+ * and hi[]: the form info.par carries. */
 static void hyp_to_par(const fit_ctx *c, const hyp *h, double *p)
 {
     int k = 0;
@@ -197,6 +171,20 @@ static void par_to_hyp(const fit_ctx *c, const double *p, hyp *h)
         for (int j = 0; j < c->g->nbase; j++, b++) h->lbell[j] = p[b];
         h->lrho = p[b];
     }
+}
+
+/* The search's variables t (angles) to h and back. */
+static void unpack(const fit_ctx *c, const double *t, hyp *h)
+{
+    double p[MAXPAR];
+    for (int k = 0; k < c->np; k++) p[k] = from_angle(t[k], c->lo[k], c->hi[k]);
+    par_to_hyp(c, p, h);
+}
+
+static void pack(const fit_ctx *c, const hyp *h, double *t)
+{
+    hyp_to_par(c, h, t);
+    for (int k = 0; k < c->np; k++) t[k] = to_angle(t[k], c->lo[k], c->hi[k]);
 }
 
 /* r(x) of the modulated length scales: 1 without modulation. */
