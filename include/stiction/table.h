@@ -196,7 +196,9 @@ STC_API const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
 /* Write atomically: a temporary file beside `path`, synced, renamed over it;
  * a failure leaves no file. */
 STC_API stc_status tbl_write(const tbl_table *t, const char *path);
-/* Read a table; STC_EFORMAT naming what is wrong for a file that is not one. */
+/* Read a table and fit its μs surrogate (tbl_fit: from the file's stored
+ * hyperparameters while its points are those they were fitted to);
+ * STC_EFORMAT naming what is wrong for a file that is not one. */
 STC_API stc_status tbl_read(const char *path, tbl_table **out);
 
 /* ---- building -------------------------------------------------------------- */
