@@ -787,10 +787,11 @@ stc_status tbl_gp_fit(int n, int dim, const double *x, const double *y, const do
     return tbl_gp_fit_kernel(n, dim, x, y, sy, NULL, out);
 }
 
-/* The fit of tbl_gp_fit_kernel; with par (npar of them) at those
- * hyperparameters instead of searched. */
+/* The fit of tbl_gp_fit_kernel, or with at = 1 the one at the npar
+ * hyperparameters par instead of searched. */
 static stc_status fit(int n, int dim, const double *x, const double *y, const double *sy,
-                      const tbl_gp_kernel *kernel, int npar, const double *par, tbl_gp **out)
+                      const tbl_gp_kernel *kernel, int at, int npar, const double *par,
+                      tbl_gp **out)
 {
     STC_CALL(check_args(n, dim, x, y, sy, out));
     tbl_gp_kernel kd = kernel ? *kernel : (tbl_gp_kernel){-1, -1, 0};
@@ -824,7 +825,7 @@ static stc_status fit(int n, int dim, const double *x, const double *y, const do
     hyp h;
     setup(&c, &h, c.a, kd.base_dims);
     int converged = 1;
-    if (par) {
+    if (at) {
         STC_CHECK_GOTO(npar == c.np, st, done, STC_EINVAL,
                        "tbl_gp_fit_at: npar = %d: these data and kernel have %d hyperparameters",
                        npar, c.np);
@@ -868,7 +869,7 @@ done:
 stc_status tbl_gp_fit_kernel(int n, int dim, const double *x, const double *y, const double *sy,
                              const tbl_gp_kernel *kernel, tbl_gp **out)
 {
-    return fit(n, dim, x, y, sy, kernel, 0, NULL, out);
+    return fit(n, dim, x, y, sy, kernel, 0, 0, NULL, out);
 }
 
 stc_status tbl_gp_fit_at(int n, int dim, const double *x, const double *y, const double *sy,
@@ -877,8 +878,7 @@ stc_status tbl_gp_fit_at(int n, int dim, const double *x, const double *y, const
     if (out) *out = NULL;
     STC_CHECK(par || npar == 0, STC_EINVAL, "tbl_gp_fit_at: par must not be NULL (npar = %d)",
               npar);
-    static const double none[1] = {0.0};
-    return fit(n, dim, x, y, sy, kernel, npar, par ? par : none, out);
+    return fit(n, dim, x, y, sy, kernel, 1, npar, par, out);
 }
 
 /* ---- queries --------------------------------------------------------------- */

@@ -70,7 +70,7 @@ static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
 /* Hash of what the fit sees: the model, the kernel options and the n
  * points' inputs, values and errors, bit for bit. */
 static uint64_t fit_hash(int n, const double *x, const double *y, const double *sy,
-                              const tbl_gp_kernel *k)
+                         const tbl_gp_kernel *k)
 {
     int head[5] = {FIT_MODEL, n, k->mod_dim, k->scale_dim, (int)k->base_dims};
     uint64_t h = fnv1a(UINT64_C(14695981039346656037), head, sizeof head);
