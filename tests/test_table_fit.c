@@ -39,21 +39,20 @@ static double now(void)
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
+static void check_ok(stc_status st, const char *what)
+{
+    if (st != STC_OK) fail_msg("%s: %s: %s", what, stc_strerror(st), stc_errmsg());
+}
+
 static tbl_gp *fit_ok(int n, int dim, const double *x, const double *y, const double *sy)
 {
     tbl_gp *g = NULL;
-    stc_status st = tbl_gp_fit(n, dim, x, y, sy, &g);
-    if (st != STC_OK) fail_msg("tbl_gp_fit: %s: %s", stc_strerror(st), stc_errmsg());
+    check_ok(tbl_gp_fit(n, dim, x, y, sy, &g), "tbl_gp_fit");
     assert_non_null(g);
     return g;
 }
 
 static void print_info(const char *what, const tbl_gp_info *in);
-
-static void check_ok(stc_status st, const char *what)
-{
-    if (st != STC_OK) fail_msg("%s: %s: %s", what, stc_strerror(st), stc_errmsg());
-}
 
 /* A fit with kernel options, its summary in *in, printed as what. */
 static tbl_gp *fit_kernel_ok(int n, int dim, const double *x, const double *y, const double *sy,
@@ -61,8 +60,7 @@ static tbl_gp *fit_kernel_ok(int n, int dim, const double *x, const double *y, c
 {
     tbl_gp *g = NULL;
     stc_error_clear();
-    stc_status st = tbl_gp_fit_kernel(n, dim, x, y, sy, kernel, &g);
-    if (st != STC_OK) fail_msg("tbl_gp_fit_kernel: %s: %s", stc_strerror(st), stc_errmsg());
+    check_ok(tbl_gp_fit_kernel(n, dim, x, y, sy, kernel, &g), "tbl_gp_fit_kernel");
     assert_non_null(g);
     tbl_gp_get_info(g, in);
     print_info(what, in);
