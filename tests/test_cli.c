@@ -12,12 +12,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cmocka.h>
 
 #include "cli_util.h"
+#include "stiction/asperity.h"
 
 static char cli[PATH_MAX];
 static char ini[64]; /* scratch INI file */
@@ -583,6 +585,39 @@ static void test_halfspace(void **state)
     assert_true(cli_jnum(out, "mu_s") > cli_jnum(out, "mu_s_no_growth"));
 }
 
+/* The BLAS kernels (asp_blas_kernels_get): the library reports the ones in
+ * use, and the CLI, started without OPENBLAS_CORETYPE, runs the fastest this
+ * CPU supports where OpenBLAS fell back to its generic ones; with the
+ * variable set it keeps it. */
+static void test_blas_kernels(void **state)
+{
+    (void)state;
+    asp_blas_kernels k;
+    asp_blas_kernels_get(&k);
+    printf("# BLAS: %s; kernels %s, suggested '%s'\n", k.config, k.in_use, k.suggested);
+    assert_non_null(strstr(k.config, "OpenBLAS"));
+    assert_true(k.in_use[0] != '\0');
+    const char *forced = getenv("OPENBLAS_CORETYPE");
+    if (forced) {
+        assert_true(strcasecmp(forced, k.in_use) == 0);
+        assert_string_equal(k.suggested, "");
+    }
+    assert_int_equal(run("--version", 1, out, sizeof out), 0);
+    assert_non_null(strstr(out, "BLAS: OpenBLAS"));
+    char cmd[PATH_MAX + 64];
+    snprintf(cmd, sizeof cmd, "env OPENBLAS_CORETYPE=Prescott '%s' --version", cli);
+    assert_int_equal(cli_capture(cmd, 1, out, sizeof out), 0);
+    assert_non_null(strstr(out, "; kernels Prescott (OPENBLAS_CORETYPE)"));
+    /* started without it: never the generic kernels on a CPU with AVX2 */
+    snprintf(cmd, sizeof cmd, "env -u OPENBLAS_CORETYPE '%s' --version", cli);
+    assert_int_equal(cli_capture(cmd, 1, out, sizeof out), 0);
+    const char *kern = strstr(out, "; kernels ");
+    assert_non_null(kern);
+    printf("# started without OPENBLAS_CORETYPE: %s", kern + 2);
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) assert_null(strstr(kern, "kernels Prescott"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -596,6 +631,7 @@ int main(void)
         cmocka_unit_test(test_csv),               cmocka_unit_test(test_halfspace),
         cmocka_unit_test(test_curve_3d_graded),  cmocka_unit_test(test_ignored_keys),
         cmocka_unit_test(test_formulas_range_warnings), cmocka_unit_test(test_help_layout),
+        cmocka_unit_test(test_blas_kernels),
     };
     return cmocka_run_group_tests_name("cli", tests, find_cli, cleanup);
 }

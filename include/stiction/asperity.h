@@ -587,6 +587,27 @@ STC_API stc_status asp_options_edge(const stc_params *p, asp_options *o, double 
 STC_API stc_status asp_shear_preload(const stc_params *p, const asp_options *o, double delta,
                                      double P, asp_solver **out, asp_point *pt);
 
+/* ---- the BLAS kernels (asperity/blas_kernels.c) ---------------------------
+ *
+ * The factorizations (CHOLMOD's supernodes) and the Krylov solves spend most
+ * of a run in OpenBLAS, which picks its kernels once, when it is loaded,
+ * from the CPU's model number.  A model newer than the OpenBLAS release
+ * gets the generic Prescott kernels: on a CPU with AVX-512 that OpenBLAS
+ * 0.3.21 does not know, a shear run took 11.5 s on them and 4.8 s on the
+ * SkylakeX ones (docs/design.md §3.6).  OPENBLAS_CORETYPE, set before the
+ * library is loaded, chooses them; the library only reports (it cannot
+ * change them once loaded).  The CLI re-executes itself with the
+ * suggestion when OPENBLAS_CORETYPE is not set. */
+typedef struct asp_blas_kernels {
+    char in_use[32];    /* the kernels OpenBLAS runs (openblas_get_corename) */
+    char suggested[32]; /* faster kernels this CPU runs: set only when in_use is
+                           the generic fallback and the CPU has AVX2 (Haswell)
+                           or AVX-512 (SkylakeX); "" otherwise */
+    char config[160];   /* openblas_get_config: version and build options */
+} asp_blas_kernels;
+
+STC_API void asp_blas_kernels_get(asp_blas_kernels *out);
+
 #ifdef __cplusplus
 }
 #endif

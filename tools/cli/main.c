@@ -1,8 +1,11 @@
 /* stiction — command-line entry point: dispatch to subcommands. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
+#include "stiction/asperity.h"
 
 
 static const cli_cmd commands[] = {
@@ -26,8 +29,37 @@ static void usage(FILE *f)
     fprintf(f, "\nUnits: mm, N, MPa throughout.\n");
 }
 
+/* Run on the BLAS kernels this CPU is fastest on (stiction/asperity.h:
+ * asp_blas_kernels): OpenBLAS picks them when it is loaded, so where it fell
+ * back to its generic ones and OPENBLAS_CORETYPE is not set, the program
+ * starts again with it set.  Nothing has run yet, so nothing is lost; if
+ * the new start fails, this one carries on as it is. */
+static void blas_kernels(char **argv)
+{
+    if (getenv("OPENBLAS_CORETYPE")) return;
+    asp_blas_kernels k;
+    asp_blas_kernels_get(&k);
+    if (!k.suggested[0] || setenv("OPENBLAS_CORETYPE", k.suggested, 1) != 0) return;
+    execv("/proc/self/exe", argv);
+    unsetenv("OPENBLAS_CORETYPE");
+}
+
+static void version(void)
+{
+#ifdef STC_COMMIT
+    printf("stiction %s (commit %s)\n", STC_VERSION, STC_COMMIT);
+#else
+    printf("stiction %s\n", STC_VERSION);
+#endif
+    asp_blas_kernels k;
+    asp_blas_kernels_get(&k);
+    printf("BLAS: %s; kernels %s%s\n", k.config, k.in_use,
+           getenv("OPENBLAS_CORETYPE") ? " (OPENBLAS_CORETYPE)" : "");
+}
+
 int main(int argc, char **argv)
 {
+    blas_kernels(argv);
     if (argc < 2) {
         usage(stderr);
         return CLI_EXIT_USAGE;
@@ -38,11 +70,7 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (strcmp(argv[1], "--version") == 0) {
-#ifdef STC_COMMIT
-        printf("stiction %s (commit %s)\n", STC_VERSION, STC_COMMIT);
-#else
-        printf("stiction %s\n", STC_VERSION);
-#endif
+        version();
         return CLI_EXIT_OK;
     }
     cli_near near;
