@@ -1,23 +1,84 @@
 #!/bin/sh
-# Run every cmocka test program given on the command line, show each
-# program's own summary and wall time, and close with one aggregate line.
+# Run every cmocka test program given on the command line, STC_TEST_JOBS of
+# them at a time (default: the number of cores), in the order given (put
+# the long ones first), and close with one aggregate line.  Each program's
+# output is shown whole when it ends, with its wall time.
+#
+# With more than one at a time every program runs on one thread
+# (OMP_NUM_THREADS and OPENBLAS_NUM_THREADS = 1 unless set): two
+# single-threaded programs on two cores take about the time of one, while a
+# threaded solver gains 1.5x on two cores and loses more than that when it
+# shares them.  Programs that start several processes of their own give
+# each its own scratch directory.
 set -u
-passed=0; failed=0; broken=0
-for t in "$@"; do
-    echo "=== $t"
+
+if [ "${1:-}" = "--one" ]; then # worker: --one SCRATCH INDEX PROGRAM
+    scratch=$2 i=$3 t=$4
     s=$(date +%s.%N)
-    out=$("$t" 2>&1); rc=$?
+    "$t" > "$scratch/$i.out" 2>&1
+    rc=$?
     e=$(date +%s.%N)
-    printf '%s\n' "$out"
-    awk -v t="$t" -v s="$s" -v e="$e" 'BEGIN {printf "--- %s: %.1f s\n", t, e - s}'
-    p=$(printf '%s\n' "$out" | sed -n 's/^\[  PASSED  \] \([0-9]*\) test(s)\./\1/p' | awk '{s+=$1} END {print s+0}')
-    f=$(printf '%s\n' "$out" | sed -n 's/^\[  FAILED  \] \([0-9]*\) test(s), listed below:/\1/p' | awk '{s+=$1} END {print s+0}')
-    passed=$((passed + p)); failed=$((failed + f))
+    out="$scratch/$i.out"
+    p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test(s)\./\1/p' "$out" | awk '{s+=$1} END {print s+0}')
+    f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test(s), listed below:/\1/p' "$out" |
+        awk '{s+=$1} END {print s+0}')
+    b=0
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
-        echo "!!! $t exited with status $rc without a cmocka summary"
-        broken=$((broken + 1)); failed=$((failed + 1))
+        echo "!!! $t exited with status $rc without a cmocka summary" >> "$out"
+        b=1
     fi
+    echo "$p $f $b" > "$scratch/$i.sum"
+    {
+        flock 9
+        echo "=== $t"
+        cat "$out"
+        awk -v t="$t" -v s="$s" -v e="$e" 'BEGIN {printf "--- %s: %.1f s\n", t, e - s}'
+    } 9> "$scratch/lock"
+    exit 0
+fi
+
+jobs=${STC_TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+case $jobs in '' | *[!0-9]* | 0)
+    echo "run-tests.sh: STC_TEST_JOBS = '$jobs' is not a whole number >= 1" >&2
+    exit 2
+esac
+if [ "$jobs" -gt 1 ]; then
+    export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}" OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}"
+fi
+# The BLAS kernels the CLI runs (it picks faster ones where OpenBLAS does not
+# know the CPU: `stiction --version`), for the test programs too, so that
+# they and the CLI runs they start compute alike.  STC_CLI: the CLI.
+if [ -z "${OPENBLAS_CORETYPE:-}" ] && [ -x "${STC_CLI:-}" ]; then
+    k=$("$STC_CLI" --version | sed -n 's/^BLAS: .*; kernels \([A-Za-z0-9]*\).*/\1/p')
+    [ -z "$k" ] || export OPENBLAS_CORETYPE="$k"
+fi
+scratch=$(mktemp -d "${TMPDIR:-/tmp}/stiction-check-XXXXXX") || exit 1
+trap 'rm -rf "$scratch"' EXIT
+trap 'exit 130' INT TERM
+
+s=$(date +%s.%N)
+i=0
+for t in "$@"; do
+    i=$((i + 1))
+    printf '%s %s\n' "$i" "$t"
+done | xargs -P "$jobs" -n 2 sh "$0" --one "$scratch"
+e=$(date +%s.%N)
+
+passed=0; failed=0; broken=0; missing=0
+i=0
+for t in "$@"; do
+    i=$((i + 1))
+    if [ ! -f "$scratch/$i.sum" ]; then
+        echo "!!! $t did not run"
+        missing=$((missing + 1))
+        continue
+    fi
+    read -r p f b < "$scratch/$i.sum"
+    passed=$((passed + p)); failed=$((failed + f)); broken=$((broken + b))
 done
+failed=$((failed + broken + missing))
 echo
+awk -v n="$#" -v j="$jobs" -v s="$s" -v e="$e" \
+    'BEGIN {printf "%d programs, %d at a time: %.1f s\n", n, j, e - s}'
 echo "check: $passed passed, $failed failed"
-[ "$failed" -eq 0 ] && [ "$broken" -eq 0 ]
+[ "$failed" -eq 0 ]
