@@ -1,4 +1,5 @@
 /* stiction — command-line entry point: dispatch to subcommands. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,8 +40,14 @@ static void blas_kernels(char **argv)
     if (getenv("OPENBLAS_CORETYPE")) return;
     asp_blas_kernels k;
     asp_blas_kernels_get(&k);
-    if (!k.suggested[0] || setenv("OPENBLAS_CORETYPE", k.suggested, 1) != 0) return;
-    execv("/proc/self/exe", argv);
+    /* the program's own path, not /proc/self/exe: the process keeps its
+     * name (ps, top, kill by name) */
+    char self[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (!k.suggested[0] || n <= 0) return;
+    self[n] = '\0';
+    if (setenv("OPENBLAS_CORETYPE", k.suggested, 1) != 0) return;
+    execv(self, argv);
     unsetenv("OPENBLAS_CORETYPE");
 }
 
