@@ -87,9 +87,14 @@ static int write_root(hid_t f, const tbl_table *t)
     time_t now = time(NULL);
     struct tm tm;
     strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&now, &tm));
+    asp_blas_kernels k;
+    char blas[sizeof k.config + sizeof k.in_use + 16];
+    asp_blas_kernels_get(&k);
+    snprintf(blas, sizeof blas, "%s; kernels %s", k.config, k.in_use);
     return stc_h5_put_s(f, "format", TBL_FORMAT_NAME) |
            stc_h5_put_i(f, "format_version", TBL_FORMAT_VERSION) |
            stc_h5_put_s(f, "stiction_version", STC_VERSION) | stc_h5_put_s(f, "created", when) |
+           stc_h5_put_s(f, "blas", blas) |
            stc_h5_put_s(f, "command", t->command) |
            stc_h5_put_d(f, "build_wall_s", t->build_wall_s) |
            stc_h5_put_s(f, "units", "responses normalised by omega_c, P_c, A_c of the "

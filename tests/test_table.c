@@ -23,6 +23,8 @@
 
 #include <hdf5.h>
 
+#include "stc_h5.h"
+#include "stiction/asperity.h"
 #include "stiction/formulas.h"
 #include "stiction/gw.h"
 #include "stiction/model.h"
@@ -761,6 +763,15 @@ static void test_refusals(void **state)
     check_ok(tbl_write(t, path), "tbl_write");
     f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
     assert_true(f >= 0);
+    /* provenance: the writer's BLAS and the kernels it ran, as
+     * asp_blas_kernels_get reports them */
+    char blas[256], want[256];
+    asp_blas_kernels k;
+    asp_blas_kernels_get(&k);
+    snprintf(want, sizeof want, "%s; kernels %s", k.config, k.in_use);
+    assert_int_equal(stc_h5_get_s(f, "blas", blas, sizeof blas), 0);
+    assert_string_equal(blas, want);
+    assert_non_null(strstr(blas, "OpenBLAS"));
     hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
     int ver = 99;
     assert_true(a >= 0 && H5Awrite(a, H5T_NATIVE_INT, &ver) >= 0);
