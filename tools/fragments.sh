@@ -50,6 +50,8 @@ for w in $(echo "${ONLY:-}" | tr ',' ' '); do
 done
 
 mkdir -p "$OUT"
+# the program and the BLAS kernels every time and number below comes from
+echo "=== $KIND with $("$CLI" --version | paste -sd ' ' -)"
 status=0
 for f in tools/$KIND.d/*.sh; do
     [ -e "$f" ] || continue
