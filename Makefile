@@ -13,9 +13,13 @@ O         ?= .
 endif
 
 CC        ?= cc
-# Every build runs on all cores unless told otherwise (make -jN or JOBS=N)
+# A build runs on all cores unless told otherwise (make -jN or JOBS=N); with
+# more than one goal on the command line (make clean all, make check bench)
+# the goals would run at once, so then only as told
 JOBS      ?= $(shell nproc 2>/dev/null || echo 1)
+ifeq ($(filter-out 0 1,$(words $(MAKECMDGOALS))),)
 MAKEFLAGS += -j$(JOBS)
+endif
 # Open MPI: one binary; MPI is initialised only under mpirun -n N > 1
 # (asperity/table_mpi.c)
 PKGS      := fftw3 hdf5 inih ompi-c
@@ -53,8 +57,8 @@ LIB_OBJ   := $(LIB_SRC:%.c=$(O)/obj/%.o)
 CLI_OBJ   := $(CLI_SRC:%.c=$(O)/obj/%.o)
 # make check runs the test programs on every core (tools/run-tests.sh), the
 # longest first (their order here: measured wall times, longest first)
-TEST_LONG := test_shear test_cli_table test_solver test_table_mpi test_table test_cli \
-             test_cli_asperity
+TEST_LONG := $(filter $(TEST_SRC:tests/%.c=%),test_shear test_cli_table test_solver \
+             test_table_mpi test_table test_cli test_cli_asperity)
 TEST_BIN  := $(TEST_LONG:%=$(O)/tests-bin/%) \
              $(filter-out $(TEST_LONG:%=$(O)/tests-bin/%),$(TEST_SRC:tests/%.c=$(O)/tests-bin/%))
 HEADERS   := $(wildcard include/stiction/*.h)
@@ -132,7 +136,7 @@ $(O)/tests-bin/%: tests/%.c $(STATIC) $(HEADERS) $(wildcard tests/*.h) | $(DEPST
 	    -lcmocka $(LDFLAGS) $(LDLIBS)
 
 check: all $(TEST_BIN)
-	@STC_SHARED=$(SHARED) STC_CC='$(CC)' STC_CLI=$(CLI) tools/run-tests.sh $(TEST_BIN) tools/check-exports.sh
+	@STC_SHARED=$(SHARED) STC_CC='$(CC)' STICTION_CLI=$(abspath $(CLI)) tools/run-tests.sh $(TEST_BIN) tools/check-exports.sh
 
 # The randomised input tests of make check, FUZZ_CASES times as many cases.
 FUZZ_CASES ?= 100

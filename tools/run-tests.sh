@@ -4,6 +4,9 @@
 # the long ones first), and close with one aggregate line.  Each program's
 # output is shown whole when it ends, with its wall time.
 #
+# A program still running after STC_TEST_TIMEOUT seconds (default 1200) is
+# stopped and counted as failed, with the output it wrote.
+#
 # With more than one at a time every program runs on one thread
 # (OMP_NUM_THREADS and OPENBLAS_NUM_THREADS = 1 unless set): two
 # single-threaded programs on two cores take about the time of one, while a
@@ -15,7 +18,7 @@ set -u
 if [ "${1:-}" = "--one" ]; then # worker: --one SCRATCH INDEX PROGRAM
     scratch=$2 i=$3 t=$4
     s=$(date +%s.%N)
-    "$t" > "$scratch/$i.out" 2>&1
+    timeout "${STC_TEST_TIMEOUT:-1200}" "$t" > "$scratch/$i.out" 2>&1
     rc=$?
     e=$(date +%s.%N)
     out="$scratch/$i.out"
@@ -23,7 +26,10 @@ if [ "${1:-}" = "--one" ]; then # worker: --one SCRATCH INDEX PROGRAM
     f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test(s), listed below:/\1/p' "$out" |
         awk '{s+=$1} END {print s+0}')
     b=0
-    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+    if [ "$rc" -eq 124 ]; then
+        echo "!!! $t stopped after ${STC_TEST_TIMEOUT:-1200} s (STC_TEST_TIMEOUT)" >> "$out"
+        b=1
+    elif [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
         echo "!!! $t exited with status $rc without a cmocka summary" >> "$out"
         b=1
     fi
@@ -38,18 +44,21 @@ if [ "${1:-}" = "--one" ]; then # worker: --one SCRATCH INDEX PROGRAM
 fi
 
 jobs=${STC_TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
-case $jobs in '' | *[!0-9]* | 0)
-    echo "run-tests.sh: STC_TEST_JOBS = '$jobs' is not a whole number >= 1" >&2
+case $jobs in '' | *[!0-9]*) jobs=0 ;; esac
+if [ "$((jobs))" -lt 1 ]; then
+    echo "run-tests.sh: STC_TEST_JOBS = '${STC_TEST_JOBS:-}' is not a whole number >= 1" >&2
     exit 2
-esac
+fi
+jobs=$((jobs))
 if [ "$jobs" -gt 1 ]; then
     export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}" OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}"
 fi
 # The BLAS kernels the CLI runs (it picks faster ones where OpenBLAS does not
 # know the CPU: `stiction --version`), for the test programs too, so that
-# they and the CLI runs they start compute alike.  STC_CLI: the CLI.
-if [ -z "${OPENBLAS_CORETYPE:-}" ] && [ -x "${STC_CLI:-}" ]; then
-    k=$("$STC_CLI" --version | sed -n 's/^BLAS: .*; kernels \([A-Za-z0-9]*\).*/\1/p')
+# they and the CLI runs they start compute alike.  STICTION_CLI: the CLI, as
+# the tests find it.
+if [ -z "${OPENBLAS_CORETYPE:-}" ] && [ -x "${STICTION_CLI:-}" ]; then
+    k=$("$STICTION_CLI" --version | sed -n 's/^BLAS: .*; kernels \([A-Za-z0-9]*\).*/\1/p')
     [ -z "$k" ] || export OPENBLAS_CORETYPE="$k"
 fi
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/stiction-check-XXXXXX") || exit 1
@@ -61,7 +70,7 @@ i=0
 for t in "$@"; do
     i=$((i + 1))
     printf '%s %s\n' "$i" "$t"
-done | xargs -P "$jobs" -n 2 sh "$0" --one "$scratch"
+done | xargs -r -P "$jobs" -n 2 sh "$0" --one "$scratch"
 e=$(date +%s.%N)
 
 passed=0; failed=0; broken=0; missing=0
