@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -588,7 +587,8 @@ static void test_halfspace(void **state)
 /* The BLAS kernels (asp_blas_kernels_get): the library reports the ones in
  * use, and the CLI, started without OPENBLAS_CORETYPE, runs the fastest this
  * CPU supports where OpenBLAS fell back to its generic ones; with the
- * variable set it keeps it. */
+ * variable set it keeps it.  The CLI's part needs an x86-64 OpenBLAS that
+ * picks its kernels at run time (DYNAMIC_ARCH, as Debian builds it). */
 static void test_blas_kernels(void **state)
 {
     (void)state;
@@ -597,13 +597,10 @@ static void test_blas_kernels(void **state)
     printf("# BLAS: %s; kernels %s, suggested '%s'\n", k.config, k.in_use, k.suggested);
     assert_non_null(strstr(k.config, "OpenBLAS"));
     assert_true(k.in_use[0] != '\0');
-    const char *forced = getenv("OPENBLAS_CORETYPE");
-    if (forced) {
-        assert_true(strcasecmp(forced, k.in_use) == 0);
-        assert_string_equal(k.suggested, "");
-    }
     assert_int_equal(run("--version", 1, out, sizeof out), 0);
     assert_non_null(strstr(out, "BLAS: OpenBLAS"));
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (!strstr(k.config, "DYNAMIC_ARCH")) skip();
     char cmd[PATH_MAX + 64];
     snprintf(cmd, sizeof cmd, "env OPENBLAS_CORETYPE=Prescott '%s' --version", cli);
     assert_int_equal(cli_capture(cmd, 1, out, sizeof out), 0);
@@ -616,6 +613,7 @@ static void test_blas_kernels(void **state)
     printf("# started without OPENBLAS_CORETYPE: %s", kern + 2);
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx2")) assert_null(strstr(kern, "kernels Prescott"));
+#endif
 }
 
 int main(void)

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/auxv.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -33,15 +34,18 @@ static void usage(FILE *f)
 /* Run on the BLAS kernels this CPU is fastest on (stiction/asperity.h:
  * asp_blas_kernels): OpenBLAS picks them when it is loaded, so where it fell
  * back to its generic ones and OPENBLAS_CORETYPE is not set, the program
- * starts again with it set.  Nothing has run yet, so nothing is lost; if
- * the new start fails, this one carries on as it is. */
+ * starts again with it set (set it, to any kernels, to keep them).  Nothing
+ * has run yet, so nothing is lost; if the new start fails, this one carries
+ * on as it is.  Not when the kernel did not load this program through its
+ * interpreter (AT_BASE 0: started as `ld.so stiction ...`, where
+ * /proc/self/exe is ld.so), or without /proc. */
 static void blas_kernels(char **argv)
 {
-    if (getenv("OPENBLAS_CORETYPE")) return;
+    if (getenv("OPENBLAS_CORETYPE") || getauxval(AT_BASE) == 0) return;
     asp_blas_kernels k;
     asp_blas_kernels_get(&k);
-    /* the program's own path, not /proc/self/exe: the process keeps its
-     * name (ps, top, kill by name) */
+    /* the file /proc/self/exe links to, not the link: the process keeps
+     * its name (ps, top, kill by name) */
     char self[PATH_MAX];
     ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
     if (!k.suggested[0] || n <= 0) return;
