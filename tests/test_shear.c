@@ -643,10 +643,11 @@ static void test_placements(void **state)
     assert_int_equal(e->k, 2);
     assert_int_equal(e->n_ok, 2);
     assert_true(e->m[0].elements_per_contact == 6.0);
-    /* the same run, to rounding: R factorizes with two OpenBLAS threads,
-     * the members with one each, and OpenBLAS may sum in another order.
-     * Equal to the bit with OMP_NUM_THREADS=1.  Otherwise measured 2-3e-16
-     * while every Krylov solve went to 1e-6; since the solves stop at the
+    /* the same run, to rounding: the members factorize on one thread
+     * each, R on the threads it is given (one here: equal to the bit, as
+     * make check measures), and on two OpenBLAS may sum in another order:
+     * measured 2-3e-16 while every Krylov solve went to 1e-6; since the
+     * solves stop at the
      * inexact-Newton forcing term (up to 1e-2, newton.c), the rounding
      * steers the iterates and the answers agree to the Newton tolerance's
      * scale instead: measured 1.3e-12 (rtol 1e-8; another mesh moves μs
@@ -710,9 +711,10 @@ static void test_placements(void **state)
  * ux = 5.85 ωc.  The μs itself is mesh- and path-sensitive in this regime
  * (0.67-1.07 over N = 3.5 ... 6; Q still rising at inception), so only a
  * wide band is checked.  Run on 5 elements across the contact, where the
- * ramp stalls once (measured: 0.8515, 1 cut-back, 24 increments, 46 s on
- * two threads; the default 6 stalls twice in 118 s, 4 not at all: were the
- * stall to go, the check that it happens fails and says so). */
+ * ramp stalls once: 0.8515, 1 cut-back, 24 increments, measured alike on
+ * one and two threads and on the Prescott, Haswell and SkylakeX BLAS
+ * kernels (the default 6 stalls twice in twice the time, 4 not at all:
+ * were the stall to go, the check that it happens fails and says so). */
 static void test_thin_strong_coating(void **state)
 {
     (void)state;
