@@ -58,6 +58,64 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
     return asp_shear_placements_preload(p, o, so, delta, 0.0, k, out);
 }
 
+/* Load and shear members j0, j0 + dj, ... < k of out concurrently, one
+ * thread each, at most o->threads (0: all cores) at a time; sv[j] already
+ * holds a loaded solver where it is not NULL (member 0 of a new ensemble). */
+static void run_members(const stc_params *p, const asp_options *o, const asp_shear_options *so,
+                        asp_placement_result *out, asp_solver **sv, int j0, int dj)
+{
+    int n = (out->k - j0 + dj - 1) / dj;
+    int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
+    if (nt > n) nt = n;
+    /* one BLAS thread per member (threads.c); CHOLMOD's regions on the
+     * member's thread, whatever the caller's max-active-levels (this
+     * team's own setting, threads.h) */
+    if (nt > 1) asp_blas_serial_enter();
+#pragma omp parallel num_threads(nt)
+    {
+        omp_set_max_active_levels(0);
+#pragma omp for schedule(dynamic, 1)
+        for (int i = 0; i < n; i++) {
+            int j = j0 + i * dj;
+            if (!sv[j]) member_load(p, o, out->delta_mesh, out->delta, 0.0, &out->m[j], &sv[j]);
+            member_shear(so, &out->m[j], &sv[j]);
+        }
+    }
+    if (nt > 1) asp_blas_serial_leave();
+}
+
+/* The means, extremes and error of out's k members, and its status. */
+static stc_status summarize(asp_placement_result *out, double t0)
+{
+    int k = out->k;
+    const asp_placement_member *m = out->m;
+    out->n_ok = 0;
+    out->mu_s = out->mu_s_preload = out->Q_max = out->P_slide = 0.0;
+    out->mu_s_min = INFINITY, out->mu_s_max = -INFINITY;
+    for (int j = 0; j < k; j++) {
+        if (m[j].status != STC_OK || !m[j].res.converged) continue;
+        const asp_shear_result *r = &m[j].res;
+        out->n_ok++;
+        out->mu_s += r->mu_s, out->mu_s_preload += r->mu_s_preload;
+        out->Q_max += r->Q_max, out->P_slide += r->P_slide;
+        out->mu_s_min = fmin(out->mu_s_min, r->mu_s);
+        out->mu_s_max = fmax(out->mu_s_max, r->mu_s);
+    }
+    out->wall_s += omp_get_wtime() - t0;
+    if (out->n_ok < k) {
+        int j = 0;
+        while (m[j].status == STC_OK && m[j].res.converged) j++;
+        return STC_FAIL(STC_ENOCONV, "placements: %d of %d members did not reach inception; "
+                        "member %d (elements per contact %g): %s", k - out->n_ok, k, j,
+                        m[j].elements_per_contact, m[j].message);
+    }
+    out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
+    /* one member: its own error, the single mesh's at this δ */
+    out->mu_s_err = asp_placement_mu_s_err(out, m[0].res.mu_s_err / m[0].res.mu_s,
+                                           ASP_MU_S_ERR_FLOOR);
+    return STC_OK;
+}
+
 stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *o,
                                         const asp_shear_options *so, double delta, double P,
                                         int k, asp_placement_result *out)
@@ -93,9 +151,9 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     /* under load control the others run at member 0's interference, on
      * meshes sized as its own (for the same delta_max), so the phases stay
      * evenly spaced; their loads differ from P by their meshes' */
-    double dmesh = delta > 0.0 ? delta : sv[0]->delta_max;
-    eo.edge_a0 = sv[0]->opt.edge_a0;
-    if (P > 0.0) delta = m[0].pt.delta;
+    out->delta_mesh = delta > 0.0 ? delta : sv[0]->delta_max;
+    out->delta = P > 0.0 ? m[0].pt.delta : delta;
+    out->edge_a0 = eo.edge_a0 = sv[0]->opt.edge_a0;
     /* the shift that moves the surface nodes at the edge by one spacing: the
      * coarse one, or the band's, 2^K times finer (a coarse shift moves the
      * band's nodes by whole spacings: every member at one phase) */
@@ -103,45 +161,36 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     out->edge_refine = in.edge_refine;
     for (int j = 1; j < k; j++)
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
-    int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
-    if (nt > k) nt = k;
-    /* one BLAS thread per member (threads.c); CHOLMOD's regions on the
-     * member's thread, whatever the caller's max-active-levels (this
-     * team's own setting, threads.h) */
-    if (nt > 1) asp_blas_serial_enter();
-#pragma omp parallel num_threads(nt)
-    {
-        omp_set_max_active_levels(0);
-#pragma omp for schedule(dynamic, 1)
-        for (int j = 0; j < k; j++) {
-            if (j > 0) member_load(p, o, dmesh, delta, 0.0, &m[j], &sv[j]);
-            member_shear(so, &m[j], &sv[j]);
-        }
+    run_members(p, o, so, out, sv, 0, 1);
+    return summarize(out, t0);
+}
+
+stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o,
+                                       const asp_shear_options *so, asp_placement_result *out)
+{
+    int k = out->k;
+    STC_CHECK(k >= 1 && 2 * k <= ASP_PLACEMENTS_MAX, STC_EINVAL,
+              "placements refine: %d members: twice that must be at most %d", k,
+              ASP_PLACEMENTS_MAX);
+    STC_CHECK(out->n_ok == k, STC_EINVAL,
+              "placements refine: %d of %d members reached inception: not an ensemble to refine",
+              out->n_ok, k);
+    STC_CHECK(o && o->geom == ASP_GEOM_3D, STC_EINVAL,
+              "placements: the tangential step needs the 3D model");
+    double t0 = omp_get_wtime();
+    asp_options eo = *o;
+    eo.edge_a0 = out->edge_a0;
+    /* members in phase order: the old ones at the even places, the new
+     * ones half a step after each */
+    for (int j = k - 1; j >= 0; j--) out->m[2 * j] = out->m[j];
+    out->k = 2 * k;
+    for (int j = 1; j < 2 * k; j += 2) {
+        memset(&out->m[j], 0, sizeof out->m[j]);
+        out->m[j].elements_per_contact = out->m[0].elements_per_contact + j * out->period / (2 * k);
     }
-    if (nt > 1) asp_blas_serial_leave();
-    out->mu_s_min = INFINITY, out->mu_s_max = -INFINITY;
-    for (int j = 0; j < k; j++) {
-        if (m[j].status != STC_OK || !m[j].res.converged) continue;
-        const asp_shear_result *r = &m[j].res;
-        out->n_ok++;
-        out->mu_s += r->mu_s, out->mu_s_preload += r->mu_s_preload;
-        out->Q_max += r->Q_max, out->P_slide += r->P_slide;
-        out->mu_s_min = fmin(out->mu_s_min, r->mu_s);
-        out->mu_s_max = fmax(out->mu_s_max, r->mu_s);
-    }
-    out->wall_s = omp_get_wtime() - t0;
-    if (out->n_ok < k) {
-        int j = 0;
-        while (m[j].status == STC_OK && m[j].res.converged) j++;
-        return STC_FAIL(STC_ENOCONV, "placements: %d of %d members did not reach inception; "
-                        "member %d (elements per contact %g): %s", k - out->n_ok, k, j,
-                        m[j].elements_per_contact, m[j].message);
-    }
-    out->mu_s /= k, out->mu_s_preload /= k, out->Q_max /= k, out->P_slide /= k;
-    /* one member: its own error, the single mesh's at this δ */
-    out->mu_s_err = asp_placement_mu_s_err(out, m[0].res.mu_s_err / m[0].res.mu_s,
-                                           ASP_MU_S_ERR_FLOOR);
-    return STC_OK;
+    asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
+    run_members(p, &eo, so, out, sv, 1, 2);
+    return summarize(out, t0);
 }
 
 double asp_mu_s_err_single(double foot_rows, int edge_refine, double delta_over_omega)

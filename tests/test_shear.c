@@ -700,6 +700,49 @@ static void test_placements(void **state)
     free(e);
 }
 
+/* An ensemble refined (asp_shear_placements_refine): one member, then the
+ * member half a period on, equals the two-member ensemble made at once,
+ * member by member and in its means, to the bit (each member runs alone on
+ * one thread); a refinement past ASP_PLACEMENTS_MAX or of an ensemble with
+ * a failed member is refused by name. */
+static void test_placements_refine(void **state)
+{
+    (void)state;
+    asp_options o;
+    asp_shear_options so;
+    asp_placement_result *a = malloc(sizeof *a), *b = malloc(sizeof *b);
+    assert_non_null(a);
+    assert_non_null(b);
+    asp_options_default(&o);
+    o.geom = ASP_GEOM_3D, o.mesh_level = 0, o.threads = 2;
+    asp_shear_options_default(&so);
+    so.foot_rows = 0.0;
+    double delta = 0.5 * R.c.omega_c;
+    assert_int_equal(asp_shear_placements(&R.p, &o, &so, delta, 1, a), STC_OK);
+    assert_int_equal(asp_shear_placements_refine(&R.p, &o, &so, a), STC_OK);
+    assert_int_equal(asp_shear_placements(&R.p, &o, &so, delta, 2, b), STC_OK);
+    printf("# refined 1 -> 2: mu_s %.6f +- %.6f (members %.6f, %.6f), at once %.6f +- %.6f\n",
+           a->mu_s, a->mu_s_err, a->m[0].res.mu_s, a->m[1].res.mu_s, b->mu_s, b->mu_s_err);
+    assert_int_equal(a->k, 2);
+    assert_int_equal(a->n_ok, 2);
+    for (int j = 0; j < 2; j++) {
+        assert_true(a->m[j].elements_per_contact == b->m[j].elements_per_contact);
+        assert_true(a->m[j].res.mu_s == b->m[j].res.mu_s);
+        assert_true(a->m[j].pt.P == b->m[j].pt.P);
+    }
+    assert_true(a->mu_s == b->mu_s && a->mu_s_err == b->mu_s_err);
+    assert_true(a->mu_s_min == b->mu_s_min && a->mu_s_max == b->mu_s_max);
+    assert_true(a->P_slide == b->P_slide && a->Q_max == b->Q_max);
+    a->k = 8;
+    assert_int_equal(asp_shear_placements_refine(&R.p, &o, &so, a), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "8 members"));
+    a->k = 2, a->n_ok = 1;
+    assert_int_equal(asp_shear_placements_refine(&R.p, &o, &so, a), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "1 of 2 members"));
+    free(a);
+    free(b);
+}
+
 /* A thin coating much stronger in shear than its substrate (t/R 0.001,
  * Eco/Esu 4, stick, δ = 10 ωc_su; docs/design.md §4.9, §4.2, §4.3): Newton
  * stalls in the ramp.  The held nodes (asp_shear_options.hold_stalled)
@@ -766,6 +809,7 @@ int main(void)
         cmocka_unit_test(test_foot_rows),
         cmocka_unit_test(test_ramp_refine),
         cmocka_unit_test(test_placements),
+        cmocka_unit_test(test_placements_refine),
         cmocka_unit_test(test_ramp_return_maps),
     };
     const struct CMUnitTest other[] = {

@@ -497,7 +497,10 @@ typedef struct asp_placement_result {
                                 the shift that moves the surface nodes at the edge by
                                 one spacing */
     int edge_refine;         /* the members' edge band (asp_info.edge_refine), 0 if none */
-    double wall_s;
+    double delta;            /* the members' interference, mm (member 0's under load control) */
+    double delta_mesh;       /* the interference their meshes are sized for, mm */
+    double edge_a0;          /* the edge band's contact radius, mm (asp_options.edge_a0) */
+    double wall_s;           /* summed over the refinements */
     asp_placement_member m[ASP_PLACEMENTS_MAX];
 } asp_placement_result;
 
@@ -512,6 +515,18 @@ STC_API stc_status asp_shear_placements(const stc_params *p, const asp_options *
 STC_API stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *o,
                                                 const asp_shear_options *so, double delta,
                                                 double P, int k, asp_placement_result *out);
+
+/* Twice the members of a finished ensemble (all k reached inception, 2k <=
+ * ASP_PLACEMENTS_MAX): k more at the phases halfway between (N_0 + j T / 2k,
+ * j odd), in phase order with the k there, which keep their places and
+ * results; the means and the error as for 2k members at once.  A
+ * refined ensemble equals one made with 2k members, member by member (each
+ * runs alone on one thread).  p, o, so: those of the call that made out.
+ * Failures as asp_shear_placements (out is then the 2k members, the new
+ * ones' messages set). */
+STC_API stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o,
+                                               const asp_shear_options *so,
+                                               asp_placement_result *out);
 
 /* One standard error of an ensemble's mean μs (absolute), the error model
  * above with these relative errors: err_single μs for one member, else the
