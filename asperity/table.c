@@ -65,6 +65,8 @@ void tbl_numerics_default(tbl_numerics *n)
     n->mesh_level = 0;
     n->elements_per_contact = 0.0;
     n->placements = 2;
+    n->placements_max = 0;
+    n->refine_err = 0.04;
     n->err_floor = ASP_MU_S_ERR_FLOOR;   /* the error model of asperity.h */
     n->err_single = ASP_MU_S_ERR_SINGLE;
     /* the axisymmetric default: a slip curve to 60 ωc within 0.29 % of the
@@ -81,6 +83,12 @@ stc_status tbl_numerics_validate(const tbl_numerics *n)
               "mesh-level = %d: must be in [0, 3]", n->mesh_level);
     STC_CHECK(n->placements >= 1 && n->placements <= ASP_PLACEMENTS_MAX, STC_EINVAL,
               "placements = %d: must be in [1, %d]", n->placements, ASP_PLACEMENTS_MAX);
+    STC_CHECK(n->placements_max == 0 || (n->placements_max >= 2 * n->placements &&
+                                         n->placements_max <= ASP_PLACEMENTS_MAX),
+              STC_EINVAL, "placements-max = %d: must be 0 (no refinement) or in [%d, %d] "
+              "(twice placements = %d, ASP_PLACEMENTS_MAX)", n->placements_max,
+              2 * n->placements, ASP_PLACEMENTS_MAX, n->placements);
+    STC_CALL(stc_check_range("refine-err", n->refine_err, 0.0, 0, 0.5, 1));
     STC_CHECK(n->elements_per_contact == 0.0 ||
                   (n->elements_per_contact >= 2.0 && n->elements_per_contact <= 200.0),
               STC_EINVAL, "elements-per-contact = %g: must be 0 (the mesh level's) or in "
@@ -197,6 +205,12 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     STC_CHECK(e, STC_ENOMEM, "tbl_point_compute: out of memory");
     double t0 = tbl_wall_now(), c0 = tbl_cpu_now();
     stc_status st = asp_shear_placements(&p, &o, &so, delta, num->placements, e);
+    /* refinement: while the members disagree by more than refine_err (one
+     * member: its own error) and the doubled ensemble fits */
+    while (st == STC_OK && num->placements_max > 0 && 2 * e->k <= num->placements_max &&
+           asp_placement_mu_s_err(e, e->m[0].res.mu_s_err / e->m[0].res.mu_s, 0.0) >
+               num->refine_err * e->mu_s)
+        st = asp_shear_placements_refine(&p, &o, &so, e);
     if (st == STC_OK) {
         fill_done(&c, e, num, out);
     } else {
@@ -396,6 +410,10 @@ static unsigned long long points_hash(const tbl_table *t)
     /* only the error term the points use: err_single with one member, else
      * err_floor (a table keeps its points when the other default moves) */
     h = fnv_d(h, n->placements == 1 ? n->err_single : n->err_floor);
+    if (n->placements_max > 0) { /* tables without refinement keep their hash */
+        h = fnv_i(h, n->placements_max), h = fnv_d(h, n->refine_err);
+        h = fnv_d(h, n->err_floor);
+    }
     for (int k = 0; k < 3; k++) {
         h = fnv_i(h, t->n[k]);
         for (int i = 0; i < t->n[k]; i++) h = fnv_d(h, t->ax[k][i]);

@@ -72,6 +72,8 @@ static int write_family(hid_t g, const tbl_table *t)
                                                                              : "stiffness") |
            stc_h5_put_d(g, "alpha", f->alpha) | stc_h5_put_i(g, "mesh_level", n->mesh_level) |
            stc_h5_put_i(g, "placements", n->placements) |
+           stc_h5_put_i(g, "placements_max", n->placements_max) |
+           stc_h5_put_d(g, "refine_err", n->refine_err) |
            stc_h5_put_d(g, "elements_per_contact", n->elements_per_contact) |
            stc_h5_put_d(g, "err_floor", n->err_floor) |
            stc_h5_put_d(g, "err_single", n->err_single) |
@@ -389,6 +391,15 @@ static stc_status read_family(hid_t f, const char *path, int version, tbl_family
               stc_h5_get_d(f, "err_single", &num->err_single);
     STC_CHECK(!bad, STC_EFORMAT, "%s: friction table without its family or numerics "
               "attributes", path);
+    /* refinement: absent from tables written before it (none) */
+    tbl_numerics dn;
+    tbl_numerics_default(&dn);
+    num->placements_max = 0, num->refine_err = dn.refine_err;
+    if (H5Aexists(f, "placements_max") > 0 &&
+        (stc_h5_get_i(f, "placements_max", &num->placements_max) |
+         stc_h5_get_d(f, "refine_err", &num->refine_err)))
+        return STC_FAIL(STC_EFORMAT, "%s: friction table with placements_max but no refine_err",
+                        path);
     STC_CHECK(!strcmp(contact, "stick") || !strcmp(contact, "slip"), STC_EFORMAT,
               "%s: contact = '%s': must be stick or slip", path, contact);
     STC_CHECK(!strcmp(crit, "shear") || !strcmp(crit, "stiffness"), STC_EFORMAT,

@@ -311,6 +311,8 @@ static void check_family_equal(const tbl_table *a, const tbl_table *b)
     assert_int_equal(na.mesh_level, nb.mesh_level);
     assert_true(same_bits(na.elements_per_contact, nb.elements_per_contact));
     assert_int_equal(na.placements, nb.placements);
+    assert_int_equal(na.placements_max, nb.placements_max);
+    assert_true(same_bits(na.refine_err, nb.refine_err));
     assert_true(same_bits(na.err_floor, nb.err_floor));
     assert_true(same_bits(na.err_single, nb.err_single));
     assert_true(same_bits(na.foot_rows, nb.foot_rows));
@@ -351,6 +353,8 @@ static void test_round_trip(void **state)
     num.mesh_level = 1;
     num.elements_per_contact = 4.0;
     num.placements = 3;
+    num.placements_max = 6;
+    num.refine_err = 0.07;
     num.err_floor = 0.02;
     num.err_single = 0.05;
     num.foot_rows = 0.6; /* not the default */
@@ -1183,6 +1187,43 @@ static tbl_table *coarse_point_table(void **state, const char *name, double w, d
     return t;
 }
 
+/* Refinement (tbl_numerics.placements_max): a coarse elastic point with a
+ * threshold below any spread doubles its members twice, 1 -> 2 -> 4 (that
+ * a refined ensemble equals the one made at once: test_shear); with a
+ * threshold above its error it keeps its one member, whose numbers are the
+ * refined point's first member's. */
+static void test_point_refine(void **state)
+{
+    (void)state;
+    tbl_family f;
+    tbl_numerics num;
+    tbl_family_default(&f);
+    f.contact = ASP_CONTACT_SLIP;
+    tbl_numerics_default(&num);
+    num.elements_per_contact = 3.0;
+    num.placements = 1;
+    num.placements_max = 4;
+    num.refine_err = 1e-6;
+    tbl_point a, c;
+    check_ok(tbl_point_compute(&f, &num, 0.5, 0.01, 1.0, &a), "refined point");
+    num.refine_err = 0.5;
+    check_ok(tbl_point_compute(&f, &num, 0.5, 0.01, 1.0, &c), "not refined");
+    printf("refined 1 -> 4: mu_s %.6f +- %.6f (%d members, %.6f ... %.6f); one member %.6f "
+           "+- %.6f\n", a.mu_s, a.mu_s_err, a.members, a.mu_s_min, a.mu_s_max, c.mu_s,
+           c.mu_s_err);
+    assert_int_equal(a.state, TBL_DONE);
+    assert_int_equal(a.members, 4);
+    assert_int_equal(c.members, 1);
+    assert_true(a.mu_s_min < a.mu_s_max);
+    assert_true(a.mu_s_min <= c.mu_s && c.mu_s <= a.mu_s_max);
+    /* the error of 4 members: their standard error and the floor */
+    assert_true(a.mu_s_err >= num.err_floor * a.mu_s);
+    assert_true(a.mu_s_err <= hypot(0.5 * (a.mu_s_max - a.mu_s_min), num.err_floor * a.mu_s));
+    num.placements_max = 1; /* less than twice placements */
+    assert_int_equal(tbl_point_compute(&f, &num, 0.5, 0.01, 1.0, &c), STC_EINVAL);
+    assert_non_null(strstr(stc_errmsg(), "placements-max = 1"));
+}
+
 /* A failed point stays failed in a resumed build, and is computed again
  * with only_failed (one coarse point: about a second; retry_failed takes the
  * same path with the pending points besides). */
@@ -1429,6 +1470,7 @@ int main(void)
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),
         cmocka_unit_test(test_t_over_R_at_axis_ends),
         cmocka_unit_test(test_bundled_table_quadrature), cmocka_unit_test(test_retry_failed),
+        cmocka_unit_test(test_point_refine),
         cmocka_unit_test(test_normal_grid),
         cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_fit_reused),
     };

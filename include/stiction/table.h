@@ -60,6 +60,13 @@ typedef struct tbl_numerics {
                                     for tests; default 0 */
     int placements;    /* node-placement members averaged per point (asp_shear_placements),
                           in [1, ASP_PLACEMENTS_MAX]; default 2 */
+    int placements_max; /* refinement: while a point's members' standard error of the
+                           mean exceeds refine_err of its μs (one member: its own
+                           error), its ensemble doubles (asp_shear_placements_refine),
+                           to at most this many members; 0 = none (the default), else
+                           in [2 placements, ASP_PLACEMENTS_MAX] */
+    double refine_err;  /* the relative standard error that refines, in (0, 0.5];
+                           default 0.04 */
     double err_floor;  /* relative μs error added in quadrature to the members' standard
                           error (the mesh bias the placements do not average out);
                           default ASP_MU_S_ERR_FLOOR */

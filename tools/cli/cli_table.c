@@ -101,6 +101,11 @@ static const cli_opt build_opts[] = {
                         "comes with the members' spread as its error estimate (thesis table: "
                         "1.5-18 %, median 3.5 %), at K times the CPU time (20-250 CPU s a point "
                         "at K = 2)"},
+    {"placements-max", "K", "refine: a point whose members' standard error exceeds --refine-err "
+                            "of its mu_s gets twice the placements, halfway between, and again, "
+                            "up to K members; 0 = none (default), else 2 x placements..8"},
+    {"refine-err", "X", "the relative standard error that refines a point, (0, 0.5] (default "
+                        "0.04)"},
     CLI_HEADING("Common options"),
     {"out", "FILE", "the table file (resumes from FILE.journal and FILE if they exist)"},
     {"jobs", "N", "points computed at once, one thread each (default: one per core); "
@@ -172,6 +177,10 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         s = set_int(key, value, 0, 3, &a->num.mesh_level);
     } else if (!strcmp(key, "placements")) {
         s = set_int(key, value, 1, ASP_PLACEMENTS_MAX, &a->num.placements);
+    } else if (!strcmp(key, "placements-max")) {
+        s = set_int(key, value, 0, ASP_PLACEMENTS_MAX, &a->num.placements_max);
+    } else if (!strcmp(key, "refine-err")) {
+        s = stc_parse_double(key, value, &a->num.refine_err);
     } else if (!strcmp(key, "foot-rows")) {
         s = stc_parse_double(key, value, &a->num.foot_rows);
     } else if (!strcmp(key, "normal-level")) {
@@ -492,6 +501,9 @@ static void info_text(const tbl_table *t, const char *path)
     if (n.elements_per_contact > 0) printf(" (%g elements across the contact)",
                                            n.elements_per_contact);
     printf(", %d node placements per point", n.placements);
+    if (n.placements_max > 0)
+        printf(" (refined up to %d where their standard error exceeds %g %%)", n.placements_max,
+               100 * n.refine_err);
     if (n.foot_rows > 0.0) printf(", junction read on the node rows within %g a0", n.foot_rows);
     printf("\n");
     static const char *const an[3] = {"delta/omega_c_su", "t/R", "Eco/Esu"};
