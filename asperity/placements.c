@@ -193,6 +193,32 @@ stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o
     return summarize(out, t0);
 }
 
+stc_status asp_placements_refine_check(int k, int k_max, double rel_err)
+{
+    STC_CHECK(k_max == 0 || (k_max >= 2 * k && k_max <= ASP_PLACEMENTS_MAX), STC_EINVAL,
+              "placements-max = %d: must be 0 (no refinement) or in [%d, %d] (twice "
+              "placements = %d, ASP_PLACEMENTS_MAX)", k_max, 2 * k, ASP_PLACEMENTS_MAX, k);
+    STC_CHECK(k_max == 0 || (rel_err > 0.0 && rel_err <= 0.5), STC_EINVAL,
+              "refine-err = %g: must be in (0, 0.5]", rel_err);
+    return STC_OK;
+}
+
+stc_status asp_shear_placements_adaptive(const stc_params *p, const asp_options *o,
+                                         const asp_shear_options *so, double delta, double P,
+                                         int k, int k_max, double rel_err,
+                                         asp_placement_result *out)
+{
+    memset(out, 0, sizeof *out);
+    STC_CALL(asp_placements_refine_check(k, k_max, rel_err));
+    STC_CALL(asp_shear_placements_preload(p, o, so, delta, P, k, out));
+    /* the members' standard error without the floor; one member: its own */
+    while (2 * out->k <= k_max &&
+           asp_placement_mu_s_err(out, out->m[0].res.mu_s_err / out->m[0].res.mu_s, 0.0) >
+               rel_err * out->mu_s)
+        STC_CALL(asp_shear_placements_refine(p, o, so, out));
+    return STC_OK;
+}
+
 double asp_mu_s_err_single(double foot_rows, int edge_refine, double delta_over_omega)
 {
     /* the axis lines' scatter rises with the plastic junction growth: 1.2-2.6 %

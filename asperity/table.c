@@ -83,11 +83,7 @@ stc_status tbl_numerics_validate(const tbl_numerics *n)
               "mesh-level = %d: must be in [0, 3]", n->mesh_level);
     STC_CHECK(n->placements >= 1 && n->placements <= ASP_PLACEMENTS_MAX, STC_EINVAL,
               "placements = %d: must be in [1, %d]", n->placements, ASP_PLACEMENTS_MAX);
-    STC_CHECK(n->placements_max == 0 || (n->placements_max >= 2 * n->placements &&
-                                         n->placements_max <= ASP_PLACEMENTS_MAX),
-              STC_EINVAL, "placements-max = %d: must be 0 (no refinement) or in [%d, %d] "
-              "(twice placements = %d, ASP_PLACEMENTS_MAX)", n->placements_max,
-              2 * n->placements, ASP_PLACEMENTS_MAX, n->placements);
+    STC_CALL(asp_placements_refine_check(n->placements, n->placements_max, n->refine_err));
     STC_CALL(stc_check_range("refine-err", n->refine_err, 0.0, 0, 0.5, 1));
     STC_CHECK(n->elements_per_contact == 0.0 ||
                   (n->elements_per_contact >= 2.0 && n->elements_per_contact <= 200.0),
@@ -204,13 +200,8 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     asp_placement_result *e = malloc(sizeof *e);
     STC_CHECK(e, STC_ENOMEM, "tbl_point_compute: out of memory");
     double t0 = tbl_wall_now(), c0 = tbl_cpu_now();
-    stc_status st = asp_shear_placements(&p, &o, &so, delta, num->placements, e);
-    /* refinement: while the members disagree by more than refine_err (one
-     * member: its own error) and the doubled ensemble fits */
-    while (st == STC_OK && num->placements_max > 0 && 2 * e->k <= num->placements_max &&
-           asp_placement_mu_s_err(e, e->m[0].res.mu_s_err / e->m[0].res.mu_s, 0.0) >
-               num->refine_err * e->mu_s)
-        st = asp_shear_placements_refine(&p, &o, &so, e);
+    stc_status st = asp_shear_placements_adaptive(&p, &o, &so, delta, 0.0, num->placements,
+                                                  num->placements_max, num->refine_err, e);
     if (st == STC_OK) {
         fill_done(&c, e, num, out);
     } else {

@@ -238,6 +238,18 @@ static void test_shear_load(void **state)
     same("delta_mm", 0, pt.delta);
     same("P_preload_N", 0, pt.P);
     same("mu_s", 1, r.mu_s); /* members[0] */
+    /* refined from the one run (--placements-max): its member 0 is the run;
+     * a threshold above the run's error keeps it alone */
+    run_json("--R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --Y-co 325 --load 0.3 "
+             "--criterion stiffness --alpha 0.9 --elements-per-contact 4 --placements-max 2 "
+             "--refine-err 0.001");
+    same("placements", 0, 2);
+    same("mu_s", 1, r.mu_s);
+    run_json("--R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --Y-co 325 --load 0.3 "
+             "--criterion stiffness --alpha 0.9 --elements-per-contact 4 --placements-max 2 "
+             "--refine-err 0.5");
+    same("placements", 0, 1);
+    same("mu_s", 0, r.mu_s);
 }
 
 /* A short shear run with a few ramp points, for the progress tests. */

@@ -528,6 +528,18 @@ STC_API stc_status asp_shear_placements_refine(const stc_params *p, const asp_op
                                                const asp_shear_options *so,
                                                asp_placement_result *out);
 
+/* An ensemble of k members refined (asp_shear_placements_refine) while the
+ * members' standard error of the mean μs, without the floor (one member: its
+ * own error), exceeds rel_err μs and 2k <= k_max; k_max 0: none (then
+ * asp_shear_placements_preload).  k_max is 0 or in [2k, ASP_PLACEMENTS_MAX],
+ * rel_err in (0, 0.5] (STC_EINVAL naming them; asp_placements_refine_check
+ * checks only that, pure). */
+STC_API stc_status asp_placements_refine_check(int k, int k_max, double rel_err);
+STC_API stc_status asp_shear_placements_adaptive(const stc_params *p, const asp_options *o,
+                                                 const asp_shear_options *so, double delta,
+                                                 double P, int k, int k_max, double rel_err,
+                                                 asp_placement_result *out);
+
 /* One standard error of an ensemble's mean μs (absolute), the error model
  * above with these relative errors: err_single μs for one member, else the
  * members' standard error of the mean and err_floor μs in quadrature.  NaN

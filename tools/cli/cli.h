@@ -26,6 +26,9 @@ typedef struct cli_opt {
 #define CLI_HEADING(title) {"", NULL, (title)}
 /* Off a terminal, long runs print a progress line at most this often (s). */
 #define CLI_PROGRESS_EVERY_S 60.0
+/* --refine-err: the default relative standard error that refines an
+ * ensemble (as a table's, tbl_numerics_default) */
+#define CLI_REFINE_ERR 0.04
 #define CLI_CONFIG_HELP {"", "", NULL}
 
 /* The common keys as the help documents them: the sphere and its coating
@@ -153,13 +156,16 @@ typedef struct cli_shear_args {
     int alpha_set;         /* --alpha given */
     double load;           /* --load X = P/Pc_su (> 0: load control), else 0 */
     int placements;        /* --placements K: node-placement ensemble of K meshes (0/1: one) */
+    int placements_max;    /* --placements-max K: refine the ensemble up to K members (0: no) */
+    double refine_err;     /* --refine-err X: while its standard error exceeds X mu_s */
     double progress_every; /* --progress-every S: off a terminal, a ramp progress line at
                               most every S seconds (0: none) */
     asp_shear_options so;  /* --criterion, --alpha, --tau-c, --junction */
 } cli_shear_args;
 void cli_shear_args_default(cli_shear_args *sa);
 /* --shear, --criterion, --alpha, --tau-c, --load, --junction, --ramp-return-map,
- * --ramp-refine, --foot-rows, --placements, --progress-every; STC_EUNSUPPORTED for
+ * --ramp-refine, --foot-rows, --placements, --placements-max, --refine-err,
+ * --progress-every; STC_EUNSUPPORTED for
  * others. */
 stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value);
 /* Normal step to delta[0] (× omega_c_su unless in_mm) or to --load, then the

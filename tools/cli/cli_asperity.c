@@ -58,6 +58,12 @@ static const cli_opt opts[] = {
      "3.8 % with --foot-rows 0.6); the members' mean and spread are reported, with the "
      "mean's standard error.  Costs K times the CPU time; the members run concurrently, "
      "one thread each (docs/design.md §4.5)"},
+    {"placements-max", "K",
+     "--shear: refine the ensemble while its standard error exceeds --refine-err of mu_s: "
+     "twice the placements, halfway between, up to K (0 = none, the default; else "
+     "2 x placements..8; from one run when --placements is not given)"},
+    {"refine-err", "X", "--shear: the relative standard error that refines, (0, 0.5] "
+                        "(default 0.04)"},
     CLI_HEADING("Common options"),
     {"model", "axisym|3d|auto", "geometry of the model (default auto: axisymmetric for the "
                                 "normal step, 3D half model with --shear)"},

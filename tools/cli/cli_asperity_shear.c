@@ -31,6 +31,7 @@ void cli_shear_args_default(cli_shear_args *sa)
     memset(sa, 0, sizeof *sa);
     asp_shear_options_default(&sa->so);
     sa->progress_every = CLI_PROGRESS_EVERY_S;
+    sa->refine_err = CLI_REFINE_ERR;
 }
 
 stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
@@ -70,6 +71,17 @@ stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)
         if (stc_parse_long(key, value, &l) != STC_OK || l < 1 || l > ASP_PLACEMENTS_MAX)
             return bad(key, value, "a whole number of meshes in [1, 8]");
         sa->placements = (int)l;
+        sa->on = 1;
+    } else if (!strcmp(key, "placements-max")) {
+        long l;
+        if (stc_parse_long(key, value, &l) != STC_OK || l < 0 || l > ASP_PLACEMENTS_MAX)
+            return bad(key, value, "0 (no refinement) or a whole number of meshes in [2, 8]");
+        sa->placements_max = (int)l;
+        sa->on = 1;
+    } else if (!strcmp(key, "refine-err")) {
+        if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v <= 0.5))
+            return bad(key, value, "a relative standard error in (0, 0.5]");
+        sa->refine_err = v;
         sa->on = 1;
     } else if (!strcmp(key, "alpha")) {
         if (stc_parse_double(key, value, &v) != STC_OK || !(v > 0.0 && v < 1.0))
@@ -438,8 +450,9 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
         fprintf(stderr, "stiction %s: %d node placements: normal step and shear ramp on each "
                         "(member 0 first, then the others side by side) ...\n", cmd,
                 sa->placements);
-    stc_status st = asp_shear_placements_preload(p, o, &sa->so, dmm, sa->load * c->P_c,
-                                                 sa->placements, e);
+    int k = sa->placements > 1 ? sa->placements : 1;
+    stc_status st = asp_shear_placements_adaptive(p, o, &sa->so, dmm, sa->load * c->P_c, k,
+                                                  sa->placements_max, sa->refine_err, e);
     if (st == STC_EINVAL || (st != STC_OK && e->k == 0)) {
         free(e);
         return cli_fail(cmd, st);
@@ -506,7 +519,8 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     if (rc) return rc;
     int rc_out = out ? cli_out_dir(cmd, out, NULL) : CLI_EXIT_OK;
     if (rc_out != CLI_EXIT_OK) return rc_out;
-    if (sa->placements > 1) return run_placements(cmd, p, o, sa, &c, dmm, json, out);
+    if (sa->placements > 1 || sa->placements_max > 0)
+        return run_placements(cmd, p, o, sa, &c, dmm, json, out);
     asp_solver *sv;
     asp_point pt;
     int tty = isatty(2);
