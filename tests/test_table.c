@@ -1168,6 +1168,17 @@ static void test_bundled_table_quadrature(void **state)
 /* A one-point coarse slip table (3 elements per contact, one placement) at
  * delta w omega_c, t/R 0.01, Eco/Esu er, to be written to DIR/name.h5
  * (path). */
+/* The family and numerics of the coarse points: slip, 3 elements across
+ * the contact, one placement. */
+static void coarse_numerics(tbl_family *f, tbl_numerics *num)
+{
+    tbl_family_default(f);
+    f->contact = ASP_CONTACT_SLIP;
+    tbl_numerics_default(num);
+    num->elements_per_contact = 3.0;
+    num->placements = 1;
+}
+
 static tbl_table *coarse_point_table(void **state, const char *name, double w, double er,
                                      char *path, size_t n)
 {
@@ -1176,11 +1187,7 @@ static tbl_table *coarse_point_table(void **state, const char *name, double w, d
     snprintf(path, n, "%s/%s.h5", dir, name);
     tbl_family f;
     tbl_numerics num;
-    tbl_family_default(&f);
-    f.contact = ASP_CONTACT_SLIP;
-    tbl_numerics_default(&num);
-    num.elements_per_contact = 3.0;
-    num.placements = 1;
+    coarse_numerics(&f, &num);
     const double tr[] = {0.01};
     tbl_table *t = NULL;
     check_ok(tbl_create(&f, &num, &w, 1, tr, 1, &er, 1, &t), "tbl_create");
@@ -1197,11 +1204,7 @@ static void test_point_refine(void **state)
     (void)state;
     tbl_family f;
     tbl_numerics num;
-    tbl_family_default(&f);
-    f.contact = ASP_CONTACT_SLIP;
-    tbl_numerics_default(&num);
-    num.elements_per_contact = 3.0;
-    num.placements = 1;
+    coarse_numerics(&f, &num);
     num.placements_max = 4;
     num.refine_err = 1e-6;
     tbl_point a, c;
