@@ -378,6 +378,10 @@ static void test_fill(void **state)
                                 "(0 failed"));
     assert_int_equal(run("table info fill.h5 --json", 1, out, sizeof out), 0);
     assert_json(out);
+    /* the numerics it was built with (BUILD_NUM) */
+    assert_non_null(strstr(out, "\"elements_per_contact\": 3"));
+    assert_non_null(strstr(out, "\"placements\": 1"));
+    assert_non_null(strstr(out, "\"placements_max\": 0"));
     assert_non_null(strstr(out, "\"done\": 4"));
     assert_non_null(strstr(out, "\"pending\": 6"));
     /* the filled table carries its surrogate's fit: read without a search */

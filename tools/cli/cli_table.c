@@ -387,6 +387,19 @@ static void info_json(const tbl_table *t, const char *path)
     cj_num(&j, "tau_c_over_Y_co", f.tau_c_over_Y_co);
     cj_str(&j, "criterion", f.criterion == ASP_SHEAR_CRIT_SHEAR ? "shear" : "stiffness");
     cj_end_obj(&j);
+    tbl_numerics nu;
+    tbl_get_numerics(t, &nu);
+    cj_obj(&j, "numerics");
+    cj_int(&j, "mesh_level", nu.mesh_level);
+    cj_num(&j, "elements_per_contact", nu.elements_per_contact);
+    cj_int(&j, "placements", nu.placements);
+    cj_int(&j, "placements_max", nu.placements_max);
+    cj_num(&j, "refine_err", nu.refine_err);
+    cj_num(&j, "err_floor", nu.err_floor);
+    cj_num(&j, "err_single", nu.err_single);
+    cj_num(&j, "foot_rows", nu.foot_rows);
+    cj_int(&j, "normal_level", nu.normal_level);
+    cj_end_obj(&j);
     static const char *const an[3] = {"delta_over_omega_c", "t_over_R", "E_ratio"};
     cj_obj(&j, "axes");
     for (int k = 0; k < 3; k++) {
