@@ -446,11 +446,15 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
 {
     asp_placement_result *e = malloc(sizeof *e);
     if (!e) return cli_fail(cmd, STC_ENOMEM);
-    if (isatty(2))
-        fprintf(stderr, "stiction %s: %d node placements: normal step and shear ramp on each "
-                        "(member 0 first, then the others side by side) ...\n", cmd,
-                sa->placements);
     int k = sa->placements > 1 ? sa->placements : 1;
+    if (isatty(2)) {
+        fprintf(stderr, "stiction %s: %d node placement%s", cmd, k, k > 1 ? "s" : "");
+        if (sa->placements_max > 0)
+            fprintf(stderr, " (doubled while their standard error exceeds %g %%, up to %d)",
+                    100 * sa->refine_err, sa->placements_max);
+        fprintf(stderr, ": normal step and shear ramp on each (member 0 first, then the "
+                        "others side by side) ...\n");
+    }
     stc_status st = asp_shear_placements_adaptive(p, o, &sa->so, dmm, sa->load * c->P_c, k,
                                                   sa->placements_max, sa->refine_err, e);
     if (st == STC_EINVAL || (st != STC_OK && e->k == 0)) {
