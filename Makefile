@@ -15,9 +15,10 @@ endif
 CC        ?= cc
 # A build runs on all cores unless told otherwise (make -jN or JOBS=N); with
 # more than one goal on the command line (make clean all, make check bench)
-# the goals would run at once, so then only as told
+# the goals would run at once, so then only as told.  A make started by a
+# recipe shares its parent's jobs.
 JOBS      ?= $(shell nproc 2>/dev/null || echo 1)
-ifeq ($(filter-out 0 1,$(words $(MAKECMDGOALS))),)
+ifeq ($(MAKELEVEL)$(filter-out 0 1,$(words $(MAKECMDGOALS))),0)
 MAKEFLAGS += -j$(JOBS)
 endif
 # Open MPI: one binary; MPI is initialised only under mpirun -n N > 1
