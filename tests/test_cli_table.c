@@ -451,6 +451,35 @@ static void test_curves_only(void **state)
     tbl_destroy(&b);
 }
 
+/* A build with refinement (--placements-max, --refine-err): a point whose
+ * members disagree gets twice as many; info names the refinement and how
+ * many points have how many placements, in text and JSON; a bad value is
+ * refused by name. */
+static void test_refined_build(void **state)
+{
+    (void)state;
+    char out[8192];
+    expect_refusal("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 --placements 2 "
+                   "--placements-max 3 --out bad.h5", 2, "placements-max = 3", "[4, 8]");
+    expect_refusal("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 --placements-max 2 "
+                   "--refine-err 0.9 --placements 1 --out bad.h5", 2, "refine-err", NULL);
+    assert_false(exists(P("bad.h5")));
+    assert_int_equal(run("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 " BUILD_NUM
+                         " --placements-max 2 --refine-err 0.001 --normal-level -1 --quiet "
+                         "--out refined.h5", 1, out, sizeof out), 0);
+    assert_int_equal(run("table info refined.h5", 1, out, sizeof out), 0);
+    printf("%s", out);
+    assert_non_null(strstr(out, "refined up to 2 where their standard error exceeds 0.1 %"));
+    assert_non_null(strstr(out, "node placements of the done points: 2 (1 point)"));
+    assert_int_equal(run("table info refined.h5 --json", 1, out, sizeof out), 0);
+    assert_json(out);
+    const char *by = strstr(out, "\"done_points_by_placements\": {");
+    assert_non_null(by);
+    assert_non_null(strstr(by, "\"2\": 1"));
+    assert_true(strstr(by, "\"2\": 1") < strchr(by, '}'));
+    assert_non_null(strstr(out, "\"placements_max\": 2"));
+}
+
 /* A table with failed points: the prediction runs over the done ones and
  * warns, naming how many failed and where the reasons are. */
 static void test_failed_points_warned(void **state)
@@ -499,6 +528,7 @@ int main(void)
         cmocka_unit_test(test_fill),
         cmocka_unit_test(test_curves_only),
         cmocka_unit_test(test_failed_points_warned),
+        cmocka_unit_test(test_refined_build),
     };
     return cmocka_run_group_tests_name("cli_table", tests, setup, teardown);
 }

@@ -370,6 +370,20 @@ static void print_axis(const char *name, const double *v, int n)
     printf("\n");
 }
 
+/* How many done points have k members, k = 1 .. ASP_PLACEMENTS_MAX (the
+ * refinement's spread); returns the number of different counts. */
+static int member_counts(const tbl_table *t, int count[ASP_PLACEMENTS_MAX + 1])
+{
+    int kinds = 0;
+    for (int k = 0; k <= ASP_PLACEMENTS_MAX; k++) count[k] = 0;
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        if (p->state != TBL_DONE || p->members < 1 || p->members > ASP_PLACEMENTS_MAX) continue;
+        kinds += count[p->members]++ == 0;
+    }
+    return kinds;
+}
+
 static void info_json(const tbl_table *t, const char *path)
 {
     cli_json j;
@@ -399,6 +413,15 @@ static void info_json(const tbl_table *t, const char *path)
     cj_num(&j, "err_single", nu.err_single);
     cj_num(&j, "foot_rows", nu.foot_rows);
     cj_int(&j, "normal_level", nu.normal_level);
+    cj_end_obj(&j);
+    int count[ASP_PLACEMENTS_MAX + 1];
+    member_counts(t, count);
+    cj_obj(&j, "done_points_by_placements"); /* "k": points with k members */
+    for (int k = 1; k <= ASP_PLACEMENTS_MAX; k++) {
+        char key[8];
+        snprintf(key, sizeof key, "%d", k);
+        if (count[k]) cj_int(&j, key, count[k]);
+    }
     cj_end_obj(&j);
     static const char *const an[3] = {"delta_over_omega_c", "t_over_R", "E_ratio"};
     cj_obj(&j, "axes");
@@ -519,6 +542,14 @@ static void info_text(const tbl_table *t, const char *path)
                100 * n.refine_err);
     if (n.foot_rows > 0.0) printf(", junction read on the node rows within %g a0", n.foot_rows);
     printf("\n");
+    int count[ASP_PLACEMENTS_MAX + 1];
+    if (n.placements_max > 0 && member_counts(t, count) > 0) {
+        printf("  node placements of the done points:");
+        for (int k = 1, first = 1; k <= ASP_PLACEMENTS_MAX; k++)
+            if (count[k]) printf("%s %d (%d point%s)", first ? "" : ",", k, count[k],
+                                 count[k] > 1 ? "s" : ""), first = 0;
+        printf("\n");
+    }
     static const char *const an[3] = {"delta/omega_c_su", "t/R", "Eco/Esu"};
     for (int k = 0; k < 3; k++) {
         const double *v;
