@@ -44,4 +44,5 @@ void asp_blas_kernels_get(asp_blas_kernels *out)
     copy(out->in_use, sizeof out->in_use, openblas_get_corename());
     copy(out->config, sizeof out->config, openblas_get_config());
     if (generic(out->in_use)) copy(out->suggested, sizeof out->suggested, best_for_cpu());
+    snprintf(out->summary, sizeof out->summary, "%s; kernels %s", out->config, out->in_use);
 }

@@ -66,7 +66,7 @@ void tbl_numerics_default(tbl_numerics *n)
     n->elements_per_contact = 0.0;
     n->placements = 2;
     n->placements_max = 0;
-    n->refine_err = 0.04;
+    n->refine_err = ASP_REFINE_ERR;
     n->err_floor = ASP_MU_S_ERR_FLOOR;   /* the error model of asperity.h */
     n->err_single = ASP_MU_S_ERR_SINGLE;
     /* the axisymmetric default: a slip curve to 60 ωc within 0.29 % of the

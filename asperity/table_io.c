@@ -90,13 +90,11 @@ static int write_root(hid_t f, const tbl_table *t)
     struct tm tm;
     strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime_r(&now, &tm));
     asp_blas_kernels k;
-    char blas[sizeof k.config + sizeof k.in_use + 16];
     asp_blas_kernels_get(&k);
-    snprintf(blas, sizeof blas, "%s; kernels %s", k.config, k.in_use);
     return stc_h5_put_s(f, "format", TBL_FORMAT_NAME) |
            stc_h5_put_i(f, "format_version", TBL_FORMAT_VERSION) |
            stc_h5_put_s(f, "stiction_version", STC_VERSION) | stc_h5_put_s(f, "created", when) |
-           stc_h5_put_s(f, "blas", blas) |
+           stc_h5_put_s(f, "blas", k.summary) |
            stc_h5_put_s(f, "command", t->command) |
            stc_h5_put_d(f, "build_wall_s", t->build_wall_s) |
            stc_h5_put_s(f, "units", "responses normalised by omega_c, P_c, A_c of the "
@@ -392,9 +390,7 @@ static stc_status read_family(hid_t f, const char *path, int version, tbl_family
     STC_CHECK(!bad, STC_EFORMAT, "%s: friction table without its family or numerics "
               "attributes", path);
     /* refinement: absent from tables written before it (none) */
-    tbl_numerics dn;
-    tbl_numerics_default(&dn);
-    num->placements_max = 0, num->refine_err = dn.refine_err;
+    num->placements_max = 0, num->refine_err = ASP_REFINE_ERR;
     if (H5Aexists(f, "placements_max") > 0 &&
         (stc_h5_get_i(f, "placements_max", &num->placements_max) |
          stc_h5_get_d(f, "refine_err", &num->refine_err)))

@@ -534,6 +534,7 @@ STC_API stc_status asp_shear_placements_refine(const stc_params *p, const asp_op
  * asp_shear_placements_preload).  k_max is 0 or in [2k, ASP_PLACEMENTS_MAX],
  * rel_err in (0, 0.5] (STC_EINVAL naming them; asp_placements_refine_check
  * checks only that, pure). */
+#define ASP_REFINE_ERR 0.04 /* the default rel_err of the CLI and of tables */
 STC_API stc_status asp_placements_refine_check(int k, int k_max, double rel_err);
 STC_API stc_status asp_shear_placements_adaptive(const stc_params *p, const asp_options *o,
                                                  const asp_shear_options *so, double delta,
@@ -631,6 +632,8 @@ typedef struct asp_blas_kernels {
                            the generic fallback and the CPU has AVX2 (Haswell)
                            or AVX-512 (SkylakeX); "" otherwise */
     char config[160];   /* openblas_get_config: version and build options */
+    char summary[208];  /* "CONFIG; kernels IN_USE": `stiction --version`, a table's
+                           blas attribute */
 } asp_blas_kernels;
 
 STC_API void asp_blas_kernels_get(asp_blas_kernels *out);

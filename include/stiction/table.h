@@ -66,7 +66,7 @@ typedef struct tbl_numerics {
                            to at most this many members; 0 = none (the default), else
                            in [2 placements, ASP_PLACEMENTS_MAX] */
     double refine_err;  /* the relative standard error that refines, in (0, 0.5];
-                           default 0.04 */
+                           default ASP_REFINE_ERR (0.04) */
     double err_floor;  /* relative μs error added in quadrature to the members' standard
                           error (the mesh bias the placements do not average out);
                           default ASP_MU_S_ERR_FLOOR */

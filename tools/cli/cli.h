@@ -26,9 +26,6 @@ typedef struct cli_opt {
 #define CLI_HEADING(title) {"", NULL, (title)}
 /* Off a terminal, long runs print a progress line at most this often (s). */
 #define CLI_PROGRESS_EVERY_S 60.0
-/* --refine-err: the default relative standard error that refines an
- * ensemble (as a table's, tbl_numerics_default) */
-#define CLI_REFINE_ERR 0.04
 #define CLI_CONFIG_HELP {"", "", NULL}
 
 /* The common keys as the help documents them: the sphere and its coating

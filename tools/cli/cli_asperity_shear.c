@@ -31,7 +31,7 @@ void cli_shear_args_default(cli_shear_args *sa)
     memset(sa, 0, sizeof *sa);
     asp_shear_options_default(&sa->so);
     sa->progress_every = CLI_PROGRESS_EVERY_S;
-    sa->refine_err = CLI_REFINE_ERR;
+    sa->refine_err = ASP_REFINE_ERR;
 }
 
 stc_status cli_shear_opt(cli_shear_args *sa, const char *key, const char *value)

@@ -64,8 +64,7 @@ static void version(void)
 #endif
     asp_blas_kernels k;
     asp_blas_kernels_get(&k);
-    printf("BLAS: %s; kernels %s%s\n", k.config, k.in_use,
-           getenv("OPENBLAS_CORETYPE") ? " (OPENBLAS_CORETYPE)" : "");
+    printf("BLAS: %s%s\n", k.summary, getenv("OPENBLAS_CORETYPE") ? " (OPENBLAS_CORETYPE)" : "");
 }
 
 int main(int argc, char **argv)
