@@ -647,11 +647,10 @@ static void test_placements(void **state)
      * each, R on the threads it is given (one here: equal to the bit, as
      * make check measures), and on two OpenBLAS may sum in another order:
      * measured 2-3e-16 while every Krylov solve went to 1e-6; since the
-     * solves stop at the
-     * inexact-Newton forcing term (up to 1e-2, newton.c), the rounding
-     * steers the iterates and the answers agree to the Newton tolerance's
-     * scale instead: measured 1.3e-12 (rtol 1e-8; another mesh moves μs
-     * by ~1e-2) */
+     * solves stop at the inexact-Newton forcing term (up to 1e-2,
+     * newton.c), the rounding steers the iterates and the answers agree to
+     * the Newton tolerance's scale instead: measured 1.3e-12 (rtol 1e-8;
+     * another mesh moves μs by ~1e-2) */
     printf("# member 0 vs the single run: mu_s %+.1e, P %+.1e relative\n",
            e->m[0].res.mu_s / R.res.mu_s - 1, e->m[0].pt.P / R.pt.P - 1);
     assert_true(fabs(e->m[0].res.mu_s / R.res.mu_s - 1) < 1e-10);

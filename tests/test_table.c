@@ -1165,9 +1165,6 @@ static void test_bundled_table_quadrature(void **state)
 
 /* ---- 8. failed points computed again ---------------------------------- */
 
-/* A one-point coarse slip table (3 elements per contact, one placement) at
- * delta w omega_c, t/R 0.01, Eco/Esu er, to be written to DIR/name.h5
- * (path). */
 /* The family and numerics of the coarse points: slip, 3 elements across
  * the contact, one placement. */
 static void coarse_numerics(tbl_family *f, tbl_numerics *num)
@@ -1179,6 +1176,9 @@ static void coarse_numerics(tbl_family *f, tbl_numerics *num)
     num->placements = 1;
 }
 
+/* A one-point coarse slip table (3 elements per contact, one placement) at
+ * delta w omega_c, t/R 0.01, Eco/Esu er, to be written to DIR/name.h5
+ * (path). */
 static tbl_table *coarse_point_table(void **state, const char *name, double w, double er,
                                      char *path, size_t n)
 {
