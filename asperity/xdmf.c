@@ -83,21 +83,25 @@ static stc_status write_h5(const asp_solver *s, const char *path)
         asp_node_u(s, s->u_conv, (int)i, u + 3 * i);
     }
     cell_fields(s, sv);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* library code does not print */
-    hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    STC_CHECK_GOTO(f >= 0, st, done, STC_EIO, "fields: cannot create '%s'", path);
-    int rc = write_ds(f, "/geometry", H5T_NATIVE_DOUBLE, 2, nn, 3, xyz) |
-             write_ds(f, "/topology", H5T_NATIVE_INT, 2, ne, (hsize_t)m->nen, m->conn) |
-             write_ds(f, "/layer", H5T_NATIVE_INT, 1, ne, 1, m->region) |
-             write_ds(f, "/displacement", H5T_NATIVE_DOUBLE, 2, nn, 3, u) | write_params(f, s);
     for (size_t e = 0; e < ne; e++)
         for (int k = 0; k < 6; k++) col[6 * e + k] = sv[8 * e + k];
-    rc |= write_ds(f, "/stress", H5T_NATIVE_DOUBLE, 2, ne, 6, col);
-    for (size_t e = 0; e < ne; e++) col[e] = sv[8 * e + 6];
-    rc |= write_ds(f, "/von_mises", H5T_NATIVE_DOUBLE, 1, ne, 1, col);
-    for (size_t e = 0; e < ne; e++) col[e] = sv[8 * e + 7];
-    rc |= write_ds(f, "/plastic_strain", H5T_NATIVE_DOUBLE, 1, ne, 1, col);
-    rc |= H5Fclose(f) < 0;
+    hid_t f;
+    /* library code does not print: HDF5's error stack stays quiet here only */
+    H5E_BEGIN_TRY { f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK_GOTO(f >= 0, st, done, STC_EIO, "fields: cannot create '%s'", path);
+    int rc = 0;
+    H5E_BEGIN_TRY {
+        rc = write_ds(f, "/geometry", H5T_NATIVE_DOUBLE, 2, nn, 3, xyz) |
+             write_ds(f, "/topology", H5T_NATIVE_INT, 2, ne, (hsize_t)m->nen, m->conn) |
+             write_ds(f, "/layer", H5T_NATIVE_INT, 1, ne, 1, m->region) |
+             write_ds(f, "/displacement", H5T_NATIVE_DOUBLE, 2, nn, 3, u) | write_params(f, s) |
+             write_ds(f, "/stress", H5T_NATIVE_DOUBLE, 2, ne, 6, col);
+        for (size_t e = 0; e < ne; e++) col[e] = sv[8 * e + 6];
+        rc |= write_ds(f, "/von_mises", H5T_NATIVE_DOUBLE, 1, ne, 1, col);
+        for (size_t e = 0; e < ne; e++) col[e] = sv[8 * e + 7];
+        rc |= write_ds(f, "/plastic_strain", H5T_NATIVE_DOUBLE, 1, ne, 1, col);
+        rc |= H5Fclose(f) < 0;
+    } H5E_END_TRY;
     STC_CHECK_GOTO(!rc, st, done, STC_EIO, "fields: writing '%s' failed", path);
 done:
     free(xyz), free(u), free(sv), free(col);

@@ -18,6 +18,7 @@
 #include "stiction/asperity.h"
 #include "stiction/formulas.h"
 #include "data_util.h"
+#include "tmp_util.h"
 
 /* The thesis's Hertz check: R = 10.09 mm, E = 74 GPa, ν = 0.32, elastic
  * (Y far above any stress reached). */
@@ -196,14 +197,21 @@ static void test_fields(void **state)
     (void)state;
     stc_params p;
     asp_solver *s = NULL;
-    char dir[] = "/tmp/stc_fieldsXXXXXX", path[256];
+    char dir[256], path[512];
+    snprintf(dir, sizeof dir, "%s/stc_fieldsXXXXXX", test_tmpdir());
     assert_non_null(mkdtemp(dir));
     stc_params_default(&p);
     p.t_over_R = 0.01, p.E_ratio = 2.0;
     assert_int_equal(asp_solver_create(&p, NULL, 3e-4, &s), STC_OK);
     assert_int_equal(asp_solver_load(s, 3e-4, NULL), STC_OK);
     snprintf(path, sizeof path, "%s/f", dir);
+    H5E_auto2_t fn0 = NULL, fn1 = NULL;
+    void *data0 = NULL, *data1 = NULL;
+    H5Eget_auto2(H5E_DEFAULT, &fn0, &data0);
     assert_int_equal(asp_solver_write_fields(s, path), STC_OK);
+    /* the caller's HDF5 error reporting is left as it was */
+    H5Eget_auto2(H5E_DEFAULT, &fn1, &data1);
+    assert_true(fn0 != NULL && fn1 == fn0 && data1 == data0);
     snprintf(path, sizeof path, "%s/f.xmf", dir);
     FILE *f = fopen(path, "r");
     assert_non_null(f);
@@ -236,6 +244,8 @@ static void test_fields(void **state)
     remove(path);
     snprintf(path, sizeof path, "%s/nodir/f", dir);
     assert_int_equal(asp_solver_write_fields(s, path), STC_EIO);
+    H5Eget_auto2(H5E_DEFAULT, &fn1, &data1);
+    assert_true(fn1 == fn0 && data1 == data0);
     rmdir(dir);
     asp_solver_destroy(&s);
 }
