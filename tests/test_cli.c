@@ -19,10 +19,11 @@
 
 #include "cli_util.h"
 #include "stiction/asperity.h"
+#include "tmp_util.h"
 
 static char cli[PATH_MAX];
-static char ini[64]; /* scratch INI file */
-static char ini_dir[64]; /* scratch directory, given where a file belongs */
+static char ini[256]; /* scratch INI file */
+static char ini_dir[256]; /* scratch directory, given where a file belongs */
 
 static int find_cli(void **state)
 {
@@ -32,8 +33,8 @@ static int find_cli(void **state)
         fprintf(stderr, "test_cli: no executable CLI at '%s' (build it, or set STICTION_CLI)\n", cli);
         return -1;
     }
-    snprintf(ini, sizeof ini, "/tmp/stiction-test-cli-%ld.ini", (long)getpid());
-    snprintf(ini_dir, sizeof ini_dir, "/tmp/stiction-test-cli-%ld.d", (long)getpid());
+    snprintf(ini, sizeof ini, "%s/stiction-test-cli-%ld.ini", test_tmpdir(), (long)getpid());
+    snprintf(ini_dir, sizeof ini_dir, "%s/stiction-test-cli-%ld.d", test_tmpdir(), (long)getpid());
     return mkdir(ini_dir, 0700) == 0 ? 0 : -1;
 }
 
@@ -152,7 +153,7 @@ static void test_bad_delta(void **state)
 static void test_bad_config(void **state)
 {
     (void)state;
-    char args[256];
+    char args[512];
     snprintf(args, sizeof args, "formulas --config %s", ini);
     write_ini("[material]\ncolour = blue\n");
     expect_fail(args, "unknown option 'colour'", NULL);                  /* unknown key */
@@ -179,7 +180,7 @@ static void test_config_directory(void **state)
                                        "surface synth", "surface stats", "surface predict",
                                        "table build",   "table info",    "table query",
                                        "table merge"};
-    char args[256], needle[128], err[4096];
+    char args[512], needle[384], err[4096];
     int bad = 0;
     snprintf(needle, sizeof needle, "config = '%s': is a directory", ini_dir);
     for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
@@ -200,7 +201,7 @@ static void test_config_directory(void **state)
 static void test_suggestions(void **state)
 {
     (void)state;
-    char args[256];
+    char args[512];
     expect_fail("surface predict --presures 1", "unknown option '--presures'",
                 "(did you mean --pressures?)");
     expect_fail("surface predict --presures=1", "unknown option '--presures'",
@@ -245,7 +246,7 @@ static void test_output_file(void **state)
     (void)state;
     char out[128], args[512], buf[256];
     struct stat st;
-    snprintf(out, sizeof out, "/tmp/stiction-test-cli-%ld.json", (long)getpid());
+    snprintf(out, sizeof out, "%s/stiction-test-cli-%ld.json", test_tmpdir(), (long)getpid());
     remove(out);
     snprintf(args, sizeof args, "formulas --json --output %s --delta 1,abc", out);
     assert_int_not_equal(run(args, 2, buf, sizeof buf), 0);
@@ -322,7 +323,7 @@ static void test_curve_3d_graded(void **state)
     (void)state;
     const double ref = 0.3651055, ref3 = 1.8042887;
     const char *base = "asperity --model 3d --delta 1,3 --contact slip";
-    char args[256];
+    char args[512];
     snprintf(args, sizeof args, "%s", base);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
     assert_non_null(strstr(out, "4 elements across every a in ["));
@@ -347,7 +348,7 @@ static void test_curve_3d_graded(void **state)
 static void test_config_override(void **state)
 {
     (void)state;
-    char args[256];
+    char args[512];
     write_ini("; coated case\n[asperity]\nt_over_R = 0.05\nE-ratio = 4\ndelta = 2\n");
     snprintf(args, sizeof args, "formulas --config %s --E-ratio 2 --json", ini);
     assert_int_equal(run(args, 1, out, sizeof out), 0);
@@ -364,7 +365,7 @@ static void test_thickness_mm(void **state)
 {
     (void)state;
     static char ref[1 << 16];
-    char args[256];
+    char args[512];
     const char *cases[][2] = {{"--t-over-R 0.025", "--t-mm 0.25"},
                               {"--R 5 --t-over-R 0.025", "--R 5 --t-mm 0.125"}};
     for (int k = 0; k < 2; k++) {
@@ -429,7 +430,7 @@ static void test_ignored_keys(void **state)
     expect_fail("surface predict --summit-density 100 --summit-radius 0.05 --sigma-s 0.001 "
                 "--pressures 1 --R 5", "R = 5", "--summit-radius");
     const char *h = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --delta 0.5 --cells 32";
-    char args[256];
+    char args[512];
     expect_fail_on(h, "--t-mm 0.1 --Y-co 325", "t-mm = 0.1", "homogeneous");
     expect_fail_on(h, "--E-ratio 2 --Y-co 650", "E-ratio = 2", "homogeneous");
     expect_fail_on(h, "--Y-co 300", "Y-co = 300", "homogeneous");
@@ -518,7 +519,7 @@ static void test_help_layout(void **state)
 static void test_yield_pair(void **state)
 {
     (void)state;
-    char args[256];
+    char args[512];
     expect_fail("formulas --Y-su 1500 --t-over-R 0.01", "Y-su = 1500 given without Y-co",
                 "give the coating's yield strength too");
     expect_fail("formulas --Y-su 1500 --t-mm 0.1", "Y-su = 1500 given without Y-co",
@@ -565,7 +566,7 @@ static void test_halfspace(void **state)
 {
     (void)state;
     const char *w = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325";
-    char args[256];
+    char args[512];
     expect_fail_on(w, "--delta 0.5 --cells 8", "cells = 8", "[16, 4096]");
     expect_fail_on(w, "--delta 0.5 --cells 64.5", "cells = 64.5", "whole number");
     expect_fail_on(w, "--delta 0.5 --span 9", "span = 9", "[1.05, 4]");

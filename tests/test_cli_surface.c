@@ -25,9 +25,10 @@
 
 #include "cli_util.h"
 #include <hdf5.h>
+#include "tmp_util.h"
 
 static char cli[PATH_MAX];
-static char dir[128]; /* scratch directory */
+static char dir[256]; /* scratch directory */
 static char buf[1 << 17];
 
 /* ------------------------------------------------------------ helpers */
@@ -68,7 +69,7 @@ static void assert_no_outputs(const char *args)
 
 static void rm_outputs(void)
 {
-    char cmd[256];
+    char cmd[512];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'/out*", dir);
     assert_int_equal(system(cmd), 0);
 }
@@ -309,7 +310,7 @@ static int setup(void **state)
     }
     snprintf(cli, sizeof cli, "%s", real);
     free(real);
-    snprintf(dir, sizeof dir, "/tmp/stiction-test-cli-surface-%ld", (long)getpid());
+    snprintf(dir, sizeof dir, "%s/stiction-test-cli-surface-%ld", test_tmpdir(), (long)getpid());
     if (mkdir(dir, 0700) != 0) return -1;
     /* one thread per run: the runs are tiny, and the 2 cores are shared */
     setenv("OMP_NUM_THREADS", "1", 1);
@@ -328,7 +329,7 @@ static int setup(void **state)
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[256];
+    char cmd[512];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     return system(cmd) == 0 ? 0 : -1;
 }

@@ -38,8 +38,9 @@
 #include "stiction/formulas.h"
 #include "stiction/params.h"
 #include "stiction/surface.h"
+#include "tmp_util.h"
 
-static char dir[128];  /* scratch directory */
+static char dir[256];  /* scratch directory */
 static long scale = 1; /* STICTION_FUZZ_CASES */
 
 /* ------------------------------------------------------------ helpers */
@@ -713,7 +714,7 @@ static int setup(void **state)
     (void)state;
     const char *e = getenv("STICTION_FUZZ_CASES");
     if (e && *e) scale = strtol(e, NULL, 10) > 0 ? strtol(e, NULL, 10) : 1;
-    snprintf(dir, sizeof dir, "/tmp/stiction-fuzz-XXXXXX");
+    snprintf(dir, sizeof dir, "%s/stiction-fuzz-XXXXXX", test_tmpdir());
     if (!mkdtemp(dir)) return -1;
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* the test's own HDF5 calls may fail quietly */
     (void)cli_capture;                     /* cli_util.h helper this program does not need */

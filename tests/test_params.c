@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "stiction/params.h"
+#include "tmp_util.h"
 
 static void test_defaults(void **state)
 {
@@ -162,7 +163,8 @@ static void write_file(const char *path, const char *text)
 static void test_ini(void **state)
 {
     (void)state;
-    char path[] = "/tmp/stiction-test-XXXXXX.ini";
+    char path[512];
+    snprintf(path, sizeof path, "%s/stiction-test-XXXXXX.ini", test_tmpdir());
     stc_params p;
     stc_params_default(&p);
     int fd = mkstemps(path, 4);

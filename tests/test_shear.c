@@ -27,6 +27,7 @@
 #include "stiction/asperity.h"
 #include "stiction/formulas.h"
 #include "stiction/halfspace.h"
+#include "tmp_util.h"
 
 enum { MAXPT = 256 };
 
@@ -393,9 +394,9 @@ static int cli_run(const char *args, char *buf, size_t n, int want_stderr)
 static void test_cli_errors(void **state)
 {
     (void)state;
-    char buf[4096], dir[128];
+    char buf[4096], dir[256];
     assert_int_equal(cli_locate(cli, sizeof cli), 0);
-    snprintf(dir, sizeof dir, "/tmp/stiction-test-shear-%ld", (long)getpid());
+    snprintf(dir, sizeof dir, "%s/stiction-test-shear-%ld", test_tmpdir(), (long)getpid());
     struct {
         const char *args, *msg;
     } bad[] = {
@@ -432,9 +433,9 @@ static void test_cli_json(void **state)
 {
     (void)state;
     static char buf[1 << 16];
-    char dir[128], args[512], path[256];
+    char dir[256], args[1024], path[512];
     assert_int_equal(cli_locate(cli, sizeof cli), 0);
-    snprintf(dir, sizeof dir, "/tmp/stiction-test-shear-out-%ld", (long)getpid());
+    snprintf(dir, sizeof dir, "%s/stiction-test-shear-out-%ld", test_tmpdir(), (long)getpid());
     snprintf(args, sizeof args,
              "--R 10.5 --E-su 74000 --nu 0.33 --Y-su 325 --Y-co 325 --delta 0.5 --mesh 0 "
              "--threads 1 --criterion stiffness --alpha 0.9 --json --out %s", dir);

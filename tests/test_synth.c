@@ -17,6 +17,7 @@
 #include <hdf5.h>
 
 #include "stiction/surface.h"
+#include "tmp_util.h"
 
 #define PI 3.14159265358979323846
 
@@ -460,7 +461,7 @@ static void test_johnson_map(void **state)
 
 /* ------------------------------------------------------------ files */
 
-static char tmpdir[64];
+static char tmpdir[256];
 
 static void path_in(char *buf, size_t n, const char *name)
 {
@@ -478,7 +479,7 @@ static void write_text(const char *path, const char *text)
 static void test_import_text_detrend(void **state)
 {
     (void)state;
-    char path[128];
+    char path[512];
     path_in(path, sizeof path, "plane.txt");
     FILE *f = fopen(path, "w");
     assert_non_null(f);
@@ -507,7 +508,7 @@ static void test_import_text_detrend(void **state)
 
 static void expect_bad_text(const char *text, const char *needle)
 {
-    char path[128];
+    char path[512];
     path_in(path, sizeof path, "bad.txt");
     write_text(path, text);
     srf_map *m = (srf_map *)path;
@@ -532,7 +533,7 @@ static void test_import_malformed(void **state)
     stc_error_clear();
     assert_int_equal(srf_map_import_text("/nonexistent/x.txt", 0.01, 0.01, 1, &m), STC_EIO);
     assert_non_null(strstr(stc_errmsg(), "/nonexistent/x.txt"));
-    char path[128];
+    char path[512];
     path_in(path, sizeof path, "ok.txt");
     write_text(path, "1 2 3\n4 5 6\n7 8 9\n");
     assert_int_equal(srf_map_import_text(path, -1, 0.01, 1, &m), STC_EINVAL);
@@ -546,7 +547,7 @@ static void test_import_malformed(void **state)
 static void test_h5_roundtrip(void **state)
 {
     (void)state;
-    char path[128];
+    char path[512];
     path_in(path, sizeof path, "map.h5");
     srf_synth_params p = self_affine(64, 48);
     p.non_gaussian = 1;
@@ -581,7 +582,7 @@ static void test_h5_roundtrip(void **state)
                                      c->offset - a->z[j * 64 + i]));
     assert_true(worst < 1e-17);
     /* an imported map stays non-periodic through a write/read cycle */
-    char path2[128];
+    char path2[512];
     srf_map *d = NULL;
     path_in(path2, sizeof path2, "imported.h5");
     assert_int_equal(srf_map_write_h5(c, path2), STC_OK);
@@ -595,7 +596,7 @@ static void test_h5_roundtrip(void **state)
     srf_map_destroy(&a);
 
     /* a failed write leaves nothing behind */
-    char bad[128];
+    char bad[512];
     path_in(bad, sizeof bad, "nodir/x.h5");
     assert_int_equal(srf_synthesize(&p, 1, &a), STC_OK);
     assert_int_equal(srf_map_write_h5(a, bad), STC_EIO);
@@ -608,7 +609,7 @@ static void test_h5_roundtrip(void **state)
 static void test_png(void **state)
 {
     (void)state;
-    char path[128];
+    char path[512];
     path_in(path, sizeof path, "map.png");
     srf_synth_params p = exponential(40, 30, 0.1, 0.1);
     srf_map *m = NULL;
@@ -649,14 +650,14 @@ static void test_png(void **state)
 static int setup(void **state)
 {
     (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/stiction-synth-XXXXXX");
+    snprintf(tmpdir, sizeof tmpdir, "%s/stiction-synth-XXXXXX", test_tmpdir());
     return mkdtemp(tmpdir) ? 0 : -1;
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[128];
+    char cmd[512];
     snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
     return system(cmd) == 0 ? 0 : -1;
 }

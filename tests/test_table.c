@@ -31,6 +31,7 @@
 #include "stiction/surface.h"
 #include "stiction/table.h"
 #include "rand_util.h"
+#include "tmp_util.h"
 
 /* The grid of every table here: w = δ/ωc log-spaced over five decades. */
 #define NW 40
@@ -126,9 +127,9 @@ static tbl_table *hertz_table(double noise, double err, uint64_t seed)
  * works in a subdirectory of its own. */
 static int scratch_setup(void **state)
 {
-    char *dir = malloc(64);
+    char *dir = malloc(4096);
     if (!dir) return -1;
-    snprintf(dir, 64, "/tmp/stiction-table-XXXXXX");
+    snprintf(dir, 4096, "%s/stiction-table-XXXXXX", test_tmpdir());
     if (!mkdtemp(dir)) {
         free(dir);
         return -1;

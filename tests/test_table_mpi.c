@@ -33,6 +33,7 @@
 
 #include "stiction/table.h"
 #include "stiction/table_mpi.h"
+#include "tmp_util.h"
 
 #define AXES "--deltas 0.5,0.7,1 --t-over-R 0.01 --E-ratio 1,2"
 #define FAMILY "--contact slip --elements-per-contact 3 --placements 1 --normal-level 0 --quiet"
@@ -330,8 +331,7 @@ static int setup(void **state)
         fprintf(stderr, "test_table_mpi: no executable CLI at '%s'\n", cli);
         return -1;
     }
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/stiction-mpi-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    snprintf(dir, sizeof dir, "%s/stiction-mpi-XXXXXX", test_tmpdir());
     if (!mkdtemp(dir)) {
         fprintf(stderr, "test_table_mpi: mkdtemp: %s\n", strerror(errno));
         return -1;

@@ -11,14 +11,16 @@
 # (OMP_NUM_THREADS and OPENBLAS_NUM_THREADS = 1 unless set): two
 # single-threaded programs on two cores take about the time of one, while a
 # threaded solver gains 1.5x on two cores and loses more than that when it
-# shares them.  Programs that start several processes of their own give
-# each its own scratch directory.
+# shares them.  Each program gets a scratch directory of its own as TMPDIR,
+# removed with whatever it left there when the run ends; programs that start
+# several processes of their own give each its own directory inside it.
 set -u
 
 if [ "${1:-}" = "--one" ]; then # worker: --one SCRATCH INDEX PROGRAM
     scratch=$2 i=$3 t=$4
     s=$(date +%s.%N)
-    timeout "${STC_TEST_TIMEOUT:-1200}" "$t" > "$scratch/$i.out" 2>&1
+    mkdir "$scratch/$i.tmp" || exit 1
+    TMPDIR="$scratch/$i.tmp" timeout "${STC_TEST_TIMEOUT:-1200}" "$t" > "$scratch/$i.out" 2>&1
     rc=$?
     e=$(date +%s.%N)
     out="$scratch/$i.out"
