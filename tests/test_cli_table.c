@@ -24,6 +24,7 @@
 
 #include "cli_util.h"
 #include "stiction/table.h"
+#include "tmp_util.h"
 
 static char cli[PATH_MAX], dir[256];
 static const char *P(const char *name) { return cli_path(dir, name); }
@@ -166,7 +167,7 @@ static int setup(void **state)
 {
     (void)state;
     if (cli_locate(cli, sizeof cli) != 0) return -1;
-    snprintf(dir, sizeof dir, "/tmp/stiction-test-table-XXXXXX");
+    snprintf(dir, sizeof dir, "%s/stiction-test-table-XXXXXX", test_tmpdir());
     if (!mkdtemp(dir)) return -1;
     ref_pid = start_build("ref.h5", "--jobs 1", P("ref.err"));
     return 0;
@@ -268,6 +269,11 @@ static void test_shards_merge(void **state)
     assert_non_null(strstr(out, "\"pending\": 2"));
     assert_int_equal(run("table merge s0.h5 s1.h5 --out m.h5", 2, out, sizeof out), 0);
     assert_same_results(P("ref.h5"), P("m.h5"));
+    assert_int_equal(run("table merge s0.h5 s1.h5 --out m2.h5 --json", 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_non_null(strstr(out, "\"tables\": 2,"));
+    assert_non_null(strstr(out, "\"pending\": 0"));
+    assert_same_results(P("ref.h5"), P("m2.h5"));
     printf("  shards 0/2 + 1/2 merged equal the serial build\n");
 }
 
@@ -289,7 +295,7 @@ static void test_bad_input(void **state)
     /* a file that is not a table */
     assert_int_equal(run("surface synth --size 16 --out map.h5", 1, out, sizeof out), 0);
     expect_refusal("table info map.h5", 2, "not a friction table", NULL);
-    expect_refusal("table info nosuch.h5", 1, "cannot open", NULL);
+    expect_refusal("table info nosuch.h5", 1, "FILE = 'nosuch.h5': cannot open", NULL);
     expect_refusal("table info .", 1, "is a directory", NULL);
     /* a build onto a table of another build leaves it as it was */
     struct stat before, after;
@@ -310,7 +316,8 @@ static void test_bad_input(void **state)
     assert_int_equal(run("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 " BUILD_NUM
                          " --out other.h5", 1, out, sizeof out), 0);
     expect_refusal("table merge ref.h5 other.h5 --out mm.h5", 2, "another build", NULL);
-    expect_refusal("table merge ref.h5 nosuch.h5 --out mm.h5", 1, "cannot open", NULL);
+    expect_refusal("table merge ref.h5 nosuch.h5 --out mm.h5", 1,
+                   "FILE = 'nosuch.h5': cannot open", NULL);
     assert_false(exists(P("mm.h5")));
     /* a query outside the table: answered, flagged on stderr and in JSON */
     int rc = run("table query ref.h5 --delta 1,5 --t-over-R 0.01 --E-ratio 1.5 --json", 1, out,
@@ -331,6 +338,13 @@ static void test_bad_input(void **state)
     expect_refusal("surface predict --table ref.h5 --model wsp --summit-density 2000 "
                    "--summit-radius 0.07 --sigma-s 0.0004 --pressures 1", 2,
                    "--model conflicts with --table", NULL);
+    /* a missing table: named once, as the parameter */
+    char err[8192];
+    assert_int_equal(run("surface predict --table nosuch.h5 --summit-density 2000 "
+                         "--summit-radius 0.07 --sigma-s 0.0004 --pressures 1", 2, err,
+                         sizeof err), 1);
+    assert_non_null(strstr(err, "table = 'nosuch.h5': cannot open"));
+    assert_null(strstr(err, "nosuch.h5: cannot open"));
 }
 
 /* The coating of a query in mm, as on the other commands: --t-mm MM with
@@ -466,7 +480,12 @@ static void test_refined_build(void **state)
     assert_false(exists(P("bad.h5")));
     assert_int_equal(run("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 " BUILD_NUM
                          " --placements-max 2 --refine-err 0.001 --normal-level -1 --quiet "
-                         "--out refined.h5", 1, out, sizeof out), 0);
+                         "--out refined.h5 --json", 1, out, sizeof out), 0);
+    /* the build's summary as JSON: the one point computed by this run */
+    assert_json(out);
+    assert_non_null(strstr(out, "\"done\": 1,"));
+    assert_non_null(strstr(out, "\"computed\": 1,"));
+    assert_null(strstr(out, "wrote "));
     assert_int_equal(run("table info refined.h5", 1, out, sizeof out), 0);
     printf("%s", out);
     assert_non_null(strstr(out, "refined up to 2 where their standard error exceeds 0.1 %"));

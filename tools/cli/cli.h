@@ -87,6 +87,10 @@ const char *cli_near_best(const cli_near *n);
 
 /* Print "stiction <cmd>: <stc_errmsg()>" (or the status name) to stderr. */
 int cli_fail(const char *cmdname, stc_status s);
+/* The failure s names the parameter: its message becomes "key = 'value': ...",
+ * without the value repeated where the message began with "value: ".  Returns
+ * s; STC_OK and a message already naming key pass unchanged. */
+stc_status cli_name_error(stc_status s, const char *key, const char *value);
 /* Monotonic wall clock, s (progress lines, timings). */
 double cli_now_s(void);
 

@@ -224,12 +224,7 @@ static stc_status make_table_models(const predict_opts *o, const stc_params *p, 
     if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_PRELOAD, out);
     if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_SLIDE, &x->m[0]);
     if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_ERR, &x->m[1]);
-    if (s != STC_OK && strncmp(stc_errmsg(), "table =", 7) != 0) {
-        char msg[1024];
-        snprintf(msg, sizeof msg, "%s", stc_errmsg());
-        s = stc_error(s, __FILE__, __LINE__, "table = '%s': %s", o->table, msg);
-    }
-    return s;
+    return cli_name_error(s, "table", o->table);
 }
 
 static void table_aux_free(table_aux *x)
@@ -327,12 +322,7 @@ static stc_status fill_table(const char *cmd, const predict_opts *o, const stc_p
                 cmd, marked, tbl_points(t), computed, failed, wall, curves, marked - computed);
     free(need);
     tbl_destroy(&t);
-    if (s != STC_OK && strncmp(stc_errmsg(), "table =", 7) != 0) {
-        char msg[1024];
-        snprintf(msg, sizeof msg, "%s", stc_errmsg());
-        s = stc_error(s, __FILE__, __LINE__, "table = '%s': %s", o->table, msg);
-    }
-    return s;
+    return cli_name_error(s, "table", o->table);
 }
 
 /* Per load point with --table: μs's error band and μs with P at inception. */

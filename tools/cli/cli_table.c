@@ -74,7 +74,7 @@ typedef struct {
     double *ax[3];
     int n[3];
     char *out;
-    int quiet, init;
+    int quiet, init, json;
 } build_args;
 
 static const cli_opt build_opts[] = {
@@ -120,6 +120,7 @@ static const cli_opt build_opts[] = {
     {"init", NULL, "compute nothing: write FILE with the points it has (none for a new "
                    "table) for `surface predict --fill` or a later build"},
     {"quiet", NULL, "no progress lines"},
+    {"json", NULL, "print the summary as JSON"},
     CLI_CONFIG_HELP,
     CLI_HEADING("Expert numerics"),
     {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
@@ -199,6 +200,8 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
         else a->bo.shard = i, a->bo.shards = n;
     } else if (!strcmp(key, "quiet")) {
         s = cli_parse_flag(key, value, &a->quiet);
+    } else if (!strcmp(key, "json")) {
+        s = cli_parse_flag(key, value, &a->json);
     } else if (!strcmp(key, "retry-failed")) {
         s = cli_parse_flag(key, value, &a->bo.retry_failed);
     } else if (!strcmp(key, "only-failed")) {
@@ -220,6 +223,52 @@ static void command_line(char *buf, size_t n, const char *cmd, int argc, char **
         size_t l = strlen(buf);
         snprintf(buf + l, n - l, " %s", argv[i]);
     }
+}
+
+/* table build --json: what the text lines say, as one object. */
+static void build_json(const tbl_table *t, const char *out, const tbl_build_summary *sum,
+                       int ranks)
+{
+    int nd, nf, np;
+    tbl_count(t, &nd, &nf, &np);
+    cli_json j;
+    cj_init(&j, stdout);
+    cj_obj(&j, NULL);
+    cj_str(&j, "file", out);
+    cj_int(&j, "points", tbl_points(t));
+    cj_int(&j, "done", nd);
+    cj_int(&j, "failed", nf);
+    cj_int(&j, "pending", np);
+    cj_obj(&j, "this_run");
+    cj_int(&j, "ranks", ranks);
+    cj_int(&j, "share", sum->share);
+    cj_int(&j, "computed", sum->computed);
+    cj_int(&j, "resumed", sum->resumed);
+    cj_num(&j, "wall_s", sum->wall_s);
+    cj_num(&j, "cpu_s_per_point", sum->computed ? sum->cpu_s / sum->computed : 0.0);
+    cj_int(&j, "curves_computed", sum->curves_computed);
+    cj_end_obj(&j);
+    if (tbl_curves(t) > 0) {
+        int cd, cf, cp;
+        tbl_curve_count(t, &cd, &cf, &cp);
+        cj_obj(&j, "normal_grid");
+        cj_int(&j, "curves", tbl_curves(t));
+        cj_int(&j, "done", cd);
+        cj_int(&j, "failed", cf);
+        cj_int(&j, "pending", cp);
+        cj_end_obj(&j);
+    }
+    tbl_fit_info fi;
+    if (tbl_get_fit_info(t, &fi) == STC_OK) {
+        cj_obj(&j, "mu_s_surrogate");
+        cj_int(&j, "points", fi.n);
+        cj_num(&j, "loo_rms", fi.loo_rms);
+        cj_num(&j, "loo_max", fi.loo_max);
+        cj_num(&j, "loo_within_2sd", fi.loo_cover2);
+        cj_end_obj(&j);
+    }
+    cj_end_obj(&j);
+    cj_done(&j);
 }
 
 static int table_build(const cli_cmd *cmd, int argc, char **argv)
@@ -286,6 +335,10 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     }
     int nd, nf, npend;
     tbl_count(t, &nd, &nf, &npend);
+    if (a.json) {
+        build_json(t, a.out, &sum, ranks);
+        goto failed;
+    }
     printf("wrote %s: %d points (%d x %d x %d), %d done, %d failed, %d pending\n", a.out,
            tbl_points(t), a.n[0], a.n[1], a.n[2], nd, nf, npend);
     char on[48] = "";
@@ -304,6 +357,7 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
         printf("mu_s surrogate: %d points, leave-one-out error %.2f %% rms, %.2f %% largest, "
                "%.0f %% within 2 sd\n", fi.n, 100 * fi.loo_rms, 100 * fi.loo_max,
                100 * fi.loo_cover2);
+failed:
     if (nf > 0)
         fprintf(stderr, "stiction %s: %d points failed (no numbers stored for them; "
                 "`stiction table info %s` lists the reasons)\n", cmd->name, nf, a.out);
@@ -359,7 +413,7 @@ static int open_table(const char *cmd, const char *path, tbl_table **t)
                 cmd);
         return CLI_EXIT_USAGE;
     }
-    stc_status s = tbl_read(path, t);
+    stc_status s = cli_name_error(tbl_read(path, t), "FILE", path);
     return s ? cli_fail(cmd, s) : CLI_EXIT_OK;
 }
 
@@ -794,6 +848,7 @@ out:
 
 static const cli_opt merge_opts[] = {
     {"out", "FILE", "the merged table"},
+    {"json", NULL, "print the summary as JSON"},
     {NULL, NULL, NULL},
 };
 
@@ -834,8 +889,22 @@ static int table_merge(const cli_cmd *cmd, int argc, char **argv)
     }
     int nd, nf, np;
     tbl_count(m, &nd, &nf, &np);
-    printf("wrote %s: %d points from %d tables, %d done, %d failed, %d pending\n", q.out,
-           tbl_points(m), n, nd, nf, np);
+    if (q.json) {
+        cli_json j;
+        cj_init(&j, stdout);
+        cj_obj(&j, NULL);
+        cj_str(&j, "file", q.out);
+        cj_int(&j, "tables", n);
+        cj_int(&j, "points", tbl_points(m));
+        cj_int(&j, "done", nd);
+        cj_int(&j, "failed", nf);
+        cj_int(&j, "pending", np);
+        cj_end_obj(&j);
+        cj_done(&j);
+    } else {
+        printf("wrote %s: %d points from %d tables, %d done, %d failed, %d pending\n", q.out,
+               tbl_points(m), n, nd, nf, np);
+    }
     if (np > 0)
         fprintf(stderr, "stiction %s: warning: %d points pending (a shard missing?)\n",
                 cmd->name, np);

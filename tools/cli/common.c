@@ -243,6 +243,18 @@ int cli_fail(const char *cmdname, stc_status s)
     return (s == STC_EINVAL || s == STC_EFORMAT) ? CLI_EXIT_USAGE : CLI_EXIT_FAIL;
 }
 
+stc_status cli_name_error(stc_status s, const char *key, const char *value)
+{
+    char head[64], msg[1024];
+    snprintf(head, sizeof head, "%s = '", key);
+    const char *m = stc_errmsg();
+    if (s == STC_OK || !m || strncmp(m, head, strlen(head)) == 0) return s;
+    size_t n = strlen(value);
+    if (strncmp(m, value, n) == 0 && strncmp(m + n, ": ", 2) == 0) m += n + 2;
+    snprintf(msg, sizeof msg, "%s", m);
+    return stc_error(s, __FILE__, __LINE__, "%s = '%s': %s", key, value, msg);
+}
+
 int cli_parse(const char *cmdname, const char *usage, int argc, char **argv,
               const cli_opt *opts, stc_params *params, cli_set_fn set, void *ctx,
               int *done)
