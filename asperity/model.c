@@ -238,6 +238,10 @@ static stc_status col_init(data_col *c, const asp_model_data *d, int j)
     STC_CHECK(c->lw && c->lp && c->la && (c->lq || !d->Q_Pc), STC_ENOMEM,
               "asp_model: out of memory");
     STC_CALL(col_logs(c->lw, d->w, n, "w", 0));
+    for (int i = 1; i < n; i++) /* GSL's interpolation needs increasing ln w */
+        STC_CHECK(c->lw[i] > c->lw[i - 1], STC_EINVAL,
+                  "w[%d] = %.17g after %.17g: too close to tell apart in ln w", i, d->w[i],
+                  d->w[i - 1]);
     STC_CALL(col_logs(c->lp, d->P_Pc + (size_t)j * n, n, "P_Pc", j));
     STC_CALL(col_logs(c->la, d->A_Ac + (size_t)j * n, n, "A_Ac", j));
     if (d->Q_Pc) STC_CALL(col_logs(c->lq, d->Q_Pc + (size_t)j * n, n, "Q_Pc", j));

@@ -253,6 +253,11 @@ static void test_invalid(void **state)
     w[1] = 1.5;
     P[2] = -3;
     expect_fail(asp_model_create_data(&d, &m), "P_Pc[0][2] = -3");
+    /* increasing, but equal in ln w: refused, not left to GSL (whose default
+     * error handler aborts the program) */
+    P[2] = 3;
+    w[0] = 1e10, w[1] = nextafter(1e10, 2e10), w[2] = 2e10;
+    expect_fail(asp_model_create_data(&d, &m), "too close to tell apart");
     assert_null(m);
 }
 
