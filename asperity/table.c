@@ -383,8 +383,9 @@ static unsigned long long fnv(unsigned long long h, const void *p, size_t n)
 static unsigned long long fnv_d(unsigned long long h, double v) { return fnv(h, &v, sizeof v); }
 static unsigned long long fnv_i(unsigned long long h, int v) { return fnv(h, &v, sizeof v); }
 
-/* The build's points: family, their numerics and the axes. */
-static unsigned long long points_hash(const tbl_table *t)
+/* The build's points: family, their numerics and the axes; the refinement
+ * settings too if `refine` (a table without refinement keeps its hash). */
+static unsigned long long points_hash_of(const tbl_table *t, int refine)
 {
     const tbl_family *f = &t->fam;
     const tbl_numerics *n = &t->num;
@@ -401,7 +402,7 @@ static unsigned long long points_hash(const tbl_table *t)
     /* only the error term the points use: err_single with one member, else
      * err_floor (a table keeps its points when the other default moves) */
     h = fnv_d(h, n->placements == 1 ? n->err_single : n->err_floor);
-    if (n->placements_max > 0) { /* tables without refinement keep their hash */
+    if (refine && n->placements_max > 0) {
         h = fnv_i(h, n->placements_max), h = fnv_d(h, n->refine_err);
         h = fnv_d(h, n->err_floor);
     }
@@ -411,6 +412,8 @@ static unsigned long long points_hash(const tbl_table *t)
     }
     return h;
 }
+
+static unsigned long long points_hash(const tbl_table *t) { return points_hash_of(t, 1); }
 
 unsigned long long tbl_build_hash(const tbl_table *t)
 {
@@ -432,6 +435,26 @@ int tbl_same_points(const tbl_table *a, const tbl_table *b)
 int tbl_same_build(const tbl_table *a, const tbl_table *b)
 {
     return tbl_build_hash(a) == tbl_build_hash(b);
+}
+
+int tbl_refines(const tbl_table *t, const tbl_table *old)
+{
+    const tbl_numerics *n = &t->num, *o = &old->num;
+    return points_hash_of(t, 0) == points_hash_of(old, 0) && n->placements >= 2 &&
+           n->placements_max > 0 &&
+           (o->placements_max == 0 ||
+            (n->placements_max >= o->placements_max && n->refine_err <= o->refine_err &&
+             n->err_floor == o->err_floor));
+}
+
+int tbl_point_refinable(const tbl_numerics *n, const tbl_point *p)
+{
+    if (p->state != TBL_DONE || n->placements_max == 0 || p->members < 2 ||
+        2 * p->members > n->placements_max)
+        return 0;
+    /* the members' standard error of the mean: the stored error without its floor */
+    double fl = n->err_floor * p->mu_s, se2 = p->mu_s_err * p->mu_s_err - fl * fl;
+    return se2 > 0.0 && sqrt(se2) > n->refine_err * p->mu_s;
 }
 
 stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)
@@ -456,9 +479,15 @@ stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)
     }
     double wall = 0.0;
     for (int j = 0; j < n; j++) {
-        for (int i = 0; i < tbl_points(m); i++)
-            if (m->pt[i].state == TBL_PENDING && parts[j]->pt[i].state != TBL_PENDING)
-                m->pt[i] = parts[j]->pt[i];
+        for (int i = 0; i < tbl_points(m); i++) {
+            const tbl_point *q = &parts[j]->pt[i];
+            /* a point refined in one part (a refinement sharded onto a copy
+             * of the whole table) replaces its unrefined self */
+            if ((m->pt[i].state == TBL_PENDING && q->state != TBL_PENDING) ||
+                (m->pt[i].state == TBL_DONE && q->state == TBL_DONE &&
+                 q->members > m->pt[i].members))
+                m->pt[i] = *q;
+        }
         const tbl_normal *g = &parts[j]->nrm;
         for (int c = 0; c < tbl_curves(m); c++)
             if (m->nrm.c[c].state == TBL_PENDING && g->c[c].state != TBL_PENDING)

@@ -199,24 +199,35 @@ static int journal_curve(int fd, const tbl_table *t, int c, const tbl_curve *cv,
 
 /* Points and curves of an existing table at path (same build) join t.  A
  * file without a normal grid (format version 1, say) gives its points to a
- * build that has one, which then computes the curves. */
-static stc_status take_existing(tbl_table *t, const char *path, int *taken, int *taken_curves)
+ * build that has one, which then computes the curves.  A build that adds or
+ * extends refinement (tbl_refines) takes the file's points but leaves those
+ * it refines pending (*reopened of them): each is computed again, from its
+ * first member, as a build with this refinement from the start computes it
+ * (the members are deterministic), so the table ends up as that build's. */
+static stc_status take_existing(tbl_table *t, const char *path, int *taken, int *taken_curves,
+                                int *reopened)
 {
-    *taken = *taken_curves = 0;
+    *taken = *taken_curves = *reopened = 0;
     struct stat st;
     if (stat(path, &st) != 0) return STC_OK;
     tbl_table *old = NULL;
     STC_CALL(tbl_read(path, &old));
-    if (!tbl_same_points(t, old) || (old->nrm.level >= 0 && !tbl_same_normal(t, old))) {
+    int refine = !tbl_same_points(t, old) && tbl_refines(t, old);
+    if ((!tbl_same_points(t, old) && !refine) ||
+        (old->nrm.level >= 0 && !tbl_same_normal(t, old))) {
         tbl_destroy(&old);
         return STC_FAIL(STC_EINVAL, "%s: a table of another build is there (family, numerics "
                         "or axes differ): choose another file or remove it", path);
     }
-    for (int i = 0; i < tbl_points(t); i++)
-        if (t->pt[i].state == TBL_PENDING && old->pt[i].state != TBL_PENDING) {
-            t->pt[i] = old->pt[i];
-            (*taken)++;
+    for (int i = 0; i < tbl_points(t); i++) {
+        if (t->pt[i].state != TBL_PENDING || old->pt[i].state == TBL_PENDING) continue;
+        if (refine && tbl_point_refinable(&t->num, &old->pt[i])) {
+            (*reopened)++;
+            continue;
         }
+        t->pt[i] = old->pt[i];
+        (*taken)++;
+    }
     const tbl_normal *g = &old->nrm;
     for (int c = 0; g->level >= 0 && c < tbl_curves(t); c++)
         if (t->nrm.c[c].state == TBL_PENDING && g->c[c].state != TBL_PENDING &&
@@ -384,10 +395,11 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
 {
     tbl_build_state b = {.t = t, .o = o, .finish = build_finish, .fd = -1, .t0 = wall_now()};
     int from_file = 0, from_journal = 0, cf = 0, cj = 0; /* taken from an earlier run */
+    int reopened = 0; /* done points of the file that this build refines */
     int *todo = NULL;
     unsigned char *need = NULL;
     char jpath[4200];
-    stc_status st = take_existing(t, path, &from_file, &cf);
+    stc_status st = take_existing(t, path, &from_file, &cf, &reopened);
     if (st == STC_OK && snprintf(jpath, sizeof jpath, "%s.journal", path) >= (int)sizeof jpath)
         st = STC_FAIL(STC_EINVAL, "%s: path too long", path);
     if (st == STC_OK) st = journal_open(t, jpath, &b.fd, &from_journal, &cj);
@@ -422,6 +434,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     if (sum) {
         sum->computed = b.computed;
         sum->resumed = b.resumed;
+        sum->reopened = reopened;
         sum->failed = b.failed;
         sum->share = b.total;
         sum->curves_computed = b.curves_computed;

@@ -87,6 +87,15 @@ unsigned long long tbl_build_hash(const tbl_table *t);
 /* The same without the normal grid: the points of a and b are of one build
  * (a file without a normal grid may be completed by one). */
 int tbl_same_points(const tbl_table *a, const tbl_table *b);
+/* t's build is old's with refinement added or extended: the same points but
+ * for the refinement settings, placements >= 2, and t refining at least where
+ * old did (placements_max no lower, refine_err no higher, the same floor). */
+int tbl_refines(const tbl_table *t, const tbl_table *old);
+/* A done point that refinement by n would give more members: at least 2 of
+ * them, twice as many still within n->placements_max, and their standard
+ * error of the mean (the stored error without the floor) above n->refine_err
+ * of μs, as asp_shear_placements_adaptive decides. */
+int tbl_point_refinable(const tbl_numerics *n, const tbl_point *p);
 
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
 

@@ -117,12 +117,8 @@ static void wait_ref(void)
  * computed before it (measured: a shard computing one point alone gives the
  * full build's bits).  Two points computed at once in one process agree only
  * to the solver's tolerances (up to 2.6e-7 relative in mu_s, measured). */
-static void assert_same_results(const char *a, const char *b)
+static double same_points(const tbl_table *ta, const tbl_table *tb)
 {
-    tbl_table *ta = NULL, *tb = NULL;
-    wait_ref();
-    assert_int_equal(tbl_read(a, &ta), STC_OK);
-    assert_int_equal(tbl_read(b, &tb), STC_OK);
     assert_true(tbl_same_build(ta, tb));
     double worst = 0.0;
     for (int i = 0; i < tbl_points(ta); i++) {
@@ -140,6 +136,16 @@ static void assert_same_results(const char *a, const char *b)
         assert_int_equal(p->factorizations, q->factorizations);
         assert_string_equal(p->reason, q->reason);
     }
+    return worst;
+}
+
+static void assert_same_results(const char *a, const char *b)
+{
+    tbl_table *ta = NULL, *tb = NULL;
+    wait_ref();
+    assert_int_equal(tbl_read(a, &ta), STC_OK);
+    assert_int_equal(tbl_read(b, &tb), STC_OK);
+    double worst = same_points(ta, tb);
     assert_int_equal(tbl_curves(ta), tbl_curves(tb));
     assert_true(tbl_curves(ta) > 0);
     const double *w;
@@ -499,6 +505,57 @@ static void test_refined_build(void **state)
     assert_non_null(strstr(out, "\"placements_max\": 2"));
 }
 
+/* Refinement added to a built table: the build onto it computes again only
+ * the points whose members disagree, and the table it writes is, point for
+ * point and bit for bit, the one a build with that refinement from the start
+ * writes; less refinement than the file's is another build. */
+static void test_refine_in_place(void **state)
+{
+    (void)state;
+    char out[8192];
+#define RIP "table build --deltas 0.5,1 --t-over-R 0.01 --E-ratio 1 " BUILD_NUM \
+            " --placements 2 --normal-level -1 --quiet --jobs 1 "
+    assert_int_equal(run(RIP "--out rip.h5", 1, out, sizeof out), 0);
+    tbl_table *t0 = NULL;
+    assert_int_equal(tbl_read(P("rip.h5"), &t0), STC_OK);
+    double se[2]; /* the two points' members' standard errors over mu_s */
+    for (int i = 0; i < 2; i++) {
+        const tbl_point *p = tbl_point_get(t0, i);
+        assert_int_equal(p->members, 2);
+        se[i] = (p->mu_s_max - p->mu_s_min) / 2 / p->mu_s;
+    }
+    tbl_destroy(&t0);
+    /* a threshold between the two: one point refined, the other kept */
+    double x = sqrt(se[0] * se[1]);
+    int more = se[0] > se[1] ? 0 : 1;
+    printf("  members' standard errors %.4f, %.4f of mu_s; refine-err %.4f\n", se[0], se[1], x);
+    assert_true(fabs(log(se[0] / se[1])) > 0.01); /* a threshold well between them */
+    char args[1024];
+    snprintf(args, sizeof args, RIP "--placements-max 4 --refine-err %.6f --json --out rip.h5",
+             x);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    assert_json(out);
+    assert_non_null(strstr(out, "\"reopened\": 1,"));
+    assert_non_null(strstr(out, "\"computed\": 1,"));
+    assert_non_null(strstr(out, "\"resumed\": 1,"));
+    snprintf(args, sizeof args, RIP "--placements-max 4 --refine-err %.6f --out fresh.h5", x);
+    assert_int_equal(run(args, 1, out, sizeof out), 0);
+    tbl_table *ta = NULL, *tb = NULL;
+    assert_int_equal(tbl_read(P("rip.h5"), &ta), STC_OK);
+    assert_int_equal(tbl_read(P("fresh.h5"), &tb), STC_OK);
+    assert_true(same_points(ta, tb) == 0.0);
+    assert_int_equal(tbl_point_get(ta, more)->members, 4);
+    assert_int_equal(tbl_point_get(ta, 1 - more)->members, 2);
+    tbl_destroy(&ta);
+    tbl_destroy(&tb);
+    printf("  refined in place: the build with refinement from the start, bit for bit\n");
+    /* less refinement than the file's, or none: another build */
+    expect_refusal(RIP "--placements-max 4 --refine-err 0.5 --out rip.h5", 2, "another build",
+                   NULL);
+    expect_refusal(RIP "--out rip.h5", 2, "another build", NULL);
+#undef RIP
+}
+
 /* A table with failed points: the prediction runs over the done ones and
  * warns, naming how many failed and where the reasons are. */
 static void test_failed_points_warned(void **state)
@@ -542,6 +599,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_killed_build_resumes),
         cmocka_unit_test(test_shards_merge),
+        cmocka_unit_test(test_refine_in_place),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_query_t_mm),
         cmocka_unit_test(test_fill),

@@ -929,6 +929,21 @@ static void test_merge(void **state)
     assert_true(done == tbl_points(full) - 1 && failed == 1 && pending == 0);
     assert_true(wall == 12.0);
     check_family_equal(full, m);
+    tbl_destroy(&m);
+
+    /* a refinement sharded over two copies of one table: a done point with
+     * more members replaces the other copy's, whichever part has it */
+    tbl_point r = *tbl_point_get(full, 0);
+    assert_int_equal(r.state, TBL_DONE);
+    check_ok(tbl_point_set(part[1], 0, &r), "tbl_point_set copy");
+    r.members *= 2, r.mu_s *= 1.01;
+    check_ok(tbl_point_set(part[1], 0, &r), "tbl_point_set refined");
+    check_ok(tbl_merge(part, 2, &m), "tbl_merge refined");
+    assert_true(tbl_point_get(m, 0)->members == r.members && tbl_point_get(m, 0)->mu_s == r.mu_s);
+    tbl_destroy(&m);
+    tbl_table *rev[2] = {part[1], part[0]};
+    check_ok(tbl_merge(rev, 2, &m), "tbl_merge refined first");
+    assert_true(tbl_point_get(m, 0)->members == r.members && tbl_point_get(m, 0)->mu_s == r.mu_s);
 
     tbl_destroy(&m);
     tbl_destroy(&part[0]);

@@ -246,6 +246,8 @@ STC_API void tbl_build_opts_default(tbl_build_opts *o);
 
 typedef struct tbl_build_summary {
     int computed, resumed, failed, share; /* points of this run, from before, failed, in shard */
+    int reopened; /* done points of an existing file left to this build to refine (a build
+                     that adds or extends refinement: tbl_numerics.placements_max) */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s, cpu_s;    /* this run */
 } tbl_build_summary;
@@ -260,7 +262,12 @@ typedef struct tbl_build_summary {
  * at any moment loses at most the points under way.  At the end the table is
  * written atomically and the journal removed.  The points of t that are not
  * pending stay as they are.  A journal or `path` of another build is refused
- * (STC_EINVAL, naming the difference).  Returns STC_OK when every point of the
+ * (STC_EINVAL, naming the difference), except a `path` built as t but without
+ * t's refinement or with less of it (placements >= 2; placements_max no higher,
+ * refine_err no lower): its points are taken, and those that t's refinement
+ * would give more members are computed again from their first member, so the
+ * table written is the one a build with t's refinement from the start writes
+ * (summary: reopened).  Returns STC_OK when every point of the
  * share is done or failed (failed points are counted in the summary).
  * While a point is computed, OpenBLAS runs on one thread process-wide
  * (restored after; see include/stiction/asperity.h, process-wide state). */
@@ -268,7 +275,9 @@ STC_API stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opt
                              tbl_build_summary *sum);
 
 /* Join tables of one build (shards of it, or partial runs): each point is
- * taken from the table that has it done or failed; new in *out.  Refused
+ * taken from the table that has it done or failed, a done one from the table
+ * where it has the most members (a refinement sharded over copies of one
+ * table); new in *out.  Refused
  * (STC_EINVAL) when the tables are of different builds. */
 STC_API stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out);
 

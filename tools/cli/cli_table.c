@@ -103,7 +103,9 @@ static const cli_opt build_opts[] = {
                         "at K = 2)"},
     {"placements-max", "K", "refine: a point whose members' standard error exceeds --refine-err "
                             "of its mu_s gets twice the placements, halfway between, and again, "
-                            "up to K members; 0 = none (default), else 2 x placements..8"},
+                            "up to K members; 0 = none (default), else 2 x placements..8.  "
+                            "Onto a table built with less refinement (or none): computes again "
+                            "only the points this refines, the rest kept"},
     {"refine-err", "X", "the relative standard error that refines a point, (0, 0.5] (default "
                         "0.04)"},
     CLI_HEADING("Common options"),
@@ -244,6 +246,7 @@ static void build_json(const tbl_table *t, const char *out, const tbl_build_summ
     cj_int(&j, "share", sum->share);
     cj_int(&j, "computed", sum->computed);
     cj_int(&j, "resumed", sum->resumed);
+    cj_int(&j, "reopened", sum->reopened);
     cj_num(&j, "wall_s", sum->wall_s);
     cj_num(&j, "cpu_s_per_point", sum->computed ? sum->cpu_s / sum->computed : 0.0);
     cj_int(&j, "curves_computed", sum->curves_computed);
@@ -346,6 +349,9 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
            "%.1f s wall, %.1f CPU s per point\n", on, sum.computed, sum.share, sum.resumed,
            sum.wall_s, sum.computed ? sum.cpu_s / sum.computed : 0.0);
+    if (sum.reopened > 0)
+        printf("refinement: %d done points of the file computed again, up to %d placements "
+               "(the others kept)\n", sum.reopened, a.num.placements_max);
     if (tbl_curves(t) > 0) {
         int cd, cf, cp;
         tbl_curve_count(t, &cd, &cf, &cp);
