@@ -86,9 +86,10 @@ stc_status tbl_numerics_validate(const tbl_numerics *n)
     STC_CALL(asp_placements_refine_check(n->placements, n->placements_max, n->refine_err));
     STC_CALL(stc_check_range("refine-err", n->refine_err, 0.0, 0, 0.5, 1));
     STC_CHECK(n->elements_per_contact == 0.0 ||
-                  (n->elements_per_contact >= 2.0 && n->elements_per_contact <= 200.0),
+                  (n->elements_per_contact >= 3.0 && n->elements_per_contact <= 200.0),
               STC_EINVAL, "elements-per-contact = %g: must be 0 (the mesh level's) or in "
-              "[2, 200]", n->elements_per_contact);
+              "[3, 200] (the solver's least, and room for the placements above it)",
+              n->elements_per_contact);
     STC_CALL(stc_check_range("err-floor", n->err_floor, 0.0, 1, 0.5, 1));
     STC_CALL(stc_check_range("err-single", n->err_single, 0.0, 0, 0.5, 1));
     STC_CHECK(n->normal_level >= -1 && n->normal_level <= 3, STC_EINVAL,
@@ -440,18 +441,41 @@ int tbl_same_build(const tbl_table *a, const tbl_table *b)
 int tbl_refines(const tbl_table *t, const tbl_table *old)
 {
     const tbl_numerics *n = &t->num, *o = &old->num;
-    return points_hash_of(t, 0) == points_hash_of(old, 0) && n->placements >= 2 &&
-           n->placements_max > 0 &&
+    return points_hash_of(t, 0) == points_hash_of(old, 0) && n->placements_max > 0 &&
            (o->placements_max == 0 ||
             (n->placements_max >= o->placements_max && n->refine_err <= o->refine_err &&
              n->err_floor == o->err_floor));
 }
 
-int tbl_point_refinable(const tbl_numerics *n, const tbl_point *p)
+/* The relative error a single run of point i prints (its shear result's
+ * mu_s_err): asp_mu_s_err_single at δ over the smaller layer's ωc, as the
+ * solver places it (solver.c: omega_est). */
+static double single_run_err(const tbl_table *t, int i)
 {
-    if (p->state != TBL_DONE || n->placements_max == 0 || p->members < 2 ||
+    double w, tR, E;
+    tbl_coords(t, i, &w, &tR, &E);
+    stc_params p;
+    tbl_point_params(&t->fam, tR, E, &p);
+    stc_material su, co;
+    stc_critical c, cc;
+    stc_params_materials(&p, &su, &co);
+    if (stc_critical_eval(&su, p.R, &c) != STC_OK || stc_critical_eval(&co, p.R, &cc) != STC_OK) {
+        stc_error_clear();
+        return NAN;
+    }
+    double omega_y = fmin(c.omega_c, stc_params_t(&p) > 0.0 ? cc.omega_c : c.omega_c);
+    return asp_mu_s_err_single(t->num.foot_rows, 0, w * c.omega_c / omega_y);
+}
+
+int tbl_point_refinable(const tbl_table *t, int i)
+{
+    const tbl_numerics *n = &t->num;
+    const tbl_point *p = &t->pt[i];
+    if (p->state != TBL_DONE || n->placements_max == 0 || p->members < 1 ||
         2 * p->members > n->placements_max)
         return 0;
+    if (p->members == 1) /* one member: its own error, as the build decides */
+        return single_run_err(t, i) > n->refine_err;
     /* the members' standard error of the mean: the stored error without its floor */
     double fl = n->err_floor * p->mu_s, se2 = p->mu_s_err * p->mu_s_err - fl * fl;
     return se2 > 0.0 && sqrt(se2) > n->refine_err * p->mu_s;

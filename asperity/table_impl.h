@@ -88,14 +88,15 @@ unsigned long long tbl_build_hash(const tbl_table *t);
  * (a file without a normal grid may be completed by one). */
 int tbl_same_points(const tbl_table *a, const tbl_table *b);
 /* t's build is old's with refinement added or extended: the same points but
- * for the refinement settings, placements >= 2, and t refining at least where
- * old did (placements_max no lower, refine_err no higher, the same floor). */
+ * for the refinement settings, and t refining at least where old did
+ * (placements_max no lower, refine_err no higher, the same floor). */
 int tbl_refines(const tbl_table *t, const tbl_table *old);
-/* A done point that refinement by n would give more members: at least 2 of
- * them, twice as many still within n->placements_max, and their standard
- * error of the mean (the stored error without the floor) above n->refine_err
- * of μs, as asp_shear_placements_adaptive decides. */
-int tbl_point_refinable(const tbl_numerics *n, const tbl_point *p);
+/* Point i of t is done and t's refinement would give it more members, as
+ * asp_shear_placements_adaptive decides: twice its members still within
+ * placements_max, and their standard error of the mean (the stored error
+ * without the floor; one member: the error its run printed, from the point's
+ * δ over the smaller layer's ωc) above refine_err of μs. */
+int tbl_point_refinable(const tbl_table *t, int i);
 
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
 

@@ -30,6 +30,7 @@
 #include "stiction/model.h"
 #include "stiction/surface.h"
 #include "stiction/table.h"
+#include "table_impl.h" /* the refinement rule of a build onto a table */
 #include "rand_util.h"
 #include "tmp_util.h"
 
@@ -1215,6 +1216,75 @@ static tbl_table *coarse_point_table(void **state, const char *name, double w, d
  * a refined ensemble equals the one made at once: test_shear); with a
  * threshold above its error it keeps its one member, whose numbers are the
  * refined point's first member's. */
+/* Which done points a build that adds refinement computes again: the rule
+ * asp_shear_placements_adaptive applies, read from the stored points; and
+ * which builds count as the file's build with refinement added. */
+static void test_refinable(void **state)
+{
+    (void)state;
+    tbl_family f;
+    tbl_numerics n;
+    tbl_family_default(&f);
+    tbl_numerics_default(&n);
+    const double w[3] = {0.5, 2.0, 10.0}, tR[1] = {0.01}, E[1] = {1.0};
+    tbl_table *old = NULL, *t = NULL, *less = NULL;
+    check_ok(tbl_create(&f, &n, w, 3, tR, 1, E, 1, &old), "tbl_create plain");
+    tbl_numerics r = n;
+    r.placements_max = 8, r.refine_err = 0.04;
+    check_ok(tbl_create(&f, &r, w, 3, tR, 1, E, 1, &t), "tbl_create refined");
+    assert_false(tbl_same_points(t, old));
+    assert_true(tbl_refines(t, old));
+    assert_false(tbl_refines(old, t)); /* none after some: another build */
+    tbl_numerics q = r;
+    q.refine_err = 0.05; /* refining less than t */
+    check_ok(tbl_create(&f, &q, w, 3, tR, 1, E, 1, &less), "tbl_create less");
+    assert_true(tbl_refines(t, less));
+    assert_false(tbl_refines(less, t));
+    q = r, q.placements_max = 4;
+    tbl_destroy(&less);
+    check_ok(tbl_create(&f, &q, w, 3, tR, 1, E, 1, &less), "tbl_create fewer");
+    assert_false(tbl_refines(less, t));
+    tbl_destroy(&less);
+    q = r, q.foot_rows = 0.6; /* other points */
+    check_ok(tbl_create(&f, &q, w, 3, tR, 1, E, 1, &less), "tbl_create rows");
+    assert_false(tbl_refines(less, old));
+    tbl_destroy(&less);
+
+    /* k members, standard error of the mean s (relative), error with the floor */
+    struct { int members; double se; int state, want; } c[] = {
+        {2, 0.050, TBL_DONE, 1},   {2, 0.030, TBL_DONE, 0}, {4, 0.041, TBL_DONE, 1},
+        {8, 0.090, TBL_DONE, 0},   /* 16 would exceed placements_max */
+        {2, 0.090, TBL_FAILED, 0}, {2, 0.090, TBL_PENDING, 0},
+    };
+    for (size_t k = 0; k < sizeof c / sizeof *c; k++) {
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        p.state = c[k].state, p.members = c[k].members, p.mu_s = 0.5;
+        p.mu_s_err = p.mu_s * hypot(c[k].se, r.err_floor);
+        p.mu_s_min = p.mu_s_max = p.mu_s, p.P_Pc = p.A_Ac = 1.0;
+        check_ok(tbl_point_set(t, 1, &p), "tbl_point_set");
+        printf("  %d members, standard error %.3f, %s: %s\n", c[k].members, c[k].se,
+               tbl_state_name(c[k].state), tbl_point_refinable(t, 1) ? "refined" : "kept");
+        assert_int_equal(tbl_point_refinable(t, 1), c[k].want);
+    }
+    /* one member: the error its own run printed, from its δ over ωc (2.6 %
+     * up to first yield, 6.1 % at 2 ωc, 10 % from 3 ωc on) */
+    for (int i = 0; i < 3; i++) {
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        p.state = TBL_DONE, p.members = 1, p.mu_s = 0.5, p.mu_s_err = 0.05;
+        p.mu_s_min = p.mu_s_max = p.mu_s, p.P_Pc = p.A_Ac = 1.0;
+        check_ok(tbl_point_set(t, i, &p), "tbl_point_set one member");
+        double e = asp_mu_s_err_single(0.0, 0, w[i]);
+        printf("  one member at %g omega_c: its run's error %.3f: %s\n", w[i], e,
+               tbl_point_refinable(t, i) ? "refined" : "kept");
+        assert_int_equal(tbl_point_refinable(t, i), e > r.refine_err);
+        assert_int_equal(tbl_point_refinable(t, i), i > 0);
+    }
+    tbl_destroy(&t);
+    tbl_destroy(&old);
+}
+
 static void test_point_refine(void **state)
 {
     (void)state;
@@ -1489,7 +1559,7 @@ int main(void)
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),
         cmocka_unit_test(test_t_over_R_at_axis_ends),
         cmocka_unit_test(test_bundled_table_quadrature), cmocka_unit_test(test_retry_failed),
-        cmocka_unit_test(test_point_refine),
+        cmocka_unit_test(test_point_refine), cmocka_unit_test(test_refinable),
         cmocka_unit_test(test_normal_grid),
         cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_fit_reused),
     };

@@ -56,7 +56,7 @@ STC_API void tbl_family_describe(const tbl_family *f, char *buf, int n);
 typedef struct tbl_numerics {
     int mesh_level;    /* 3D mesh level of asp_options (0 = the default 3D mesh); default 0 */
     double elements_per_contact; /* asp_options.elements_per_contact: 0 = the level's;
-                                    a smaller value (>= 2) makes a quick, coarse table
+                                    a smaller value (>= 3) makes a quick, coarse table
                                     for tests; default 0 */
     int placements;    /* node-placement members averaged per point (asp_shear_placements),
                           in [1, ASP_PLACEMENTS_MAX]; default 2 */
@@ -263,8 +263,8 @@ typedef struct tbl_build_summary {
  * written atomically and the journal removed.  The points of t that are not
  * pending stay as they are.  A journal or `path` of another build is refused
  * (STC_EINVAL, naming the difference), except a `path` built as t but without
- * t's refinement or with less of it (placements >= 2; placements_max no higher,
- * refine_err no lower): its points are taken, and those that t's refinement
+ * t's refinement or with less of it (placements_max no higher, refine_err no
+ * lower, the same err_floor): its points are taken, and those that t's refinement
  * would give more members are computed again from their first member, so the
  * table written is the one a build with t's refinement from the start writes
  * (summary: reopened).  Returns STC_OK when every point of the

@@ -126,7 +126,7 @@ static const cli_opt build_opts[] = {
     CLI_CONFIG_HELP,
     CLI_HEADING("Expert numerics"),
     {"elements-per-contact", "N", "3D elements across the contact: 0 = the mesh level's "
-                                  "(default); a small value (>= 2) gives a quick coarse table"},
+                                  "(default); a small value (3..6) gives a quick coarse table"},
     {"foot-rows", "F", "junction reading of every point: 0 = the three axis lines (default, "
                        "as stiction asperity), F in (0, 0.9] = every node row within F a0 of "
                        "the axis (docs/design.md §4.2, §4.5)"},
