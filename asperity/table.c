@@ -450,7 +450,7 @@ int tbl_refines(const tbl_table *t, const tbl_table *old)
 /* The relative error a single run of point i prints (its shear result's
  * mu_s_err): asp_mu_s_err_single at δ over the smaller layer's ωc, as the
  * solver places it (solver.c: omega_est). */
-static double single_run_err(const tbl_table *t, int i)
+static double single_run_err(const tbl_table *t, const tbl_numerics *n, int i)
 {
     double w, tR, E;
     tbl_coords(t, i, &w, &tR, &E);
@@ -464,21 +464,48 @@ static double single_run_err(const tbl_table *t, int i)
         return NAN;
     }
     double omega_y = fmin(c.omega_c, stc_params_t(&p) > 0.0 ? cc.omega_c : c.omega_c);
-    return asp_mu_s_err_single(t->num.foot_rows, 0, w * c.omega_c / omega_y);
+    return asp_mu_s_err_single(n->foot_rows, 0, w * c.omega_c / omega_y);
 }
 
-int tbl_point_refinable(const tbl_table *t, int i)
+/* Point i of t refined by numerics n (t's, or another refinement of them). */
+static int refinable_by(const tbl_table *t, const tbl_numerics *n, int i)
 {
-    const tbl_numerics *n = &t->num;
     const tbl_point *p = &t->pt[i];
     if (p->state != TBL_DONE || n->placements_max == 0 || p->members < 1 ||
         2 * p->members > n->placements_max)
         return 0;
     if (p->members == 1) /* one member: its own error, as the build decides */
-        return single_run_err(t, i) > n->refine_err;
+        return single_run_err(t, n, i) > n->refine_err;
     /* the members' standard error of the mean: the stored error without its floor */
     double fl = n->err_floor * p->mu_s, se2 = p->mu_s_err * p->mu_s_err - fl * fl;
     return se2 > 0.0 && sqrt(se2) > n->refine_err * p->mu_s;
+}
+
+int tbl_point_refinable(const tbl_table *t, int i) { return refinable_by(t, &t->num, i); }
+
+stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine_err,
+                           int *points, double *cpu_s)
+{
+    STC_CHECK(t && points, STC_EINVAL, "tbl_refine_plan: NULL argument");
+    const tbl_numerics *o = &t->num;
+    STC_CHECK(placements_max > 0, STC_EINVAL, "placements-max = %d: a refinement needs it in "
+              "[%d, %d]", placements_max, 2 * o->placements, ASP_PLACEMENTS_MAX);
+    STC_CALL(asp_placements_refine_check(o->placements, placements_max, refine_err));
+    STC_CHECK(o->placements_max == 0 || placements_max >= o->placements_max, STC_EINVAL,
+              "placements-max = %d: the table refines up to %d already (a build with less "
+              "would be another build)", placements_max, o->placements_max);
+    STC_CHECK(o->placements_max == 0 || refine_err <= o->refine_err, STC_EINVAL,
+              "refine-err = %g: the table refines from %g already (a build refining less "
+              "would be another build)", refine_err, o->refine_err);
+    tbl_numerics n = *o;
+    n.placements_max = placements_max, n.refine_err = refine_err;
+    int k = 0;
+    double c = 0.0;
+    for (int i = 0; i < tbl_points(t); i++)
+        if (refinable_by(t, &n, i)) k++, c += t->pt[i].cpu_s;
+    *points = k;
+    if (cpu_s) *cpu_s = c;
+    return STC_OK;
 }
 
 stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)

@@ -526,6 +526,13 @@ static void test_refine_in_place(void **state)
     tbl_point kept = *tbl_point_get(t0, 0);
     assert_int_equal(kept.members, 1);
     tbl_destroy(&t0);
+    /* what the refinement would compute again, before it runs */
+    assert_int_equal(run("table info rip.h5 --placements-max 2 --refine-err 0.04 --json", 1,
+                         out, sizeof out), 0);
+    assert_json(out);
+    const char *plan = strstr(out, "\"refine_plan\": {");
+    assert_non_null(plan);
+    assert_non_null(strstr(plan, "\"points\": 1,"));
     assert_int_equal(run(RIP RIP_REFINE "--deltas 0.5,2 --json --out rip.h5", 1, out,
                          sizeof out), 0);
     assert_json(out);
@@ -564,6 +571,11 @@ static void test_refine_in_place(void **state)
     expect_refusal(RIP "--placements-max 2 --refine-err 0.5 --deltas 0.5,2 --out rip.h5", 2,
                    "another build", NULL);
     expect_refusal(RIP "--deltas 0.5,2 --out rip.h5", 2, "another build", NULL);
+    expect_refusal("table info rip.h5 --placements-max 2 --refine-err 0.5", 2,
+                   "refine-err = 0.5", "refines from 0.04 already");
+    assert_int_equal(run("table info rip.h5 --placements-max 2 --refine-err 0.04", 1, out,
+                         sizeof out), 0);
+    assert_non_null(strstr(out, "0 of the 2 done points computed again"));
 #undef RIP_REFINE
 #undef RIP
 }

@@ -274,6 +274,14 @@ typedef struct tbl_build_summary {
 STC_API stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opts *o,
                              tbl_build_summary *sum);
 
+/* What a build with refinement up to placements_max members at refine_err
+ * onto t (tbl_build) would compute again: *points done points, whose stored
+ * CPU time sums to *cpu_s (their first members cost that once more; the
+ * members added, at least as much again).  STC_EINVAL for values out of range
+ * or refining less than t already does (that build would be another). */
+STC_API stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine_err,
+                                   int *points, double *cpu_s);
+
 /* Join tables of one build (shards of it, or partial runs): each point is
  * taken from the table that has it done or failed, a done one from the table
  * where it has the most members (a refinement sharded over copies of one

@@ -383,13 +383,24 @@ typedef struct {
     double tR, E;
     double t_mm, R; /* --t-mm with --R: t/R = t_mm / R */
     char *out;
+    int plan_k;      /* info: what a refinement up to plan_k members ... */
+    double plan_x;   /* ... at this error would compute again (0: ASP_REFINE_ERR) */
 } query_args;
+
+/* table info --placements-max K [--refine-err X]: tbl_refine_plan's answer */
+typedef struct {
+    int k, points;
+    double x, cpu_s;
+} refine_plan;
 
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON"},
     {"points", NULL, "print every point's stored values instead, as CSV (one row a point)"},
     {"curves", NULL, "print the normal grid's values instead, as CSV (one row a delta of a "
                      "curve)"},
+    {"placements-max", "K", "also say what a build with refinement up to K members (table "
+                            "build --placements-max) onto this table would compute again"},
+    {"refine-err", "X", "that refinement's threshold (default 0.04)"},
     {NULL, NULL, NULL},
 };
 
@@ -409,6 +420,8 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
     if (!strcmp(key, "R")) return set_num(key, value, 1e-9, 1e6, &q->R);
     if (!strcmp(key, "E-ratio")) return set_num(key, value, 1e-3, 1e3, &q->E);
     if (!strcmp(key, "out")) return cli_set_string(key, value, &q->out);
+    if (!strcmp(key, "placements-max")) return set_int(key, value, 2, ASP_PLACEMENTS_MAX, &q->plan_k);
+    if (!strcmp(key, "refine-err")) return set_num(key, value, 1e-9, 0.5, &q->plan_x);
     return STC_EUNSUPPORTED;
 }
 
@@ -444,7 +457,7 @@ static int member_counts(const tbl_table *t, int count[ASP_PLACEMENTS_MAX + 1])
     return kinds;
 }
 
-static void info_json(const tbl_table *t, const char *path)
+static void info_json(const tbl_table *t, const char *path, const refine_plan *rp)
 {
     cli_json j;
     cj_init(&j, stdout);
@@ -543,6 +556,14 @@ static void info_json(const tbl_table *t, const char *path)
         cj_end_obj(&j);
     }
     cj_end_arr(&j);
+    if (rp) {
+        cj_obj(&j, "refine_plan");
+        cj_int(&j, "placements_max", rp->k);
+        cj_num(&j, "refine_err", rp->x);
+        cj_int(&j, "points", rp->points);
+        cj_num(&j, "their_cpu_s", rp->cpu_s);
+        cj_end_obj(&j);
+    }
     cj_end_obj(&j);
     cj_done(&j);
 }
@@ -584,7 +605,7 @@ static void info_normal_text(const tbl_table *t)
     }
 }
 
-static void info_text(const tbl_table *t, const char *path)
+static void info_text(const tbl_table *t, const char *path, const refine_plan *rp)
 {
     tbl_family f;
     tbl_numerics n;
@@ -638,6 +659,11 @@ static void info_text(const tbl_table *t, const char *path)
         tbl_coords(t, i, &w, &tR, &E);
         printf("  FAILED delta %g, t/R %g, E-ratio %g: %s\n", w, tR, E, p->reason);
     }
+    if (rp)
+        printf("  refinement up to %d placements where the members' standard error exceeds "
+               "%g of mu_s: %d of the %d done points computed again (their first members "
+               "took %.0f CPU s; the members added, at least as much again)\n", rp->k, rp->x,
+               rp->points, nd, rp->cpu_s);
 }
 
 /* --points: the stored values of every point, CSV. */
@@ -709,11 +735,20 @@ static int table_info(const cli_cmd *cmd, int argc, char **argv)
                 cmd->name, q.json ? "--json" : "--points", q.curves ? "--curves" : "--points");
         rc = CLI_EXIT_USAGE;
     }
-    if (!rc && !done && !(rc = open_table(cmd->name, path, &t))) {
+    if (!rc && !done && q.plan_x > 0.0 && q.plan_k == 0) {
+        fprintf(stderr, "stiction %s: --refine-err needs --placements-max\n", cmd->name);
+        rc = CLI_EXIT_USAGE;
+    }
+    refine_plan rp = {q.plan_k, 0, q.plan_x > 0.0 ? q.plan_x : ASP_REFINE_ERR, 0.0};
+    if (!rc && !done && !(rc = open_table(cmd->name, path, &t)) && rp.k > 0) {
+        stc_status s = tbl_refine_plan(t, rp.k, rp.x, &rp.points, &rp.cpu_s);
+        if (s) rc = cli_fail(cmd->name, s);
+    }
+    if (!rc && !done && t) {
         if (q.points) info_points(t);
         else if (q.curves) info_curves(t);
-        else if (q.json) info_json(t, path);
-        else info_text(t, path);
+        else if (q.json) info_json(t, path, rp.k > 0 ? &rp : NULL);
+        else info_text(t, path, rp.k > 0 ? &rp : NULL);
     }
     tbl_destroy(&t);
     free(q.w);
