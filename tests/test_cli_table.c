@@ -311,7 +311,7 @@ static void test_bad_input(void **state)
     assert_int_equal(stat(P("ref.h5"), &after), 0);
     assert_true(before.st_mtime == after.st_mtime && before.st_size == after.st_size);
     expect_refusal("table build --deltas 1,0.5 --t-over-R 0.01 --E-ratio 1 --out x.h5", 2,
-                   "must increase", NULL);
+                   "deltas = '1,0.5'", "must increase");
     expect_refusal("table build --deltas 1 --t-over-R 0.01 --out x.h5", 2, "E-ratio: missing",
                    NULL);
     expect_refusal("table build " BUILD_AXES " --shard 2/2 --out x.h5", 2, "shard = '2/2'",

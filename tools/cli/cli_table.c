@@ -73,6 +73,7 @@ typedef struct {
     tbl_build_opts bo;
     double *ax[3];
     int n[3];
+    char *ax_s[3]; /* the axes as given, for messages */
     char *out;
     int quiet, init, json;
 } build_args;
@@ -140,6 +141,8 @@ static stc_status set_axis(build_args *a, int k, const char *key, const char *va
 {
     free(a->ax[k]);
     a->ax[k] = NULL;
+    free(a->ax_s[k]);
+    a->ax_s[k] = strdup(value);
     return cli_parse_list(key, value, &a->ax[k], &a->n[k]);
 }
 
@@ -307,6 +310,11 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     }
     stc_status s = tbl_create(&a.fam, &a.num, a.ax[0], a.n[0], a.ax[1], a.n[1], a.ax[2],
                               a.n[2], &t);
+    /* an axis the library refused: named as the option that gave it */
+    static const char *const axn[3] = {"delta/omega_c = ", "t/R = ", "E-ratio = "};
+    for (int k = 0; s && k < 3; k++)
+        if (!strncmp(stc_errmsg(), axn[k], strlen(axn[k])) && a.ax_s[k])
+            s = cli_name_error(s, axk[k], a.ax_s[k]);
     if (s) {
         rc = cli_fail(cmd->name, s);
         goto out;
@@ -369,7 +377,7 @@ failed:
                 "`stiction table info %s` lists the reasons)\n", cmd->name, nf, a.out);
 out:
     tbl_destroy(&t);
-    for (int k = 0; k < 3; k++) free(a.ax[k]);
+    for (int k = 0; k < 3; k++) free(a.ax[k]), free(a.ax_s[k]);
     free(a.out);
     return rc;
 }
