@@ -541,7 +541,9 @@ static void test_refine_in_place(void **state)
     assert_non_null(strstr(out, "\"resumed\": 1,"));
     /* the refined point against the same point built with the refinement
      * from the start (alone: the same computation as in a full build) */
-    assert_int_equal(run(RIP RIP_REFINE "--deltas 2 --out fresh.h5", 1, out, sizeof out), 0);
+    assert_int_equal(run(RIP RIP_REFINE "--deltas 2 --quiet=no --out fresh.h5", 2, out,
+                         sizeof out), 0);
+    assert_non_null(strstr(out, ", 2 placements (")); /* the progress line says how far */
     tbl_table *ta = NULL, *tb = NULL;
     assert_int_equal(tbl_read(P("rip.h5"), &ta), STC_OK);
     assert_int_equal(tbl_read(P("fresh.h5"), &tb), STC_OK);

@@ -46,7 +46,12 @@ int cli_table_progress_line(void *ctx, const tbl_progress *p)
     char el[32], eta[32], mu[64];
     fmt_dur(p->elapsed_s, el, sizeof el);
     fmt_dur(p->eta_s, eta, sizeof eta);
-    if (p->point->state == TBL_DONE)
+    tbl_numerics n;
+    tbl_get_numerics(c->t, &n);
+    if (p->point->state == TBL_DONE && n.placements_max > 0) /* how far it was refined */
+        snprintf(mu, sizeof mu, "mu_s %.4f +- %.4f, %d placements", p->point->mu_s,
+                 p->point->mu_s_err, p->point->members);
+    else if (p->point->state == TBL_DONE)
         snprintf(mu, sizeof mu, "mu_s %.4f +- %.4f", p->point->mu_s, p->point->mu_s_err);
     else snprintf(mu, sizeof mu, "FAILED");
     fprintf(stderr, "%s[%d/%d] delta %g t/R %g E-ratio %g: %s (%.1f s); elapsed %s, eta %s%s",
