@@ -575,6 +575,10 @@ static void test_refine_in_place(void **state)
     expect_refusal(RIP "--deltas 0.5,2 --out rip.h5", 2, "another build", NULL);
     expect_refusal("table info rip.h5 --placements-max 2 --refine-err 0.5", 2,
                    "refine-err = 0.5", "refines from 0.04 already");
+    expect_refusal("table info rip.h5 --placements-max 4 --points", 2,
+                   "--placements-max conflicts with --points", NULL);
+    expect_refusal("table info rip.h5 --refine-err 0.01", 2,
+                   "--refine-err needs --placements-max", NULL);
     assert_int_equal(run("table info rip.h5 --placements-max 2 --refine-err 0.04", 1, out,
                          sizeof out), 0);
     assert_non_null(strstr(out, "0 of the 2 done points computed again"));

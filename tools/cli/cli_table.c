@@ -743,6 +743,11 @@ static int table_info(const cli_cmd *cmd, int argc, char **argv)
                 cmd->name, q.json ? "--json" : "--points", q.curves ? "--curves" : "--points");
         rc = CLI_EXIT_USAGE;
     }
+    if (!rc && !done && q.plan_k > 0 && q.points + q.curves > 0) {
+        fprintf(stderr, "stiction %s: --placements-max conflicts with %s: the plan is part of "
+                "the summary (text or --json)\n", cmd->name, q.points ? "--points" : "--curves");
+        rc = CLI_EXIT_USAGE;
+    }
     if (!rc && !done && q.plan_x > 0.0 && q.plan_k == 0) {
         fprintf(stderr, "stiction %s: --refine-err needs --placements-max\n", cmd->name);
         rc = CLI_EXIT_USAGE;
