@@ -9,6 +9,8 @@
    The wall time of reading the table, which rebuilds its mu_s surrogate
    (from the stored hyperparameters when its points are those they were
    fitted to, else by a search), with the surrogate's leave-one-out error.
+   What refining it in place would cost (`table info --placements-max 8
+   --refine-err X`): the points computed again and their recorded CPU time.
 2. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
    one table point at the thesis family's settings run by `stiction asperity
    --shear` with the normal step and the shear ramp timed apart (the normal
@@ -62,6 +64,21 @@ def table_costs(cli, path):
                  statistics.mean(int(r["factorizations"]) for r in sel)))
 
 
+def refine_costs(cli, path):
+    """the points a refinement up to 8 placements would compute again"""
+    parts = []
+    for x in (0.04, 0.08):
+        p = subprocess.run([cli, "table", "info", path, "--placements-max", "8",
+                            "--refine-err", str(x), "--json"], capture_output=True, text=True)
+        if p.returncode != 0:  # a table refined further already: nothing to plan
+            return
+        r = json.loads(p.stdout)["refine_plan"]
+        parts.append("%d points at %g (their first members %.0f CPU s)"
+                     % (r["points"], x, r["their_cpu_s"]))
+    print("  refined in place up to 8 placements: " + "; ".join(parts)
+          + "; the members added cost at least as much again")
+
+
 def curve_costs(cli, path):
     info = json.loads(run([cli, "table", "info", path, "--json"]))
     g = info.get("normal_grid", {})
@@ -92,6 +109,7 @@ def main():
     tables = sys.argv[2:] or sorted(glob.glob("data/tables/*.h5"))
     for t in tables:
         table_costs(cli, t)
+        refine_costs(cli, t)
         curve_costs(cli, t)
     normal_share(cli)
     print("  solver reuse kept: none. A shared normal loading run per column could save at "
