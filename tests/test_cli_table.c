@@ -533,6 +533,16 @@ static void test_refine_in_place(void **state)
     const char *plan = strstr(out, "\"refine_plan\": {");
     assert_non_null(plan);
     assert_non_null(strstr(plan, "\"points\": 1,"));
+    /* the same refinement sharded over two copies of the file, then merged */
+    char cmd[3 * PATH_MAX];
+    snprintf(cmd, sizeof cmd, "cp '%s' '%s' && cp '%s' '%s'", P("rip.h5"), P("r0.h5"),
+             P("rip.h5"), P("r1.h5"));
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(run(RIP RIP_REFINE "--deltas 0.5,2 --shard 0/2 --out r0.h5", 1, out,
+                         sizeof out), 0);
+    assert_int_equal(run(RIP RIP_REFINE "--deltas 0.5,2 --shard 1/2 --out r1.h5", 1, out,
+                         sizeof out), 0);
+    assert_int_equal(run("table merge r0.h5 r1.h5 --out rm.h5", 1, out, sizeof out), 0);
     assert_int_equal(run(RIP RIP_REFINE "--deltas 0.5,2 --json --out rip.h5", 1, out,
                          sizeof out), 0);
     assert_json(out);
@@ -565,10 +575,15 @@ static void test_refine_in_place(void **state)
     tbl_numerics nu;
     tbl_get_numerics(ta, &nu);
     assert_true(nu.placements_max == 2 && nu.refine_err == 0.04);
+    const double mu = f->mu_s, err = f->mu_s_err; /* f is tb's */
+    tbl_destroy(&tb);
+    assert_int_equal(tbl_read(P("rm.h5"), &tb), STC_OK); /* the sharded refinement */
+    assert_true(same_points(ta, tb) == 0.0);
     tbl_destroy(&ta);
     tbl_destroy(&tb);
     printf("  refined in place: the point at 2 omega_c computed again (%.6f +- %.6f), equal "
-           "to the refined build's bit for bit; the one at 0.5 kept\n", f->mu_s, f->mu_s_err);
+           "to the refined build's bit for bit; the one at 0.5 kept; two shards of the "
+           "refinement merged: the same table\n", mu, err);
     /* less refinement than the file's, or none: another build */
     expect_refusal(RIP "--placements-max 2 --refine-err 0.5 --deltas 0.5,2 --out rip.h5", 2,
                    "another build", NULL);

@@ -246,8 +246,9 @@ STC_API void tbl_build_opts_default(tbl_build_opts *o);
 
 typedef struct tbl_build_summary {
     int computed, resumed, failed, share; /* points of this run, from before, failed, in shard */
-    int reopened; /* done points of an existing file left to this build to refine (a build
-                     that adds or extends refinement: tbl_numerics.placements_max) */
+    int reopened; /* done points of an existing file re-opened to refine (a build that adds
+                     or extends refinement: tbl_numerics.placements_max), in every shard;
+                     this run computes those of its share */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s, cpu_s;    /* this run */
 } tbl_build_summary;

@@ -358,8 +358,9 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
            "%.1f s wall, %.1f CPU s per point\n", on, sum.computed, sum.share, sum.resumed,
            sum.wall_s, sum.computed ? sum.cpu_s / sum.computed : 0.0);
     if (sum.reopened > 0)
-        printf("refinement: %d done points of the file computed again, up to %d placements "
-               "(the others kept)\n", sum.reopened, a.num.placements_max);
+        printf("refinement: %d done points of the file re-opened for up to %d placements "
+               "(the others kept; a shard computes those of its share)\n", sum.reopened,
+               a.num.placements_max);
     if (tbl_curves(t) > 0) {
         int cd, cf, cp;
         tbl_curve_count(t, &cd, &cf, &cp);
