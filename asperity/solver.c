@@ -128,6 +128,18 @@ static stc_status alloc_state(asp_solver *s)
     return STC_OK;
 }
 
+stc_status asp_omega_yield(const stc_params *p, double *omega_y)
+{
+    STC_CHECK(p && omega_y, STC_EINVAL, "asp_omega_yield: NULL argument");
+    stc_material su, co;
+    stc_critical c, cc;
+    stc_params_materials(p, &su, &co);
+    STC_CALL(stc_critical_eval(&su, p->R, &c));
+    STC_CALL(stc_critical_eval(&co, p->R, &cc));
+    *omega_y = fmin(c.omega_c, stc_params_t(p) > 0.0 ? cc.omega_c : c.omega_c);
+    return STC_OK;
+}
+
 /* Contact sizes for a mesh loaded up to delta_max: the layers' material
  * laws, R', a_max (the largest contact, with a safety factor), the
  * first-yield estimate and a_min (the smallest contact a load curve past
@@ -150,9 +162,7 @@ static stc_status size_contact(asp_solver *s, double delta_max)
     s->a_max = safety * sqrt(s->Rp * delta_max);
     /* a load curve past first yield also resolves the contact at yield
      * (0.8 of the smaller layer's ωc; for a coating in stick δc1 ≈ ωc_co) */
-    stc_critical cc;
-    STC_CALL(stc_critical_eval(&co, s->par.R, &cc));
-    s->omega_est = fmin(c.omega_c, t > 0.0 ? cc.omega_c : c.omega_c);
+    STC_CALL(asp_omega_yield(&s->par, &s->omega_est));
     double dres = 0.8 * s->omega_est;
     s->a_min = delta_max > 2.0 * dres ? 1.1 * sqrt(s->Rp * dres) : s->a_max;
     return STC_OK;

@@ -448,27 +448,24 @@ int tbl_refines(const tbl_table *t, const tbl_table *old)
 }
 
 /* The relative error a single run of point i prints (its shear result's
- * mu_s_err): asp_mu_s_err_single at δ over the smaller layer's ωc, as the
- * solver places it (solver.c: omega_est). */
+ * mu_s_err): asp_mu_s_err_single at δ = w ωc_su over asp_omega_yield. */
 static double single_run_err(const tbl_table *t, const tbl_numerics *n, int i)
 {
-    double w, tR, E;
+    double w, tR, E, omega_y;
     tbl_coords(t, i, &w, &tR, &E);
     stc_params p;
     tbl_point_params(&t->fam, tR, E, &p);
-    stc_material su, co;
-    stc_critical c, cc;
-    stc_params_materials(&p, &su, &co);
-    if (stc_critical_eval(&su, p.R, &c) != STC_OK || stc_critical_eval(&co, p.R, &cc) != STC_OK) {
+    stc_material su;
+    stc_critical c;
+    stc_params_materials(&p, &su, NULL);
+    if (stc_critical_eval(&su, p.R, &c) != STC_OK || asp_omega_yield(&p, &omega_y) != STC_OK) {
         stc_error_clear();
         return NAN;
     }
-    double omega_y = fmin(c.omega_c, stc_params_t(&p) > 0.0 ? cc.omega_c : c.omega_c);
     return asp_mu_s_err_single(n->foot_rows, 0, w * c.omega_c / omega_y);
 }
 
-/* Point i of t refined by numerics n (t's, or another refinement of them). */
-static int refinable_by(const tbl_table *t, const tbl_numerics *n, int i)
+int tbl_point_refinable(const tbl_table *t, const tbl_numerics *n, int i)
 {
     const tbl_point *p = &t->pt[i];
     if (p->state != TBL_DONE || n->placements_max == 0 || p->members < 1 ||
@@ -480,8 +477,6 @@ static int refinable_by(const tbl_table *t, const tbl_numerics *n, int i)
     double fl = n->err_floor * p->mu_s, se2 = p->mu_s_err * p->mu_s_err - fl * fl;
     return se2 > 0.0 && sqrt(se2) > n->refine_err * p->mu_s;
 }
-
-int tbl_point_refinable(const tbl_table *t, int i) { return refinable_by(t, &t->num, i); }
 
 stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine_err,
                            int *points, double *cpu_s)
@@ -502,7 +497,7 @@ stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine
     int k = 0;
     double c = 0.0;
     for (int i = 0; i < tbl_points(t); i++)
-        if (refinable_by(t, &n, i)) k++, c += t->pt[i].cpu_s;
+        if (tbl_point_refinable(t, &n, i)) k++, c += t->pt[i].cpu_s;
     *points = k;
     if (cpu_s) *cpu_s = c;
     return STC_OK;

@@ -221,12 +221,11 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
     }
     for (int i = 0; i < tbl_points(t); i++) {
         if (t->pt[i].state != TBL_PENDING || old->pt[i].state == TBL_PENDING) continue;
-        t->pt[i] = old->pt[i];
-        if (refine && tbl_point_refinable(t, i)) { /* by t's refinement */
-            memset(&t->pt[i], 0, sizeof t->pt[i]); /* pending again */
+        if (refine && tbl_point_refinable(old, &t->num, i)) { /* by t's refinement */
             (*reopened)++;
             continue;
         }
+        t->pt[i] = old->pt[i];
         (*taken)++;
     }
     const tbl_normal *g = &old->nrm;

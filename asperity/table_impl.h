@@ -91,12 +91,13 @@ int tbl_same_points(const tbl_table *a, const tbl_table *b);
  * for the refinement settings, and t refining at least where old did
  * (placements_max no lower, refine_err no higher, the same floor). */
 int tbl_refines(const tbl_table *t, const tbl_table *old);
-/* Point i of t is done and t's refinement would give it more members, as
- * asp_shear_placements_adaptive decides: twice its members still within
- * placements_max, and their standard error of the mean (the stored error
- * without the floor; one member: the error its run printed, from the point's
- * δ over the smaller layer's ωc) above refine_err of μs. */
-int tbl_point_refinable(const tbl_table *t, int i);
+/* Point i of t is done and the refinement of numerics n (t's, or one that
+ * extends it) would give it more members, as asp_shear_placements_adaptive
+ * decides: twice its members still within placements_max, and their standard
+ * error of the mean (the stored error without the floor; one member: the
+ * error its run printed, from the point's δ over asp_omega_yield) above
+ * refine_err of μs. */
+int tbl_point_refinable(const tbl_table *t, const tbl_numerics *n, int i);
 
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
 

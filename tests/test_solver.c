@@ -192,6 +192,30 @@ static void test_errors(void **state)
     asp_solver_destroy(&s);
 }
 
+/* The first-yield interference of a sphere: the substrate's ωc uncoated,
+ * the smaller of the layers' ωc (each as a whole sphere) coated. */
+static void test_omega_yield(void **state)
+{
+    (void)state;
+    stc_params p;
+    stc_material su, co;
+    stc_critical c, cc;
+    double w;
+    stc_params_default(&p);
+    stc_params_materials(&p, &su, &co);
+    assert_int_equal(stc_critical_eval(&su, p.R, &c), STC_OK);
+    assert_int_equal(asp_omega_yield(&p, &w), STC_OK);
+    assert_true(w == c.omega_c);
+    p.t_over_R = 0.01, p.E_ratio = 2.0, p.Y_su = 200.0, p.Y_co = 300.0; /* coating yields first */
+    stc_params_materials(&p, &su, &co);
+    assert_int_equal(stc_critical_eval(&su, p.R, &c), STC_OK);
+    assert_int_equal(stc_critical_eval(&co, p.R, &cc), STC_OK);
+    assert_true(cc.omega_c < c.omega_c);
+    assert_int_equal(asp_omega_yield(&p, &w), STC_OK);
+    assert_true(w == cc.omega_c);
+    assert_int_equal(asp_omega_yield(NULL, &w), STC_EINVAL);
+}
+
 static void test_fields(void **state)
 {
     (void)state;
@@ -823,7 +847,7 @@ int main(void)
         cmocka_unit_test(test_hertz),       cmocka_unit_test(test_hertz_convergence),
         cmocka_unit_test(test_yield_slip),  cmocka_unit_test(test_yield_stick),
         cmocka_unit_test(test_coated_first_yield), cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_fields),      cmocka_unit_test(test_smooth_load),
+        cmocka_unit_test(test_omega_yield), cmocka_unit_test(test_fields),      cmocka_unit_test(test_smooth_load),
         cmocka_unit_test(test_smooth_tail),
         cmocka_unit_test(test_3d_vs_axisym),
         cmocka_unit_test(test_hanging_nodes), cmocka_unit_test(test_elements_per_contact),

@@ -1264,8 +1264,8 @@ static void test_refinable(void **state)
         p.mu_s_min = p.mu_s_max = p.mu_s, p.P_Pc = p.A_Ac = 1.0;
         check_ok(tbl_point_set(t, 1, &p), "tbl_point_set");
         printf("  %d members, standard error %.3f, %s: %s\n", c[k].members, c[k].se,
-               tbl_state_name(c[k].state), tbl_point_refinable(t, 1) ? "refined" : "kept");
-        assert_int_equal(tbl_point_refinable(t, 1), c[k].want);
+               tbl_state_name(c[k].state), tbl_point_refinable(t, &r, 1) ? "refined" : "kept");
+        assert_int_equal(tbl_point_refinable(t, &r, 1), c[k].want);
     }
     /* one member: the error its own run printed, from its δ over ωc (2.6 %
      * up to first yield, 6.1 % at 2 ωc, 10 % from 3 ωc on) */
@@ -1277,9 +1277,9 @@ static void test_refinable(void **state)
         check_ok(tbl_point_set(t, i, &p), "tbl_point_set one member");
         double e = asp_mu_s_err_single(0.0, 0, w[i]);
         printf("  one member at %g omega_c: its run's error %.3f: %s\n", w[i], e,
-               tbl_point_refinable(t, i) ? "refined" : "kept");
-        assert_int_equal(tbl_point_refinable(t, i), e > r.refine_err);
-        assert_int_equal(tbl_point_refinable(t, i), i > 0);
+               tbl_point_refinable(t, &r, i) ? "refined" : "kept");
+        assert_int_equal(tbl_point_refinable(t, &r, i), e > r.refine_err);
+        assert_int_equal(tbl_point_refinable(t, &r, i), i > 0);
     }
     tbl_destroy(&t);
     tbl_destroy(&old);

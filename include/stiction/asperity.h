@@ -476,6 +476,11 @@ enum { ASP_PLACEMENTS_MAX = 8 };
  * of the softer-yielding layer (the smaller ωc of the two layers as if
  * each were the whole sphere; ωc of a homogeneous sphere).  Pure. */
 STC_API double asp_mu_s_err_single(double foot_rows, int edge_refine, double delta_over_omega);
+/* That first-yield interference of p's sphere, mm: the smaller ωc of the
+ * two layers as if each were the whole sphere (the substrate's when
+ * uncoated); the solver's estimate, which also sizes a load curve's
+ * smallest contact. */
+STC_API stc_status asp_omega_yield(const stc_params *p, double *omega_y);
 
 typedef struct asp_placement_member {
     double elements_per_contact;

@@ -465,7 +465,8 @@ int cli_asperity(const cli_cmd *cmd, int argc, char **argv)
                     a.o.edge_refine);
             rc = CLI_EXIT_USAGE;
         } else if (!a.delta) {
-            fprintf(stderr, "stiction %s: one of --delta, --delta-mm or --load is required\n", cmd->name);
+            fprintf(stderr, "stiction %s: one of --delta, --delta-mm or --load is required\n",
+                    cmd->name);
             rc = CLI_EXIT_USAGE;
         } else {
             rc = run(cmd->name, &p, &a);

@@ -277,6 +277,41 @@ static void build_json(const tbl_table *t, const char *out, const tbl_build_summ
     cj_done(&j);
 }
 
+/* table build: the summary as text lines. */
+static void build_text(const tbl_table *t, const char *out, const tbl_build_summary *sum,
+                       int ranks)
+{
+    int nd, nf, np;
+    tbl_count(t, &nd, &nf, &np);
+    const double *v;
+    int n0 = tbl_axis(t, 0, &v), n1 = tbl_axis(t, 1, &v), n2 = tbl_axis(t, 2, &v);
+    printf("wrote %s: %d points (%d x %d x %d), %d done, %d failed, %d pending\n", out,
+           tbl_points(t), n0, n1, n2, nd, nf, np);
+    char on[48] = "";
+    if (ranks > 1) snprintf(on, sizeof on, " (on %d MPI ranks)", ranks);
+    printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
+           "%.1f s wall, %.1f CPU s per point\n", on, sum->computed, sum->share, sum->resumed,
+           sum->wall_s, sum->computed ? sum->cpu_s / sum->computed : 0.0);
+    if (sum->reopened > 0) {
+        tbl_numerics nu;
+        tbl_get_numerics(t, &nu);
+        printf("refinement: %d done points of the file re-opened for up to %d placements "
+               "(the others kept; a shard computes those of its share)\n", sum->reopened,
+               nu.placements_max);
+    }
+    if (tbl_curves(t) > 0) {
+        int cd, cf, cp;
+        tbl_curve_count(t, &cd, &cf, &cp);
+        printf("normal grid: %d curves, %d done, %d failed, %d pending; this run computed %d\n",
+               tbl_curves(t), cd, cf, cp, sum->curves_computed);
+    }
+    tbl_fit_info fi;
+    if (tbl_get_fit_info(t, &fi) == STC_OK)
+        printf("mu_s surrogate: %d points, leave-one-out error %.2f %% rms, %.2f %% largest, "
+               "%.0f %% within 2 sd\n", fi.n, 100 * fi.loo_rms, 100 * fi.loo_max,
+               100 * fi.loo_cover2);
+}
+
 static int table_build(const cli_cmd *cmd, int argc, char **argv)
 {
     build_args a;
@@ -344,35 +379,10 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
         rc = cli_fail(cmd->name, s);
         goto out;
     }
-    int nd, nf, npend;
-    tbl_count(t, &nd, &nf, &npend);
-    if (a.json) {
-        build_json(t, a.out, &sum, ranks);
-        goto failed;
-    }
-    printf("wrote %s: %d points (%d x %d x %d), %d done, %d failed, %d pending\n", a.out,
-           tbl_points(t), a.n[0], a.n[1], a.n[2], nd, nf, npend);
-    char on[48] = "";
-    if (ranks > 1) snprintf(on, sizeof on, " (on %d MPI ranks)", ranks);
-    printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
-           "%.1f s wall, %.1f CPU s per point\n", on, sum.computed, sum.share, sum.resumed,
-           sum.wall_s, sum.computed ? sum.cpu_s / sum.computed : 0.0);
-    if (sum.reopened > 0)
-        printf("refinement: %d done points of the file re-opened for up to %d placements "
-               "(the others kept; a shard computes those of its share)\n", sum.reopened,
-               a.num.placements_max);
-    if (tbl_curves(t) > 0) {
-        int cd, cf, cp;
-        tbl_curve_count(t, &cd, &cf, &cp);
-        printf("normal grid: %d curves, %d done, %d failed, %d pending; this run computed %d\n",
-               tbl_curves(t), cd, cf, cp, sum.curves_computed);
-    }
-    tbl_fit_info fi;
-    if (tbl_get_fit_info(t, &fi) == STC_OK)
-        printf("mu_s surrogate: %d points, leave-one-out error %.2f %% rms, %.2f %% largest, "
-               "%.0f %% within 2 sd\n", fi.n, 100 * fi.loo_rms, 100 * fi.loo_max,
-               100 * fi.loo_cover2);
-failed:
+    int nf;
+    tbl_count(t, NULL, &nf, NULL);
+    if (a.json) build_json(t, a.out, &sum, ranks);
+    else build_text(t, a.out, &sum, ranks);
     if (nf > 0)
         fprintf(stderr, "stiction %s: %d points failed (no numbers stored for them; "
                 "`stiction table info %s` lists the reasons)\n", cmd->name, nf, a.out);
@@ -429,7 +439,8 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
     if (!strcmp(key, "R")) return set_num(key, value, 1e-9, 1e6, &q->R);
     if (!strcmp(key, "E-ratio")) return set_num(key, value, 1e-3, 1e3, &q->E);
     if (!strcmp(key, "out")) return cli_set_string(key, value, &q->out);
-    if (!strcmp(key, "placements-max")) return set_int(key, value, 2, ASP_PLACEMENTS_MAX, &q->plan_k);
+    if (!strcmp(key, "placements-max"))
+        return set_int(key, value, 2, ASP_PLACEMENTS_MAX, &q->plan_k);
     if (!strcmp(key, "refine-err")) return set_num(key, value, 1e-9, 0.5, &q->plan_x);
     return STC_EUNSUPPORTED;
 }

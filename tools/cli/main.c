@@ -26,7 +26,8 @@ static const cli_cmd commands[] = {
 static void usage(FILE *f)
 {
     fprintf(f, "usage: stiction COMMAND [options]   (stiction COMMAND --help for details)\n"
-               "       stiction --version              (the version and the BLAS kernels in use)\n\n"
+               "       stiction --version              (the version and the BLAS kernels "
+               "in use)\n\n"
                "Commands:\n");
     for (const cli_cmd *c = commands; c->name; c++) fprintf(f, "  %-12s %s\n", c->name, c->summary);
     fprintf(f, "\nUnits: mm, N, MPa throughout.\n");
