@@ -345,10 +345,52 @@ stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p)
               tbl_points(t));
     STC_CHECK(p->state == TBL_PENDING || p->state == TBL_DONE || p->state == TBL_FAILED,
               STC_EINVAL, "point %d: state %d is not pending, done or failed", i, p->state);
+    STC_CHECK(p->copied == 0 || (p->copied == 1 && tbl_point_source(t, i) != i), STC_EINVAL,
+              "point %d: copied = %d: must be 0, or 1 where another point is its source", i,
+              p->copied);
     t->pt[i] = *p;
     t->pt[i].reason[TBL_REASON_MAX - 1] = '\0';
     tbl_gp_destroy(&t->gp);
     return STC_OK;
+}
+
+/* ---- one material: points that another point's run gives ------------------------ */
+
+/* Eco/Esu node iE makes the coating the substrate: Eco/Esu = 1 with the same
+ * E/Y and ν in both layers (τc = its rule times Y_co = Y_su). */
+static int one_material(const tbl_table *t, int iE)
+{
+    const tbl_family *f = &t->fam;
+    return t->ax[2][iE] == 1.0 && f->E_over_Y_co == f->E_over_Y_su && f->nu_co == f->nu_su;
+}
+
+int tbl_point_source(const tbl_table *t, int i)
+{
+    int nw = t->n[0], iw = i % nw, it = (i / nw) % t->n[1], iE = i / (nw * t->n[1]);
+    return it > 0 && one_material(t, iE) ? iE * t->n[1] * nw + iw : i;
+}
+
+int tbl_fill_copies(tbl_table *t)
+{
+    int n = 0;
+    for (int i = 0; i < tbl_points(t); i++) {
+        int j = tbl_point_source(t, i);
+        tbl_point *p = &t->pt[i];
+        const tbl_point *q = &t->pt[j];
+        if (j == i || q->state == TBL_PENDING) continue;
+        /* pending, an earlier copy (its source since refined or retried), or
+         * failed where the source is done */
+        if (!(p->state == TBL_PENDING || p->copied ||
+              (p->state == TBL_FAILED && q->state == TBL_DONE)))
+            continue;
+        *p = *q; /* the same answer, which cost nothing here */
+        p->copied = 1;
+        p->newton_iterations = p->factorizations = 0;
+        p->wall_s = p->cpu_s = 0.0;
+        n++;
+    }
+    if (n) tbl_gp_destroy(&t->gp);
+    return n;
 }
 
 void tbl_count(const tbl_table *t, int *done, int *failed, int *pending)
@@ -385,14 +427,13 @@ static unsigned long long fnv_d(unsigned long long h, double v) { return fnv(h, 
 static unsigned long long fnv_i(unsigned long long h, int v) { return fnv(h, &v, sizeof v); }
 
 /* The build's points: family, their numerics and the axes; the refinement
- * settings too if `refine` (a table without refinement keeps its hash). */
+ * settings too if `refine` (a table without refinement keeps its hash).  Not
+ * the file format: a table keeps its build across format versions. */
 static unsigned long long points_hash_of(const tbl_table *t, int refine)
 {
     const tbl_family *f = &t->fam;
     const tbl_numerics *n = &t->num;
     unsigned long long h = 14695981039346656037ULL;
-    h = fnv_i(h, TBL_FORMAT_VERSION);
-    h = fnv_i(h, (int)sizeof(tbl_point)); /* the journal stores points as bytes */
     h = fnv_d(h, f->E_over_Y_su), h = fnv_d(h, f->E_over_Y_co);
     h = fnv_d(h, f->nu_su), h = fnv_d(h, f->nu_co);
     h = fnv_i(h, (int)f->contact), h = fnv_d(h, f->tau_c_over_Y_co);
@@ -416,16 +457,24 @@ static unsigned long long points_hash_of(const tbl_table *t, int refine)
 
 static unsigned long long points_hash(const tbl_table *t) { return points_hash_of(t, 1); }
 
-unsigned long long tbl_build_hash(const tbl_table *t)
+/* The points' hash and the normal grid's level and axes. */
+static unsigned long long definition_hash(const tbl_table *t)
 {
     const tbl_normal *g = &t->nrm;
     unsigned long long h = fnv_i(points_hash(t), g->level);
-    h = fnv_i(h, (int)sizeof(tbl_curve)); /* the journal stores curves as bytes too */
     for (int k = 0; g->level >= 0 && k < 3; k++) {
         h = fnv_i(h, g->n[k]);
         for (int i = 0; i < g->n[k]; i++) h = fnv_d(h, g->ax[k][i]);
     }
     return h;
+}
+
+unsigned long long tbl_build_hash(const tbl_table *t)
+{
+    /* the journal and the MPI messages carry points and curves as bytes */
+    unsigned long long h = fnv_i(definition_hash(t), TBL_FORMAT_VERSION);
+    h = fnv_i(h, (int)sizeof(tbl_point));
+    return fnv_i(h, (int)sizeof(tbl_curve));
 }
 
 int tbl_same_points(const tbl_table *a, const tbl_table *b)
@@ -435,7 +484,7 @@ int tbl_same_points(const tbl_table *a, const tbl_table *b)
 
 int tbl_same_build(const tbl_table *a, const tbl_table *b)
 {
-    return tbl_build_hash(a) == tbl_build_hash(b);
+    return definition_hash(a) == definition_hash(b);
 }
 
 int tbl_refines(const tbl_table *t, const tbl_table *old)
@@ -496,8 +545,8 @@ stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine
     n.placements_max = placements_max, n.refine_err = refine_err;
     int k = 0;
     double c = 0.0;
-    for (int i = 0; i < tbl_points(t); i++)
-        if (tbl_point_refinable(t, &n, i)) k++, c += t->pt[i].cpu_s;
+    for (int i = 0; i < tbl_points(t); i++) /* a copy is filled again from its source */
+        if (tbl_point_source(t, i) == i && tbl_point_refinable(t, &n, i)) k++, c += t->pt[i].cpu_s;
     *points = k;
     if (cpu_s) *cpu_s = c;
     return STC_OK;
@@ -541,6 +590,7 @@ stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)
                               g->A + (size_t)c * g->n[0]);
         wall = fmax(wall, parts[j]->build_wall_s); /* shards run side by side */
     }
+    tbl_fill_copies(m); /* a copy whose source another shard computed */
     tbl_set_provenance(m, a->command, wall);
     return STC_OK;
 }

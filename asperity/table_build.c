@@ -221,6 +221,8 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
     }
     for (int i = 0; i < tbl_points(t); i++) {
         if (t->pt[i].state != TBL_PENDING || old->pt[i].state == TBL_PENDING) continue;
+        /* a point another point's run gives is filled from it again */
+        if (refine && tbl_point_source(t, i) != i) continue;
         if (refine && tbl_point_refinable(old, &t->num, i)) { /* by t's refinement */
             (*reopened)++;
             continue;
@@ -358,8 +360,23 @@ static stc_status run_items(tbl_build_state *b, const int *todo, int n)
     return STC_OK;
 }
 
+/* Point i is asked for by o->only, itself or through a point it is the
+ * source of (tbl_point_source: the same δ and Eco/Esu, another t/R). */
+static int wanted(const tbl_table *t, const tbl_build_opts *o, int i)
+{
+    if (!o->only || o->only[i]) return 1;
+    int nw = t->n[0], iw = i % nw, iE = i / (nw * t->n[1]);
+    for (int it = 1; it < t->n[1]; it++) {
+        int k = (iE * t->n[1] + it) * nw + iw;
+        if (o->only[k] && tbl_point_source(t, k) == i) return 1;
+    }
+    return 0;
+}
+
 /* The todo list of this shard: curves (coded -(c + 1)) first, then points;
- * counts into b.  Returns the length; *n_curves of them are curves. */
+ * counts into b.  A point whose source is another is not in any share: it
+ * is filled from it at the end.  Returns the length; *n_curves of them are
+ * curves. */
 static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigned char *need,
                  int *n_curves)
 {
@@ -377,7 +394,8 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
     *n_curves = n;
     for (int i = o->shard; i < tbl_points(t); i += o->shards) {
         int st_i = t->pt[i].state;
-        if (o->curves_only || (o->only && !o->only[i]) || (o->only_failed && st_i == TBL_PENDING))
+        if (o->curves_only || tbl_point_source(t, i) != i || !wanted(t, o, i) ||
+            (o->only_failed && st_i == TBL_PENDING))
             continue;
         b->total++;
         if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
@@ -448,6 +466,8 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     STC_CHECK(!b.stop, STC_ENOCONV, "build stopped by the caller after %d of %d points (the "
               "finished ones are in %s; run the build again to go on)", b.done, b.total, jpath);
     t->build_wall_s += wall_now() - b.t0;
+    int copied = tbl_fill_copies(t);
+    if (sum) sum->copied = copied;
     int done;
     tbl_count(t, &done, NULL, NULL);
     if (done >= 3 && !t->gp) {

@@ -13,8 +13,8 @@
 
 /* Stored format (docs/table-format.md); a reader refuses other versions. */
 #define TBL_FORMAT_NAME "stiction friction table"
-#define TBL_FORMAT_VERSION 3 /* 2: the normal grid (/normal), 3: foot_rows; 1 and 2 are
-                                read too */
+#define TBL_FORMAT_VERSION 4 /* 2: the normal grid (/normal), 3: foot_rows, 4: copied;
+                                1 to 3 are read too */
 
 /* The reference sphere every point is computed on (the response is
  * independent of both, include/stiction/table.h). */
@@ -98,6 +98,12 @@ int tbl_refines(const tbl_table *t, const tbl_table *old);
  * error its run printed, from the point's δ over asp_omega_yield) above
  * refine_err of μs. */
 int tbl_point_refinable(const tbl_table *t, const tbl_numerics *n, int i);
+
+/* Fill every point whose source (tbl_point_source) is another point from it:
+ * a pending one, or a failed one whose source is done; a copy keeps its
+ * source's numbers and records no cost (wall, CPU, iterations 0).  Returns
+ * how many were filled (tbl_point.copied set). */
+int tbl_fill_copies(tbl_table *t);
 
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */
 

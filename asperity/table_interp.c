@@ -91,7 +91,7 @@ stc_status tbl_fit(tbl_table *t)
     STC_CHECK_GOTO(x && y && sy && lm && ls, st, done, STC_ENOMEM, "tbl_fit: out of memory");
     for (int i = 0; i < np; i++) {
         const tbl_point *p = &t->pt[i];
-        if (p->state != TBL_DONE) continue;
+        if (p->state != TBL_DONE || p->copied) continue; /* each answer once */
         double w, tR, E;
         tbl_coords(t, i, &w, &tR, &E);
         gp_inputs(t, w, tR, E, x + 3 * n);
@@ -385,9 +385,10 @@ int tbl_mark_needed(const tbl_table *t, double w_lo, double w_hi, double tR_lo, 
     for (int e = lo[2]; e <= hi[2]; e++)
         for (int r = lo[1]; r <= hi[1]; r++)
             for (int w = lo[0]; w <= hi[0]; w++) {
-                int i = (e * t->n[1] + r) * t->n[0] + w;
-                pending += !need[i] && t->pt[i].state == TBL_PENDING;
-                need[i] = 1;
+                int i = (e * t->n[1] + r) * t->n[0] + w, j = tbl_point_source(t, i);
+                /* a point another run gives needs that run: counted once */
+                pending += !need[j] && t->pt[j].state == TBL_PENDING;
+                need[i] = need[j] = 1;
             }
     return pending;
 }

@@ -31,10 +31,11 @@ typedef struct {
     size_t off;
     int is_int;
     const char *doc; /* the dataset's "description" attribute */
+    int since;       /* the format version that added it (older files: 0) */
 } field;
 
-#define D(n, m, doc) {n, offsetof(tbl_point, m), 0, doc}
-#define I(n, m, doc) {n, offsetof(tbl_point, m), 1, doc}
+#define D(n, m, doc) {n, offsetof(tbl_point, m), 0, doc, 1}
+#define I(n, m, doc) {n, offsetof(tbl_point, m), 1, doc, 1}
 static const field fields[] = {
     I("state", state, "0 pending, 1 done, 2 failed"),
     D("P_over_P_c", P_Pc, "preload P / Pc_su (end of the normal step, mean of the members)"),
@@ -52,6 +53,9 @@ static const field fields[] = {
     I("factorizations", factorizations, "Cholesky factorizations, both steps, all members"),
     D("wall_s", wall_s, "wall time of the point, s"),
     D("cpu_s", cpu_s, "CPU time of the point, s"),
+    {"copied", offsetof(tbl_point, copied), 1, "1: the answer of the point at the first t/R "
+     "with the same delta and E_ratio (one material: E_ratio 1, the same E/Y and nu in both "
+     "layers), copied; 0: computed as itself", 4},
 };
 #undef D
 #undef I
@@ -208,11 +212,11 @@ static int write_fit(hid_t f, const tbl_table *t)
 
 /* The per-curve datasets of the normal grid: name, offset in tbl_curve. */
 static const field curve_fields[] = {
-    {"state", offsetof(tbl_curve, state), 1, "0 pending, 1 done, 2 failed"},
-    {"increments", offsetof(tbl_curve, increments), 1, "load increments of the curve"},
-    {"newton_iterations", offsetof(tbl_curve, newton_iterations), 1, "Newton iterations"},
-    {"wall_s", offsetof(tbl_curve, wall_s), 0, "wall time of the curve, s"},
-    {"cpu_s", offsetof(tbl_curve, cpu_s), 0, "CPU time of the curve, s"},
+    {"state", offsetof(tbl_curve, state), 1, "0 pending, 1 done, 2 failed", 2},
+    {"increments", offsetof(tbl_curve, increments), 1, "load increments of the curve", 2},
+    {"newton_iterations", offsetof(tbl_curve, newton_iterations), 1, "Newton iterations", 2},
+    {"wall_s", offsetof(tbl_curve, wall_s), 0, "wall time of the curve, s", 2},
+    {"cpu_s", offsetof(tbl_curve, cpu_s), 0, "CPU time of the curve, s", 2},
 };
 enum { NCURVE_FIELD = sizeof curve_fields / sizeof *curve_fields };
 
@@ -442,7 +446,7 @@ static stc_status read_axes(hid_t f, const char *path, double *ax[3], int n[3])
     return st;
 }
 
-static stc_status read_points(hid_t f, const char *path, tbl_table *t)
+static stc_status read_points(hid_t f, const char *path, int version, tbl_table *t)
 {
     int np = tbl_points(t);
     hsize_t dims[3] = {(hsize_t)t->n[2], (hsize_t)t->n[1], (hsize_t)t->n[0]};
@@ -456,6 +460,7 @@ static stc_status read_points(hid_t f, const char *path, tbl_table *t)
     STC_CHECK_GOTO(dv && iv && rs, st, done, STC_ENOMEM, "tbl_read: out of memory");
     for (int k = 0; k < NFIELD; k++) {
         int isi = fields[k].is_int;
+        if (fields[k].since > version) continue; /* not in the file: 0 (tbl_create) */
         STC_CALL_GOTO(read_array(g, path, fields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
                                  dims, 3, isi ? (void *)iv : (void *)dv), st, done);
         for (int i = 0; i < np; i++) {
@@ -475,6 +480,9 @@ static stc_status read_points(hid_t f, const char *path, tbl_table *t)
         p->reason[TBL_REASON_MAX - 1] = '\0';
         STC_CHECK_GOTO(p->state >= TBL_PENDING && p->state <= TBL_FAILED, st, done, STC_EFORMAT,
                        "%s: point %d: state %d is not 0, 1 or 2", path, i, p->state);
+        STC_CHECK_GOTO(p->copied == 0 || (p->copied == 1 && tbl_point_source(t, i) != i), st,
+                       done, STC_EFORMAT, "%s: point %d: copied = %d, but it is its own source",
+                       path, i, p->copied);
         STC_CHECK_GOTO(p->state != TBL_DONE ||
                            (isfinite(p->P_Pc) && p->P_Pc > 0 && isfinite(p->A_Ac) &&
                             p->A_Ac > 0 && isfinite(p->mu_s) && p->mu_s > 0 &&
@@ -613,7 +621,7 @@ stc_status tbl_read(const char *path, tbl_table **out)
     H5E_BEGIN_TRY { st = read_axes(f, path, ax, n); } H5E_END_TRY;
     if (st) goto done;
     STC_CALL_GOTO(tbl_create(&fam, &num, ax[0], n[0], ax[1], n[1], ax[2], n[2], out), st, done);
-    H5E_BEGIN_TRY { st = read_points(f, path, *out); } H5E_END_TRY;
+    H5E_BEGIN_TRY { st = read_points(f, path, ver, *out); } H5E_END_TRY;
     if (st) goto done;
     if (num.normal_level >= 0) {
         H5E_BEGIN_TRY { st = read_normal(f, path, *out); } H5E_END_TRY;

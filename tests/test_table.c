@@ -210,6 +210,7 @@ static const char *point_diff(const tbl_point *a, const tbl_point *b)
     SAME_I(factorizations);
     SAME_D(wall_s);
     SAME_D(cpu_s);
+    SAME_I(copied);
     if (strcmp(a->reason, b->reason)) return "reason";
     return NULL;
 #undef SAME_D
@@ -1347,6 +1348,132 @@ static void test_retry_failed(void **state)
     tbl_destroy(&t);
 }
 
+/* One material: at Eco/Esu = 1 in a family with the same E/Y and ν in both
+ * layers the coating is the substrate and t/R means nothing, so every t/R
+ * column of that Eco/Esu holds the first column's runs.  A build asked for a
+ * point there computes its source once (one coarse FE run) and fills the
+ * other columns from it, at no cost; the copies survive the file, the
+ * surrogate fits each answer once, a merge fills copies whose source another
+ * part holds and follows a refined source, and a refinement plan counts the
+ * sources only.  Other Eco/Esu, and families with different layers, are
+ * their own sources. */
+static void test_one_material(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "one-material", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/one.h5", dir);
+    tbl_family f;
+    tbl_numerics num;
+    coarse_numerics(&f, &num);
+    num.normal_level = -1; /* the points alone */
+    const double w[2] = {0.5, 1.0}, tR[3] = {0.01, 0.02, 0.04}, E[2] = {1.0, 2.0};
+    tbl_table *t = NULL, *other = NULL;
+    check_ok(tbl_create(&f, &num, w, 2, tR, 3, E, 2, &t), "tbl_create");
+    tbl_family g = f;
+    g.E_over_Y_co = 500.0; /* a harder coating: two materials at any Eco/Esu */
+    check_ok(tbl_create(&g, &num, w, 2, tR, 3, E, 2, &other), "tbl_create two materials");
+    for (int i = 0; i < tbl_points(t); i++) {
+        int iw = i % 2, it = (i / 2) % 3, iE = i / 6;
+        assert_int_equal(tbl_point_source(t, i), iE == 0 && it > 0 ? iw : i);
+        assert_int_equal(tbl_point_source(other, i), i);
+    }
+    tbl_destroy(&other);
+
+    /* δ 1 at the first t/R done by hand, and every Eco/Esu 2 point; δ 0.5
+     * at the first t/R (point 0) pending */
+    for (int i = 1; i < tbl_points(t); i++) {
+        if (tbl_point_source(t, i) != i) continue;
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        p.state = TBL_DONE, p.members = 1;
+        p.P_Pc = p.A_Ac = p.P_slide_Pc = 1.0 + i;
+        p.mu_s = 0.5 + 0.01 * i, p.mu_s_err = 0.05 * p.mu_s, p.Q_max_Pc = p.mu_s * p.P_slide_Pc;
+        p.mu_s_min = p.mu_s_max = p.mu_s;
+        p.wall_s = p.cpu_s = 1.0 + i;
+        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+    }
+    tbl_point bad = *tbl_point_get(t, 1);
+    bad.copied = 1; /* point 1 is its own source */
+    assert_int_equal(tbl_point_set(t, 1, &bad), STC_EINVAL);
+    stc_error_clear();
+
+    /* a query at t/R 0.02-0.04, Eco/Esu 1 reads points 2-5, which are copies
+     * of points 0 and 1: of those only point 0 is to be computed */
+    unsigned char need[12] = {0};
+    assert_int_equal(tbl_mark_needed(t, 0.5, 1.0, 0.02, 0.04, 1.0, need), 1);
+    assert_true(need[0] && need[1] && need[4] && need[5]);
+
+    tbl_build_opts o;
+    tbl_build_summary sum;
+    tbl_build_opts_default(&o);
+    o.jobs = 1;
+    unsigned char only[12] = {0};
+    only[4] = 1; /* δ 0.5, t/R 0.04, Eco/Esu 1: its source is point 0 */
+    o.only = only;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build");
+    printf("one material: a build asked for point 4 computed %d (its source), filled %d copies\n",
+           sum.computed, sum.copied);
+    assert_int_equal(sum.computed, 1);
+    assert_int_equal(sum.copied, 4);
+    tbl_destroy(&t);
+    check_ok(tbl_read(path, &t), "tbl_read");
+    int done, pending;
+    tbl_count(t, &done, NULL, &pending);
+    assert_int_equal(done, 12);
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i), *q = tbl_point_get(t, tbl_point_source(t, i));
+        if (p == q) {
+            assert_int_equal(p->copied, 0);
+            assert_true(p->cpu_s > 0.0);
+            continue;
+        }
+        assert_int_equal(p->copied, 1);
+        assert_true(same_bits(p->mu_s, q->mu_s) && same_bits(p->mu_s_err, q->mu_s_err) &&
+                    same_bits(p->P_Pc, q->P_Pc) && p->members == q->members);
+        assert_true(p->cpu_s == 0.0 && p->wall_s == 0.0 && p->newton_iterations == 0);
+    }
+    tbl_fit_info fi;
+    check_ok(tbl_get_fit_info(t, &fi), "tbl_get_fit_info");
+    assert_int_equal(fi.n, 8); /* 2 answers at Eco/Esu 1, 6 at 2 */
+
+    /* merge: the copies of a part without them are filled from the source
+     * another part holds; a source refined in a part carries its copies */
+    tbl_table *parts[3] = {NULL, NULL, NULL}, *m = NULL;
+    tbl_get_family(t, &f);
+    tbl_get_numerics(t, &num);
+    for (int k = 0; k < 3; k++)
+        check_ok(tbl_create(&f, &num, w, 2, tR, 3, E, 2, &parts[k]), "tbl_create part");
+    for (int i = 0; i < tbl_points(t); i++)
+        if (tbl_point_source(t, i) == i)
+            check_ok(tbl_point_set(parts[i % 2], i, tbl_point_get(t, i)), "tbl_point_set part");
+    tbl_point r = *tbl_point_get(t, 1);
+    r.members = 2, r.mu_s *= 1.1, r.cpu_s *= 2.0;
+    check_ok(tbl_point_set(parts[2], 1, &r), "tbl_point_set refined");
+    check_ok(tbl_merge(parts, 2, &m), "tbl_merge");
+    for (int i = 0; i < tbl_points(t); i++)
+        if (point_diff(tbl_point_get(t, i), tbl_point_get(m, i)))
+            fail_msg("merged point %d: %s differs", i,
+                     point_diff(tbl_point_get(t, i), tbl_point_get(m, i)));
+    tbl_destroy(&m);
+    check_ok(tbl_merge(parts, 3, &m), "tbl_merge with a refined source");
+    for (int i = 3; i < 6; i += 2) { /* δ 1, t/R 0.02 and 0.04 */
+        assert_int_equal(tbl_point_get(m, i)->members, 2);
+        assert_true(same_bits(tbl_point_get(m, i)->mu_s, r.mu_s));
+        assert_true(tbl_point_get(m, i)->copied && tbl_point_get(m, i)->cpu_s == 0.0);
+    }
+    tbl_destroy(&m);
+    for (int k = 0; k < 3; k++) tbl_destroy(&parts[k]);
+
+    /* a refinement computes the sources again and fills the copies: its
+     * plan counts the sources (one member's error at δ 1 is above 4 %) */
+    int k = -1;
+    double cpu = 0.0;
+    check_ok(tbl_refine_plan(t, 2, 1e-3, &k, &cpu), "tbl_refine_plan");
+    printf("one material: a refinement to 2 members computes %d of the 12 points again\n", k);
+    assert_int_equal(k, 8);
+    tbl_destroy(&t);
+}
+
 /* ---- 8. the normal grid ----------------------------------------------------- */
 
 /* The normal grid keeps the table's nodes on its axes and divides each
@@ -1560,7 +1687,7 @@ int main(void)
         cmocka_unit_test(test_t_over_R_at_axis_ends),
         cmocka_unit_test(test_bundled_table_quadrature), cmocka_unit_test(test_retry_failed),
         cmocka_unit_test(test_point_refine), cmocka_unit_test(test_refinable),
-        cmocka_unit_test(test_normal_grid),
+        cmocka_unit_test(test_normal_grid), cmocka_unit_test(test_one_material),
         cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_fit_reused),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);

@@ -113,6 +113,9 @@ typedef struct tbl_point {
     int newton_iterations, factorizations; /* summed over members, both steps */
     double wall_s;        /* wall time of the point, s */
     double cpu_s;         /* CPU time of the point, s */
+    int copied;           /* 1: its source's answer (tbl_point_source), not a run of its
+                             own (costs, iterations 0); the μs surrogate fits each answer
+                             once.  0: computed as itself */
     char reason[TBL_REASON_MAX]; /* why it failed, or the first member's criterion reason */
 } tbl_point;
 
@@ -168,6 +171,12 @@ STC_API void tbl_coords(const tbl_table *t, int i, double *w, double *t_over_R, 
 STC_API const tbl_point *tbl_point_get(const tbl_table *t, int i); /* borrowed */
 /* Store a computed point (copied); invalidates the fit. */
 STC_API stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p);
+/* The point whose FE run gives point i: i itself, except where the coating
+ * is the substrate (Eco/Esu = 1 in a family with the same E/Y and ν in both
+ * layers), whose response does not depend on t/R: there every t/R column
+ * holds the run of the first, at the same δ.  A build computes only the
+ * points that are their own source and fills the others from theirs. */
+STC_API int tbl_point_source(const tbl_table *t, int i);
 /* Counts by state; any pointer nullable. */
 STC_API void tbl_count(const tbl_table *t, int *done, int *failed, int *pending);
 
@@ -249,6 +258,7 @@ typedef struct tbl_build_summary {
     int reopened; /* done points of an existing file re-opened to refine (a build that adds
                      or extends refinement: tbl_numerics.placements_max), in every shard;
                      this run computes those of its share */
+    int copied;   /* points filled from their source (tbl_point_source), in no share */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s, cpu_s;    /* this run */
 } tbl_build_summary;
@@ -268,7 +278,9 @@ typedef struct tbl_build_summary {
  * lower, the same err_floor): its points are taken, and those that t's refinement
  * would give more members are computed again from their first member, so the
  * table written is the one a build with t's refinement from the start writes
- * (summary: reopened).  Returns STC_OK when every point of the
+ * (summary: reopened).  A point whose source is another point
+ * (tbl_point_source) is in no shard: it is filled from its source when the
+ * table is written (here and by tbl_merge; summary: copied).  Returns STC_OK when every point of the
  * share is done or failed (failed points are counted in the summary).
  * While a point is computed, OpenBLAS runs on one thread process-wide
  * (restored after; see include/stiction/asperity.h, process-wide state). */
@@ -286,8 +298,9 @@ STC_API stc_status tbl_refine_plan(const tbl_table *t, int placements_max, doubl
 /* Join tables of one build (shards of it, or partial runs): each point is
  * taken from the table that has it done or failed, a done one from the table
  * where it has the most members (a refinement sharded over copies of one
- * table); new in *out.  Refused
- * (STC_EINVAL) when the tables are of different builds. */
+ * table), and a point whose source is another (tbl_point_source) filled from
+ * it; new in *out.  Refused (STC_EINVAL) when the tables are of different
+ * builds. */
 STC_API stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out);
 
 /* ---- interpolation ----------------------------------------------------------- */
@@ -351,9 +364,10 @@ STC_API stc_status tbl_query(const tbl_table *t, double w, double t_over_R, doub
  * E_ratio read: on each axis the nodes inside the range and those bracketing
  * its ends (clamped to the axis; a value on a node needs that node only),
  * along δ one more node each side (the monotone cubic's slopes).  need has
- * tbl_points entries.  Returns how many of the points it newly marked are
- * pending (so over calls sharing one need[], the pending points needed), or
- * -1 with bad arguments. */
+ * tbl_points entries.  A point whose source is another (tbl_point_source)
+ * marks its source too.  Returns how many of the points it newly marked are
+ * pending and their own source (so over calls sharing one need[], the
+ * points a build restricted to need[] computes), or -1 with bad arguments. */
 STC_API int tbl_mark_needed(const tbl_table *t, double w_lo, double w_hi, double tR_lo,
                             double tR_hi, double E_ratio, unsigned char *need);
 

@@ -250,6 +250,7 @@ static void build_json(const tbl_table *t, const char *out, const tbl_build_summ
     cj_int(&j, "computed", sum->computed);
     cj_int(&j, "resumed", sum->resumed);
     cj_int(&j, "reopened", sum->reopened);
+    cj_int(&j, "copied", sum->copied);
     cj_num(&j, "wall_s", sum->wall_s);
     cj_num(&j, "cpu_s_per_point", sum->computed ? sum->cpu_s / sum->computed : 0.0);
     cj_int(&j, "curves_computed", sum->curves_computed);
@@ -292,6 +293,9 @@ static void build_text(const tbl_table *t, const char *out, const tbl_build_summ
     printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
            "%.1f s wall, %.1f CPU s per point\n", on, sum->computed, sum->share, sum->resumed,
            sum->wall_s, sum->computed ? sum->cpu_s / sum->computed : 0.0);
+    if (sum->copied > 0)
+        printf("one material: %d points (Eco/Esu = 1, t/R beyond the first) filled from the "
+               "first t/R's run at their delta\n", sum->copied);
     if (sum->reopened > 0) {
         tbl_numerics nu;
         tbl_get_numerics(t, &nu);
@@ -463,6 +467,21 @@ static void print_axis(const char *name, const double *v, int n)
     printf("\n");
 }
 
+/* CPU s of the points computed (done or failed, not copies of another's run:
+ * tbl_point.copied); *n of them, *copied the copies. */
+static double run_cost(const tbl_table *t, int *n, int *copied)
+{
+    double cpu = 0.0;
+    *n = *copied = 0;
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        if (p->state == TBL_PENDING) continue;
+        if (p->copied) (*copied)++;
+        else cpu += p->cpu_s, (*n)++;
+    }
+    return cpu;
+}
+
 /* How many done points have k members, k = 1 .. ASP_PLACEMENTS_MAX (the
  * refinement's spread); returns the number of different counts. */
 static int member_counts(const tbl_table *t, int count[ASP_PLACEMENTS_MAX + 1])
@@ -532,12 +551,13 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_int(&j, "done", nd);
     cj_int(&j, "failed", nf);
     cj_int(&j, "pending", np);
-    double wall, cpu = 0;
+    double wall;
+    int nrun, ncopied;
+    double cpu = run_cost(t, &nrun, &ncopied);
+    cj_int(&j, "copied", ncopied);
     cj_str(&j, "command", tbl_provenance(t, &wall));
-    for (int i = 0; i < tbl_points(t); i++)
-        if (tbl_point_get(t, i)->state != TBL_PENDING) cpu += tbl_point_get(t, i)->cpu_s;
     cj_num(&j, "build_wall_s", wall);
-    cj_num(&j, "cpu_s_per_point", nd + nf ? cpu / (nd + nf) : NAN);
+    cj_num(&j, "cpu_s_per_point", nrun ? cpu / nrun : NAN);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK) {
         cj_num(&j, "loo_rms_rel", fi.loo_rms);
@@ -659,13 +679,16 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
     }
     int nd, nf, np;
     tbl_count(t, &nd, &nf, &np);
-    double wall, cpu = 0;
+    double wall;
+    int nrun, ncopied;
+    double cpu = run_cost(t, &nrun, &ncopied);
     const char *cmd = tbl_provenance(t, &wall);
-    for (int i = 0; i < tbl_points(t); i++)
-        if (tbl_point_get(t, i)->state != TBL_PENDING) cpu += tbl_point_get(t, i)->cpu_s;
     printf("  points: %d, done %d, failed %d, pending %d\n", tbl_points(t), nd, nf, np);
-    printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point\n", cmd, wall,
-           nd + nf ? cpu / (nd + nf) : 0.0);
+    if (ncopied > 0)
+        printf("  one material: %d points (Eco/Esu = 1, t/R beyond the first) hold the first "
+               "t/R's run at their delta\n", ncopied);
+    printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point computed\n", cmd,
+           wall, nrun ? cpu / nrun : 0.0);
     info_normal_text(t);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK)
@@ -693,7 +716,7 @@ static void info_points(const tbl_table *t)
     printf("index,delta_over_omega_c,t_over_R,E_ratio,state,P_over_P_c,A_over_A_c,"
            "P_slide_over_P_c,Q_max_over_P_c,mu_s,mu_s_err,mu_s_preload,mu_s_min,mu_s_max,"
            "ux_slide_over_omega_c,members,newton_iterations,factorizations,wall_s,cpu_s,"
-           "reason\n");
+           "source,reason\n");
     for (int i = 0; i < tbl_points(t); i++) {
         const tbl_point *p = tbl_point_get(t, i);
         double w, tR, E;
@@ -706,6 +729,7 @@ static void info_points(const tbl_table *t)
                    p->mu_s_preload, p->mu_s_min, p->mu_s_max, p->ux_slide_wc, p->members,
                    p->newton_iterations, p->factorizations, p->wall_s, p->cpu_s);
         else printf(",,,,,,,,,,,,,,%.4g,%.4g,", p->wall_s, p->cpu_s);
+        printf("%d,", p->copied ? tbl_point_source(t, i) : i);
         /* the reason is free text: quoted, its quotes doubled */
         putchar('"');
         for (const char *c = p->reason; *c; c++) {
