@@ -110,11 +110,18 @@ const char *tbl_state_name(tbl_state s)
 
 /* ---- one point --------------------------------------------------------------- */
 
+int tbl_family_one_material(const tbl_family *f, double E_ratio)
+{
+    return E_ratio == 1.0 && f->E_over_Y_co == f->E_over_Y_su && f->nu_co == f->nu_su;
+}
+
 void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_params *p)
 {
     stc_params_default(p);
     p->R = TBL_REF_R_MM;
-    p->t_over_R = t_over_R;
+    /* a coating of the substrate's material is none: the uncoated sphere, whose mesh
+     * has no interface to follow (at 8 omega_c 9.6 CPU s against 16.2 at t/R 0.005) */
+    p->t_over_R = tbl_family_one_material(f, E_ratio) ? 0.0 : t_over_R;
     p->E_su = TBL_REF_E_SU_MPA;
     p->E_ratio = E_ratio;
     p->Y_su = TBL_REF_E_SU_MPA / f->E_over_Y_su;
@@ -356,18 +363,10 @@ stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p)
 
 /* ---- one material: points that another point's run gives ------------------------ */
 
-/* Eco/Esu node iE makes the coating the substrate: Eco/Esu = 1 with the same
- * E/Y and ν in both layers (τc = its rule times Y_co = Y_su). */
-static int one_material(const tbl_table *t, int iE)
-{
-    const tbl_family *f = &t->fam;
-    return t->ax[2][iE] == 1.0 && f->E_over_Y_co == f->E_over_Y_su && f->nu_co == f->nu_su;
-}
-
 int tbl_point_source(const tbl_table *t, int i)
 {
     int nw = t->n[0], iw = i % nw, it = (i / nw) % t->n[1], iE = i / (nw * t->n[1]);
-    return it > 0 && one_material(t, iE) ? iE * t->n[1] * nw + iw : i;
+    return it > 0 && tbl_family_one_material(&t->fam, t->ax[2][iE]) ? iE * t->n[1] * nw + iw : i;
 }
 
 int tbl_fill_copies(tbl_table *t)

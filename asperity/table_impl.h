@@ -74,7 +74,11 @@ stc_status tbl_build_curve(const tbl_table *t, int c, tbl_curve *out, double *P,
 double tbl_cpu_now(void);
 double tbl_wall_now(void);
 
-/* Parameters of the reference sphere for a point of family f. */
+/* Eco/Esu = E_ratio makes the coating the substrate in family f: E_ratio 1
+ * with the same E/Y and ν in both layers (τc = its rule times Y_co = Y_su). */
+int tbl_family_one_material(const tbl_family *f, double E_ratio);
+/* Parameters of the reference sphere for a point of family f (where the
+ * coating is the substrate, the uncoated sphere: t/R 0). */
 void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_params *p);
 
 /* Index of the axis node at or below x (clamped to [0, n-2]) and the linear

@@ -1378,6 +1378,14 @@ static void test_one_material(void **state)
         assert_int_equal(tbl_point_source(other, i), i);
     }
     tbl_destroy(&other);
+    /* and its run is the uncoated sphere's, whose mesh has no interface */
+    stc_params p1;
+    tbl_point_params(&f, 0.02, 1.0, &p1);
+    assert_true(p1.t_over_R == 0.0);
+    tbl_point_params(&f, 0.02, 2.0, &p1);
+    assert_true(p1.t_over_R == 0.02);
+    tbl_point_params(&g, 0.02, 1.0, &p1);
+    assert_true(p1.t_over_R == 0.02);
 
     /* δ 1 at the first t/R done by hand, and every Eco/Esu 2 point; δ 0.5
      * at the first t/R (point 0) pending */

@@ -120,7 +120,9 @@ typedef struct tbl_point {
 } tbl_point;
 
 /* Compute one point: params at R = 10 mm, Esu = 200 GPa, the family's
- * ratios, Eco/Esu = E_ratio, t/R; the normal step to δ = w ωc_su, then the
+ * ratios, Eco/Esu = E_ratio, t/R (where the coating is the substrate,
+ * E_ratio 1 in a family with the same E/Y and ν in both layers, the
+ * uncoated sphere: t/R has no meaning there); the normal step to δ = w ωc_su, then the
  * shear ramp on `placements` node placements (asp_shear_placements), one
  * thread.  Never fails for a point that does not converge: out->state is
  * TBL_FAILED and out->reason says why; returns STC_EINVAL for bad arguments
