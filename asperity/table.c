@@ -369,6 +369,17 @@ int tbl_point_source(const tbl_table *t, int i)
     return it > 0 && tbl_family_one_material(&t->fam, t->ax[2][iE]) ? iE * t->n[1] * nw + iw : i;
 }
 
+int tbl_point_wanted(const tbl_table *t, const unsigned char *only, int i)
+{
+    if (!only || only[i]) return 1;
+    int nw = t->n[0], iw = i % nw, iE = i / (nw * t->n[1]);
+    for (int it = 1; it < t->n[1]; it++) {
+        int k = (iE * t->n[1] + it) * nw + iw;
+        if (only[k] && tbl_point_source(t, k) == i) return 1;
+    }
+    return 0;
+}
+
 int tbl_fill_copies(tbl_table *t)
 {
     int n = 0;

@@ -360,25 +360,10 @@ static stc_status run_items(tbl_build_state *b, const int *todo, int n)
     return STC_OK;
 }
 
-/* Point i is asked for by o->only, itself or through a point it is the
- * source of (tbl_point_source: the same δ and Eco/Esu, another t/R). */
-static int wanted(const tbl_table *t, const tbl_build_opts *o, int i)
-{
-    if (!o->only || o->only[i]) return 1;
-    int nw = t->n[0], iw = i % nw, iE = i / (nw * t->n[1]);
-    for (int it = 1; it < t->n[1]; it++) {
-        int k = (iE * t->n[1] + it) * nw + iw;
-        if (o->only[k] && tbl_point_source(t, k) == i) return 1;
-    }
-    return 0;
-}
-
 /* The todo list of this shard: curves (coded -(c + 1)) first, then points;
  * counts into b.  A point whose source is another is not in any share: it
- * is filled from it at the end.  Returns the length; *n_curves of them are
- * curves. */
-static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigned char *need,
-                 int *n_curves)
+ * is filled from it at the end.  Returns the length. */
+static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigned char *need)
 {
     const tbl_table *t = b->t;
     int n = 0;
@@ -391,10 +376,9 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
             todo[n++] = -c - 1;
         else b->curves_done++;
     }
-    *n_curves = n;
     for (int i = o->shard; i < tbl_points(t); i += o->shards) {
         int st_i = t->pt[i].state;
-        if (o->curves_only || tbl_point_source(t, i) != i || !wanted(t, o, i) ||
+        if (o->curves_only || tbl_point_source(t, i) != i || !tbl_point_wanted(t, o->only, i) ||
             (o->only_failed && st_i == TBL_PENDING))
             continue;
         b->total++;
@@ -411,7 +395,8 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
 static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
                              const tbl_build_opts *o, tbl_build_summary *sum)
 {
-    tbl_build_state b = {.t = t, .o = o, .finish = build_finish, .fd = -1, .t0 = wall_now()};
+    tbl_build_state b = {.t = t, .o = o, .finish = build_finish, .finish_curve = finish_curve,
+                         .fd = -1, .t0 = wall_now()};
     int from_file = 0, from_journal = 0, cf = 0, cj = 0; /* taken from an earlier run */
     int reopened = 0; /* done points of the file that this build refines */
     int *todo = NULL;
@@ -421,7 +406,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     if (st == STC_OK && snprintf(jpath, sizeof jpath, "%s.journal", path) >= (int)sizeof jpath)
         st = STC_FAIL(STC_EINVAL, "%s: path too long", path);
     if (st == STC_OK) st = journal_open(t, jpath, &b.fd, &from_journal, &cj);
-    int np = tbl_points(t), nc = tbl_curves(t), n = 0, ncv = 0;
+    int np = tbl_points(t), nc = tbl_curves(t), n = 0;
     if (st == STC_OK && (!(todo = malloc((size_t)(np + nc) * sizeof *todo)) ||
                          !(need = calloc((size_t)nc + 1, 1))))
         st = STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
@@ -432,16 +417,13 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         free(todo);
         return st;
     }
-    n = share(&b, o, todo, need, &ncv);
+    n = share(&b, o, todo, need);
     free(need);
     /* a lock of this build rather than a named critical section, whose lock
      * would be a global symbol of the shared library */
     omp_init_lock(&b.lock);
     if (m->size > 1) {
-        /* the other ranks wait for their first point meanwhile */
-        st = run_items(&b, todo, ncv);
-        if (st == STC_OK) st = tbl_mpi_serve(m, &b, todo + ncv, n - ncv);
-        else tbl_mpi_release(m, st, stc_errmsg());
+        st = tbl_mpi_serve(m, &b, todo, n); /* curves first, as here */
     } else {
         st = run_items(&b, todo, n);
     }

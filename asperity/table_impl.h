@@ -103,6 +103,9 @@ int tbl_refines(const tbl_table *t, const tbl_table *old);
  * refine_err of μs. */
 int tbl_point_refinable(const tbl_table *t, const tbl_numerics *n, int i);
 
+/* Point i is asked for by only[] (NULL: every point), itself or through a
+ * point it is the source of (tbl_point_source). */
+int tbl_point_wanted(const tbl_table *t, const unsigned char *only, int i);
 /* Fill every point whose source (tbl_point_source) is another point from it:
  * a pending one, or a failed one whose source is done; a copy keeps its
  * source's numbers and records no cost (wall, CPU, iterations 0).  Returns
@@ -123,6 +126,9 @@ typedef struct tbl_build_state {
      * table_mpi.c reaches table_build.c's writer without a call back into
      * that file.) */
     void (*finish)(struct tbl_build_state *b, int i, const tbl_point *p);
+    /* the same for a finished curve c (P, A: [n_w of the normal grid]) */
+    void (*finish_curve)(struct tbl_build_state *b, int c, const tbl_curve *cv, const double *P,
+                         const double *A);
     int fd;                     /* the journal, open for appending */
     int done, total, resumed, failed, computed; /* points, as in tbl_progress */
     int curves_done, curves_total, curves_computed, curves_failed; /* normal curves */
@@ -159,18 +165,19 @@ stc_status tbl_mpi_begin(tbl_mpi *m);
  * Collective; idempotent. */
 void tbl_mpi_end(tbl_mpi *m);
 
-/* Rank 0: hand out the points todo[n] to the other ranks one at a time,
- * compute some on this rank's threads, journal and report every finished
- * one through b; returns when every rank has been told to stop.  A failure
+/* Rank 0: hand out the items todo[n] (points i >= 0, curves c coded as
+ * -(c + 1)) to the other ranks one at a time, compute some on this rank's
+ * threads, journal and report every finished one through b; returns when
+ * every rank has been told to stop.  A failure
  * on any rank stops the farm after the points under way and is returned
  * with its message. */
 stc_status tbl_mpi_serve(const tbl_mpi *m, tbl_build_state *b, const int *todo, int n);
 /* Rank 0 failed before the farm started (status s, message why): tell every
  * other rank to stop with that failure, so that none waits for work. */
 void tbl_mpi_release(const tbl_mpi *m, stc_status s, const char *why);
-/* Ranks >= 1: ask rank 0 for points, compute them on this thread, send
- * them back, until told to stop.  The points are kept in t too; nothing is
- * written to any file.  sum counts this rank's points. */
+/* Ranks >= 1: ask rank 0 for points and curves, compute them on this
+ * thread, send them back, until told to stop.  They are kept in t too;
+ * nothing is written to any file.  sum counts this rank's. */
 stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary *sum);
 
 #endif

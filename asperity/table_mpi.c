@@ -21,8 +21,11 @@
  * callback and writes the table at the end.  Ranks >= 1 write no file: they
  * say hello, get a point, compute it on one thread, send it back as bytes,
  * and get the next one in the reply (dynamic scheduling, one point at a
- * time: point costs vary about 10x).  --shard combines with the farm: the
- * farm shares out the shard's pending points.
+ * time: point costs vary about 10x).  The normal grid's curves are handed
+ * out the same way, before the points (a curve's values follow its result
+ * in a second message), so that no rank waits while rank 0 computes them.
+ * --shard combines with the farm: the farm shares out the shard's pending
+ * curves and points.
  *
  * Rank 0 computes too: its main thread serves the messages (MPI_THREAD_
  * FUNNELED: only that thread calls MPI) while opts.jobs threads (default 1,
@@ -75,10 +78,10 @@
 #include "stiction/table_mpi.h"
 #include "table_impl.h"
 
-/* Message tags: worker -> rank 0, rank 0 -> worker. */
-enum { TAG_UP = 1, TAG_DOWN = 2 };
+/* Message tags: worker -> rank 0, rank 0 -> worker, a curve's values. */
+enum { TAG_UP = 1, TAG_DOWN = 2, TAG_VALUES = 3 };
 /* Kinds of a worker's message. */
-enum { UP_HELLO = 1, UP_POINT = 2, UP_FAIL = 3 };
+enum { UP_HELLO = 1, UP_POINT = 2, UP_FAIL = 3, UP_CURVE = 4 };
 /* Room for a message (stc_errmsg holds up to 1023 characters). */
 enum { WHY_MAX = 1024 };
 /* Pause between two polls of a waiting rank, ns. */
@@ -86,17 +89,19 @@ enum { WHY_MAX = 1024 };
 
 typedef struct {
     int32_t kind;      /* UP_* */
-    int32_t index;     /* UP_POINT: the point */
+    int32_t index;     /* UP_POINT, UP_CURVE: the item (a point i, or curve c as -(c + 1)) */
     int32_t code;      /* UP_FAIL: the stc_status */
     int32_t shard, shards;
     uint64_t hash;     /* UP_HELLO: tbl_build_hash of the rank's table */
     tbl_point p;       /* UP_POINT */
+    tbl_curve c;       /* UP_CURVE; its P[n_w] and A[n_w] follow, tagged TAG_VALUES */
     char why[WHY_MAX]; /* UP_FAIL */
 } msg_up;
 
 typedef struct {
-    int32_t index;     /* the point to compute, or -1: stop */
-    int32_t code;      /* with -1: STC_OK (all handed out) or why the build failed */
+    int32_t stop;      /* 0: compute item; 1: stop */
+    int32_t item;      /* a point i >= 0, or curve c as -(c + 1) */
+    int32_t code;      /* with stop: STC_OK (all handed out) or why the build failed */
     char why[WHY_MAX];
 } msg_down;
 
@@ -177,9 +182,10 @@ static void wait_message(int src, int tag, MPI_Status *st)
 
 typedef struct {
     tbl_build_state *b; /* NULL when only releasing the other ranks */
-    const int *todo;
+    const int *todo;    /* items: points i >= 0, curves c as -(c + 1) */
     int n, next;        /* todo[next] is handed out next (atomic) */
-    int *given;         /* [size]: the point each rank computes, -1 none */
+    int *given;         /* [size]: the item each rank computes */
+    unsigned char *busy; /* [size]: the rank has an item */
     int open;           /* ranks not yet told to stop */
     uint64_t hash;
     int shard, shards;
@@ -204,28 +210,31 @@ static void farm_fail(farm *f, stc_status s, const char *msg)
     }
 }
 
-/* The next point to compute, or -1 when the farm is stopped or empty. */
-static int farm_take(farm *f)
+/* The next item to compute into *item: 1, or 0 when the farm is stopped or
+ * empty. */
+static int farm_take(farm *f, int *item)
 {
     int stop = 1, k;
     if (f->b) {
 #pragma omp atomic read
         stop = f->b->stop;
     }
-    if (stop) return -1;
+    if (stop) return 0;
 #pragma omp atomic capture
     k = f->next++;
-    return k < f->n ? f->todo[k] : -1;
+    if (k >= f->n) return 0;
+    *item = f->todo[k];
+    return 1;
 }
 
-/* The reply to rank src: its next point, or stop with the farm's outcome. */
+/* The reply to rank src: its next item, or stop with the farm's outcome. */
 static void farm_reply(farm *f, int src)
 {
     msg_down d;
     memset(&d, 0, sizeof d);
-    d.index = farm_take(f);
-    if (f->given) f->given[src] = d.index;
-    if (d.index < 0) {
+    d.stop = !farm_take(f, &d.item);
+    if (f->given) f->given[src] = d.item, f->busy[src] = !d.stop;
+    if (d.stop) {
         stc_status fail;
         int stop = 0;
         omp_set_lock(&f->lock);
@@ -243,6 +252,28 @@ static void farm_reply(farm *f, int src)
         f->open--;
     }
     MPI_Send(&d, (int)sizeof d, MPI_BYTE, src, TAG_DOWN, MPI_COMM_WORLD);
+}
+
+/* A curve's result from rank src (u) and the values that follow it. */
+static void curve_values(farm *f, int src, const msg_up *u, char *msg, size_t n)
+{
+    int nw = f->b && tbl_curves(f->b->t) > 0 ? f->b->t->nrm.n[0] : 0, count = 0;
+    MPI_Status st;
+    wait_message(src, TAG_VALUES, &st);
+    MPI_Get_count(&st, MPI_DOUBLE, &count);
+    double *v = malloc((size_t)(count > 0 ? count : 1) * sizeof *v);
+    if (!v) {
+        snprintf(msg, n, "rank 0: out of memory");
+        return; /* MPI's truncation error ends the job on the unread values */
+    }
+    MPI_Recv(v, count, MPI_DOUBLE, src, TAG_VALUES, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (!f->given || !f->busy[src] || u->index != f->given[src] || u->index >= 0)
+        snprintf(msg, n, "rank %d: sent curve %d, which it was not given", src,
+                 (int)(-u->index - 1));
+    else if (count != 2 * nw)
+        snprintf(msg, n, "rank %d: a curve of %d values, not %d", src, count, 2 * nw);
+    else f->b->finish_curve(f->b, -u->index - 1, &u->c, v, v + nw);
+    free(v);
 }
 
 /* One message from another rank, and the reply to it. */
@@ -271,10 +302,12 @@ static void farm_handle(farm *f)
                          "shard differ from rank 0's): start every rank with the same "
                          "options", src);
         } else if (u.kind == UP_POINT) {
-            if (!f->b || !f->given || u.index != f->given[src])
+            if (!f->b || !f->given || !f->busy[src] || u.index != f->given[src] || u.index < 0)
                 snprintf(msg, sizeof msg, "rank %d: sent point %d, which it was not given",
                          src, (int)u.index);
             else f->b->finish(f->b, u.index, &u.p);
+        } else if (u.kind == UP_CURVE) {
+            curve_values(f, src, &u, msg, sizeof msg);
         } else if (u.kind == UP_FAIL) {
             u.why[WHY_MAX - 1] = '\0';
             if (u.code > STC_OK && u.code < STC_NSTATUS) bad = (stc_status)u.code;
@@ -288,22 +321,31 @@ static void farm_handle(farm *f)
     farm_reply(f, src);
 }
 
-/* Rank 0's compute threads: points from the shared queue until it is empty
+/* Rank 0's compute threads: items from the shared queue until it is empty
  * or stopped. */
 static void farm_compute(farm *f)
 {
-    int i;
-    while ((i = farm_take(f)) >= 0) {
+    int item, nw = tbl_curves(f->b->t) > 0 ? f->b->t->nrm.n[0] : 1;
+    double *v = malloc(2 * (size_t)nw * sizeof *v);
+    if (!v) {
+        farm_fail(f, STC_ENOMEM, "rank 0: out of memory");
+        return;
+    }
+    while (farm_take(f, &item)) {
         tbl_point p;
-        stc_status s = tbl_build_compute(f->b->t, i, &p);
+        tbl_curve cv;
+        stc_status s = item >= 0 ? tbl_build_compute(f->b->t, item, &p)
+                                 : tbl_build_curve(f->b->t, -item - 1, &cv, v, v + nw);
         if (s != STC_OK) {
             char msg[WHY_MAX + 64];
             snprintf(msg, sizeof msg, "rank 0: %s", stc_errmsg());
             farm_fail(f, s, msg);
-            return;
+            break;
         }
-        f->b->finish(f->b, i, &p);
+        if (item >= 0) f->b->finish(f->b, item, &p);
+        else f->b->finish_curve(f->b, -item - 1, &cv, v, v + nw);
     }
+    free(v);
 }
 
 static stc_status farm_run(const tbl_mpi *m, farm *f)
@@ -311,8 +353,12 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
     omp_init_lock(&f->lock);
     f->open = m->size - 1;
     f->given = malloc((size_t)m->size * sizeof *f->given);
-    if (f->given) for (int r = 0; r < m->size; r++) f->given[r] = -1;
-    else farm_fail(f, STC_ENOMEM, "rank 0: out of memory"); /* still release every rank */
+    f->busy = calloc((size_t)m->size, 1);
+    if (!f->given || !f->busy) {
+        free(f->given), free(f->busy);
+        f->given = NULL, f->busy = NULL;
+        farm_fail(f, STC_ENOMEM, "rank 0: out of memory"); /* still release every rank */
+    }
     int jobs = 0; /* compute threads besides the serving one */
     if (f->b && m->threads) jobs = f->b->o->jobs > 0 ? f->b->o->jobs : 1;
     if (jobs > f->n) jobs = f->n;
@@ -327,7 +373,8 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
         }
     }
     free(f->given);
-    f->given = NULL;
+    free(f->busy);
+    f->given = NULL, f->busy = NULL;
     omp_destroy_lock(&f->lock);
     if (f->fail != STC_OK) return STC_FAIL(f->fail, "%s", f->why);
     return STC_OK;
@@ -363,28 +410,35 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
     msg_up u;
     msg_down d;
     stc_status st = STC_OK;
-    int computed = 0, failed = 0, share = 0;
+    int computed = 0, failed = 0, share = 0, curves = 0, curves_failed = 0;
+    int nw = tbl_curves(t) > 0 ? t->nrm.n[0] : 1;
     double cpu = 0;
+    double *v = malloc(2 * (size_t)nw * sizeof *v);
+    STC_CHECK(v, STC_ENOMEM, "tbl_build: out of memory"); /* rank 0 sees this rank end */
     memset(&u, 0, sizeof u); /* no stray bytes on the wire */
     u.kind = UP_HELLO;
     u.hash = tbl_build_hash(t);
     u.shard = o->shard, u.shards = o->shards;
-    for (int i = o->shard; i < tbl_points(t); i += o->shards) share += !o->only || o->only[i];
+    for (int i = o->shard; i < tbl_points(t); i += o->shards)
+        share += tbl_point_source(t, i) == i && tbl_point_wanted(t, o->only, i);
     /* one thread per point, its OpenMP regions (CHOLMOD's) and OpenBLAS on
      * it too, as on the writer's threads (table.c, tbl_build_compute; measured:
      * CHOLMOD's own threads made no difference to the numbers) */
     for (;;) {
         MPI_Status ms;
         MPI_Send(&u, (int)sizeof u, MPI_BYTE, 0, TAG_UP, MPI_COMM_WORLD);
+        if (u.kind == UP_CURVE) MPI_Send(v, 2 * nw, MPI_DOUBLE, 0, TAG_VALUES, MPI_COMM_WORLD);
         wait_message(0, TAG_DOWN, &ms);
         MPI_Recv(&d, (int)sizeof d, MPI_BYTE, 0, TAG_DOWN, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        if (d.index < 0) break;
+        if (d.stop) break;
         memset(&u, 0, sizeof u);
-        u.index = d.index;
-        stc_status s = d.index < tbl_points(t)
-                           ? tbl_build_compute(t, d.index, &u.p)
-                           : STC_FAIL(STC_EINVAL, "point %d: not in the table of %d points",
-                                      (int)d.index, tbl_points(t));
+        u.index = d.item;
+        int c = -d.item - 1;
+        stc_status s = d.item >= 0 ? (d.item < tbl_points(t)
+                                          ? tbl_build_compute(t, d.item, &u.p)
+                                          : STC_FAIL(STC_EINVAL, "point %d: not in the table "
+                                                     "of %d points", (int)d.item, tbl_points(t)))
+                                   : tbl_build_curve(t, c, &u.c, v, v + nw);
         if (s != STC_OK) { /* told to rank 0 in the next message; kept as our status */
             if (st == STC_OK) st = s;
             u.kind = UP_FAIL;
@@ -392,12 +446,21 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
             snprintf(u.why, sizeof u.why, "%s", stc_errmsg());
             continue;
         }
+        if (d.item < 0) { /* sent next, its values after it */
+            u.kind = UP_CURVE;
+            tbl_curve_set(t, c, &u.c, v, v + nw);
+            curves++;
+            curves_failed += u.c.state == TBL_FAILED;
+            cpu += u.c.cpu_s;
+            continue;
+        }
         u.kind = UP_POINT;
-        tbl_point_set(t, d.index, &u.p);
+        tbl_point_set(t, d.item, &u.p);
         computed++;
         failed += u.p.state == TBL_FAILED;
         cpu += u.p.cpu_s;
     }
+    free(v);
     if (st == STC_OK && d.code != STC_OK) {
         d.why[WHY_MAX - 1] = '\0';
         st = STC_FAIL(d.code > STC_OK && d.code < STC_NSTATUS ? (stc_status)d.code : STC_EINVAL,
@@ -407,6 +470,8 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
         sum->computed = computed;
         sum->failed = failed;
         sum->share = share;
+        sum->curves_computed = curves;
+        sum->curves_failed = curves_failed;
         sum->wall_s = seconds_since(&t0);
         sum->cpu_s = cpu;
     }

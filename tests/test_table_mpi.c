@@ -142,7 +142,7 @@ static int compare_tables(const tbl_table *a, const tbl_table *b, int shard, int
         assert_string_equal(pa->reason, pb->reason);
         compared++;
     }
-    /* the normal curves of the shard (rank 0 computes them), bit for bit */
+    /* the normal curves of the shard (handed out like the points), bit for bit */
     const double *w;
     int nw = tbl_normal_axis(a, 0, &w);
     assert_int_equal(tbl_curves(a), tbl_curves(b));

@@ -4,10 +4,8 @@
 # only computes what they lack).  Usage: tables.sh CLI [DIR]
 # DIR (default data/tables) may be an empty directory for a build from
 # scratch.  Uses every core of this machine in one process (--jobs NPROC):
-# the normal grid's curves and then the points, NPROC at a time.  Under
-# mpirun rank 0 computes the curves alone on its one core while the other
-# ranks wait, so on one machine the threads are the faster way (the numbers
-# are the same either way; many machines: README, mpirun or --shard).
+# the normal grid's curves and then the points, NPROC at a time (many
+# machines: mpirun or --shard, README).
 set -eu
 CLI=$1
 DIR=${2:-data/tables}
