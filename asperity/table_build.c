@@ -296,7 +296,6 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
             tbl_curve_set(b->t, c, cv, P, A);
             b->curves_done++, b->curves_computed++;
             b->curves_failed += cv->state == TBL_FAILED;
-            b->cpu += cv->cpu_s;
             b->curves_wall = wall_now() - b->t0;
             stop = report(b, -1, NULL, c, tbl_curve_get(b->t, c));
         }

@@ -451,7 +451,6 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
             tbl_curve_set(t, c, &u.c, v, v + nw);
             curves++;
             curves_failed += u.c.state == TBL_FAILED;
-            cpu += u.c.cpu_s;
             continue;
         }
         u.kind = UP_POINT;

@@ -2,8 +2,9 @@
 """make bench: the cost of the FE friction tables.
 
 1. Per bundled table (data/tables/*.h5): points done, the build's wall time,
-   CPU seconds per point (mean, range, by t/R), Newton iterations and
-   factorizations per point, read from the points' own records.
+   CPU seconds per point computed (mean, range, by t/R), Newton iterations and
+   factorizations per point, read from the points' own records; the points
+   copied from another's run (one material: t/R means nothing there).
    The normal grid of each table (axisymmetric load curves for the preload's
    P and A): curves and CPU seconds per curve, from the curves' records.
    The wall time of reading the table, which rebuilds its mu_s surrogate
@@ -48,6 +49,11 @@ def table_costs(cli, path):
               "%.2f %% rms, gamma %.2f"
               % ("stored fit" if info.get("fit_reused") else "searched", read_s,
                  100 * info["loo_rms_rel"], info["gamma"]))
+    copies = [r for r in rows if r.get("source", r["index"]) != r["index"]]
+    rows = [r for r in rows if r not in copies]  # the runs
+    if copies:
+        print("  one material (Eco/Esu 1, layers alike): %d points hold the first t/R's run, "
+              "computed once" % len(copies))
     if not rows:
         return
     cpu = [float(r["cpu_s"]) for r in rows]
@@ -115,7 +121,9 @@ def main():
     print("  solver reuse kept: none. A shared normal loading run per column could save at "
           "most the share above, and only on one mesh fit for every contact of the column "
           "(a 3D mesh level costs 5-10x the one below, docs/design.md 2.6); the preload's P "
-          "and A come from the normal grid instead, at the CPU s per curve listed per table.")
+          "and A come from the normal grid instead, at the CPU s per curve listed per table. "
+          "Work skipped instead: the plane where the coating is the substrate is computed "
+          "once, as the uncoated sphere (the copies above).")
 
 
 if __name__ == "__main__":

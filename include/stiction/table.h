@@ -262,7 +262,8 @@ typedef struct tbl_build_summary {
                      this run computes those of its share */
     int copied;   /* points filled from their source (tbl_point_source), in no share */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
-    double wall_s, cpu_s;    /* this run */
+    double wall_s;  /* this run */
+    double cpu_s;   /* of the points this run computed (the curves' own are in tbl_curve) */
 } tbl_build_summary;
 
 /* Compute the pending normal curves and then the pending points of t that
