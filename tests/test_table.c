@@ -170,6 +170,15 @@ static void scratch_sub(void **state, const char *name, char *dir, size_t n)
     assert_int_equal(mkdir(dir, 0700), 0);
 }
 
+/* A new scratch directory `name` and the path of `file` in it. */
+static void scratch_file(void **state, const char *name, const char *file, char *path,
+                         size_t n)
+{
+    char dir[128];
+    scratch_sub(state, name, dir, sizeof dir);
+    snprintf(path, n, "%s/%s", dir, file);
+}
+
 /* Names in dir ending in `suffix` (NULL: every entry). */
 static int scratch_count(const char *dir, const char *suffix)
 {
@@ -225,9 +234,8 @@ static const char *point_diff(const tbl_point *a, const tbl_point *b)
  * the columns agree, so only quadrature and rounding remain. */
 static void test_hertz_through_file(void **state)
 {
-    char dir[128], path[192];
-    scratch_sub(state, "hertz", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/hertz.h5", dir);
+    char path[192];
+    scratch_file(state, "hertz", "hertz.h5", path, sizeof path);
     tbl_table *t = hertz_table(0.0, 0.02, 1), *r = NULL;
     check_ok(tbl_write(t, path), "tbl_write");
     check_ok(tbl_read(path, &r), "tbl_read");
@@ -670,9 +678,8 @@ static void edit_fit_attr(const char *path, const char *name, const double *v, i
 
 static void test_fit_reused(void **state)
 {
-    char dir[128], path[192];
-    scratch_sub(state, "fit-reused", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/fit.h5", dir);
+    char path[192];
+    scratch_file(state, "fit-reused", "fit.h5", path, sizeof path);
     tbl_table *t = hertz_table(0.03, 0.03, 777), *r = NULL;
     double t0 = now();
     check_ok(tbl_fit(t), "tbl_fit");
@@ -1359,9 +1366,8 @@ static void test_retry_failed(void **state)
  * their own sources. */
 static void test_one_material(void **state)
 {
-    char dir[128], path[192];
-    scratch_sub(state, "one-material", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/one.h5", dir);
+    char path[192];
+    scratch_file(state, "one-material", "one.h5", path, sizeof path);
     tbl_family f;
     tbl_numerics num;
     coarse_numerics(&f, &num);
@@ -1517,9 +1523,8 @@ static void fill_curves(tbl_table *t)
 
 static void test_normal_grid(void **state)
 {
-    char dir[128], path[192];
-    scratch_sub(state, "normal", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/normal.h5", dir);
+    char path[192];
+    scratch_file(state, "normal", "normal.h5", path, sizeof path);
     tbl_family f;
     tbl_numerics num;
     tbl_family_default(&f);
