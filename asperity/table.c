@@ -400,6 +400,21 @@ int tbl_fill_copies(tbl_table *t)
         n++;
     }
     if (n) tbl_gp_destroy(&t->gp);
+    tbl_normal *g = &t->nrm; /* the curves the same way */
+    for (int c = 0; c < tbl_curves(t); c++) {
+        int j = tbl_curve_source(t, c);
+        const tbl_curve *q = &g->c[j];
+        tbl_curve cv = g->c[c];
+        if (j == c || q->state == TBL_PENDING ||
+            !(cv.state == TBL_PENDING || cv.copied ||
+              (cv.state == TBL_FAILED && q->state == TBL_DONE)))
+            continue;
+        cv = *q;
+        cv.copied = 1;
+        cv.increments = cv.newton_iterations = 0;
+        cv.wall_s = cv.cpu_s = 0.0;
+        tbl_curve_set(t, c, &cv, g->P + (size_t)j * g->n[0], g->A + (size_t)j * g->n[0]);
+    }
     return n;
 }
 

@@ -369,6 +369,7 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
     if (o->only) tbl_normal_needed(t, o->only, need);
     for (int c = o->shard; c < tbl_curves(t); c += o->shards) {
         int st_c = t->nrm.c[c].state;
+        if (tbl_curve_source(t, c) != c) continue; /* filled from its source */
         if ((o->only && !need[c]) || (o->only_failed && st_c == TBL_PENDING)) continue;
         b->curves_total++;
         if (st_c == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_c == TBL_FAILED))

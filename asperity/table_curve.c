@@ -29,6 +29,8 @@ void tbl_normal_needed(const tbl_table *t, const unsigned char *only, unsigned c
         need[c] = tR >= lo[1] * (1 - 1e-12) && tR <= hi[1] * (1 + 1e-12) &&
                   E >= lo[2] * (1 - 1e-12) && E <= hi[2] * (1 + 1e-12);
     }
+    for (int c = 0; c < tbl_curves(t); c++) /* a copy needs its source's run */
+        if (need[c]) need[tbl_curve_source(t, c)] = 1;
 }
 
 int tbl_curves_pending(const tbl_table *t, const unsigned char *only)
@@ -37,7 +39,9 @@ int tbl_curves_pending(const tbl_table *t, const unsigned char *only)
     unsigned char *need = only ? calloc((size_t)nc + 1, 1) : NULL;
     if (only && !need) return -1;
     if (only) tbl_normal_needed(t, only, need);
-    for (int c = 0; c < nc; c++) n += (!need || need[c]) && t->nrm.c[c].state == TBL_PENDING;
+    for (int c = 0; c < nc; c++)
+        n += (!need || need[c]) && tbl_curve_source(t, c) == c &&
+             t->nrm.c[c].state == TBL_PENDING;
     free(need);
     return n;
 }

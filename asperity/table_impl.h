@@ -13,8 +13,8 @@
 
 /* Stored format (docs/table-format.md); a reader refuses other versions. */
 #define TBL_FORMAT_NAME "stiction friction table"
-#define TBL_FORMAT_VERSION 4 /* 2: the normal grid (/normal), 3: foot_rows, 4: copied;
-                                1 to 3 are read too */
+#define TBL_FORMAT_VERSION 5 /* 2: the normal grid (/normal), 3: foot_rows, 4: copied
+                                points, 5: copied curves; 1 to 4 are read too */
 
 /* The reference sphere every point is computed on (the response is
  * independent of both, include/stiction/table.h). */
@@ -107,9 +107,10 @@ int tbl_point_refinable(const tbl_table *t, const tbl_numerics *n, int i);
  * point it is the source of (tbl_point_source). */
 int tbl_point_wanted(const tbl_table *t, const unsigned char *only, int i);
 /* Fill every point whose source (tbl_point_source) is another point from it:
- * a pending one, or a failed one whose source is done; a copy keeps its
- * source's numbers and records no cost (wall, CPU, iterations 0).  Returns
- * how many were filled (tbl_point.copied set). */
+ * a pending one, an earlier copy, or a failed one whose source is done; a
+ * copy keeps its source's numbers and records no cost (wall, CPU, iterations
+ * 0).  The curves of the normal grid the same way (tbl_curve_source).
+ * Returns how many points were filled (tbl_point.copied set). */
 int tbl_fill_copies(tbl_table *t);
 
 /* ---- a build under way (table_build.c; the MPI farm of table_mpi.c) ---- */

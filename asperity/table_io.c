@@ -217,6 +217,8 @@ static const field curve_fields[] = {
     {"newton_iterations", offsetof(tbl_curve, newton_iterations), 1, "Newton iterations", 2},
     {"wall_s", offsetof(tbl_curve, wall_s), 0, "wall time of the curve, s", 2},
     {"cpu_s", offsetof(tbl_curve, cpu_s), 0, "CPU time of the curve, s", 2},
+    {"copied", offsetof(tbl_curve, copied), 1, "1: the run of the curve at the first t/R of its "
+     "E_ratio (one material), copied; 0: computed as itself", 5},
 };
 enum { NCURVE_FIELD = sizeof curve_fields / sizeof *curve_fields };
 
@@ -500,7 +502,7 @@ done:
 }
 
 /* The normal grid: its own axes (adopted as they are), curves and values. */
-static stc_status read_normal(hid_t f, const char *path, tbl_table *t)
+static stc_status read_normal(hid_t f, const char *path, int version, tbl_table *t)
 {
     hid_t gr = -1, ga = -1;
     H5E_BEGIN_TRY { gr = H5Gopen2(f, "normal", H5P_DEFAULT); } H5E_END_TRY;
@@ -533,6 +535,7 @@ static stc_status read_normal(hid_t f, const char *path, tbl_table *t)
     STC_CHECK_GOTO(cv, st, done, STC_ENOMEM, "tbl_read: out of memory");
     for (int k = 0; k < NCURVE_FIELD && st == STC_OK; k++) {
         int isi = curve_fields[k].is_int;
+        if (curve_fields[k].since > version) continue; /* not in the file: 0 (calloc) */
         st = read_array(gr, path, curve_fields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
                         dc, 2, isi ? (void *)iv : (void *)d);
         for (int c = 0; st == STC_OK && c < nc; c++) {
@@ -624,7 +627,7 @@ stc_status tbl_read(const char *path, tbl_table **out)
     H5E_BEGIN_TRY { st = read_points(f, path, ver, *out); } H5E_END_TRY;
     if (st) goto done;
     if (num.normal_level >= 0) {
-        H5E_BEGIN_TRY { st = read_normal(f, path, *out); } H5E_END_TRY;
+        H5E_BEGIN_TRY { st = read_normal(f, path, ver, *out); } H5E_END_TRY;
         if (st) goto done;
     }
     char cmd[512] = "";

@@ -141,6 +141,13 @@ int tbl_normal_axis(const tbl_table *t, int axis, const double **values)
     return t->nrm.n[axis];
 }
 
+int tbl_curve_source(const tbl_table *t, int c)
+{
+    const tbl_normal *g = &t->nrm;
+    int nt = g->n[1], it = c % nt, iE = c / nt;
+    return it > 0 && tbl_family_one_material(&t->fam, g->ax[2][iE]) ? iE * nt : c;
+}
+
 const tbl_curve *tbl_curve_get(const tbl_table *t, int c)
 {
     return c >= 0 && c < tbl_curves(t) ? &t->nrm.c[c] : NULL;
@@ -163,6 +170,9 @@ stc_status tbl_curve_set(tbl_table *t, int c, const tbl_curve *cv, const double 
               tbl_curves(t));
     STC_CHECK(cv->state == TBL_PENDING || cv->state == TBL_DONE || cv->state == TBL_FAILED,
               STC_EINVAL, "curve %d: state %d is not pending, done or failed", c, cv->state);
+    STC_CHECK(cv->copied == 0 || (cv->copied == 1 && tbl_curve_source(t, c) != c), STC_EINVAL,
+              "curve %d: copied = %d: must be 0, or 1 where another curve is its source", c,
+              cv->copied);
     int nw = g->n[0];
     for (int k = 0; cv->state == TBL_DONE && k < nw; k++)
         STC_CHECK(isfinite(P_Pc[k]) && P_Pc[k] > 0 && isfinite(A_Ac[k]) && A_Ac[k] > 0,

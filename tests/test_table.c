@@ -1355,139 +1355,6 @@ static void test_retry_failed(void **state)
     tbl_destroy(&t);
 }
 
-/* One material: at Eco/Esu = 1 in a family with the same E/Y and ν in both
- * layers the coating is the substrate and t/R means nothing, so every t/R
- * column of that Eco/Esu holds the first column's runs.  A build asked for a
- * point there computes its source once (one coarse FE run) and fills the
- * other columns from it, at no cost; the copies survive the file, the
- * surrogate fits each answer once, a merge fills copies whose source another
- * part holds and follows a refined source, and a refinement plan counts the
- * sources only.  Other Eco/Esu, and families with different layers, are
- * their own sources. */
-static void test_one_material(void **state)
-{
-    char path[192];
-    scratch_file(state, "one-material", "one.h5", path, sizeof path);
-    tbl_family f;
-    tbl_numerics num;
-    coarse_numerics(&f, &num);
-    num.normal_level = -1; /* the points alone */
-    const double w[2] = {0.5, 1.0}, tR[3] = {0.01, 0.02, 0.04}, E[2] = {1.0, 2.0};
-    tbl_table *t = NULL, *other = NULL;
-    check_ok(tbl_create(&f, &num, w, 2, tR, 3, E, 2, &t), "tbl_create");
-    tbl_family g = f;
-    g.E_over_Y_co = 500.0; /* a harder coating: two materials at any Eco/Esu */
-    check_ok(tbl_create(&g, &num, w, 2, tR, 3, E, 2, &other), "tbl_create two materials");
-    for (int i = 0; i < tbl_points(t); i++) {
-        int iw = i % 2, it = (i / 2) % 3, iE = i / 6;
-        assert_int_equal(tbl_point_source(t, i), iE == 0 && it > 0 ? iw : i);
-        assert_int_equal(tbl_point_source(other, i), i);
-    }
-    tbl_destroy(&other);
-    /* and its run is the uncoated sphere's, whose mesh has no interface */
-    stc_params p1;
-    tbl_point_params(&f, 0.02, 1.0, &p1);
-    assert_true(p1.t_over_R == 0.0);
-    tbl_point_params(&f, 0.02, 2.0, &p1);
-    assert_true(p1.t_over_R == 0.02);
-    tbl_point_params(&g, 0.02, 1.0, &p1);
-    assert_true(p1.t_over_R == 0.02);
-
-    /* δ 1 at the first t/R done by hand, and every Eco/Esu 2 point; δ 0.5
-     * at the first t/R (point 0) pending */
-    for (int i = 1; i < tbl_points(t); i++) {
-        if (tbl_point_source(t, i) != i) continue;
-        tbl_point p;
-        memset(&p, 0, sizeof p);
-        p.state = TBL_DONE, p.members = 1;
-        p.P_Pc = p.A_Ac = p.P_slide_Pc = 1.0 + i;
-        p.mu_s = 0.5 + 0.01 * i, p.mu_s_err = 0.05 * p.mu_s, p.Q_max_Pc = p.mu_s * p.P_slide_Pc;
-        p.mu_s_min = p.mu_s_max = p.mu_s;
-        p.wall_s = p.cpu_s = 1.0 + i;
-        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
-    }
-    tbl_point bad = *tbl_point_get(t, 1);
-    bad.copied = 1; /* point 1 is its own source */
-    assert_int_equal(tbl_point_set(t, 1, &bad), STC_EINVAL);
-    stc_error_clear();
-
-    /* a query at t/R 0.02-0.04, Eco/Esu 1 reads points 2-5, which are copies
-     * of points 0 and 1: of those only point 0 is to be computed */
-    unsigned char need[12] = {0};
-    assert_int_equal(tbl_mark_needed(t, 0.5, 1.0, 0.02, 0.04, 1.0, need), 1);
-    assert_true(need[0] && need[1] && need[4] && need[5]);
-
-    tbl_build_opts o;
-    tbl_build_summary sum;
-    tbl_build_opts_default(&o);
-    o.jobs = 1;
-    unsigned char only[12] = {0};
-    only[4] = 1; /* δ 0.5, t/R 0.04, Eco/Esu 1: its source is point 0 */
-    o.only = only;
-    check_ok(tbl_build(t, path, &o, &sum), "tbl_build");
-    printf("one material: a build asked for point 4 computed %d (its source), filled %d copies\n",
-           sum.computed, sum.copied);
-    assert_int_equal(sum.computed, 1);
-    assert_int_equal(sum.copied, 4);
-    tbl_destroy(&t);
-    check_ok(tbl_read(path, &t), "tbl_read");
-    int done, pending;
-    tbl_count(t, &done, NULL, &pending);
-    assert_int_equal(done, 12);
-    for (int i = 0; i < tbl_points(t); i++) {
-        const tbl_point *p = tbl_point_get(t, i), *q = tbl_point_get(t, tbl_point_source(t, i));
-        if (p == q) {
-            assert_int_equal(p->copied, 0);
-            assert_true(p->cpu_s > 0.0);
-            continue;
-        }
-        assert_int_equal(p->copied, 1);
-        assert_true(same_bits(p->mu_s, q->mu_s) && same_bits(p->mu_s_err, q->mu_s_err) &&
-                    same_bits(p->P_Pc, q->P_Pc) && p->members == q->members);
-        assert_true(p->cpu_s == 0.0 && p->wall_s == 0.0 && p->newton_iterations == 0);
-    }
-    tbl_fit_info fi;
-    check_ok(tbl_get_fit_info(t, &fi), "tbl_get_fit_info");
-    assert_int_equal(fi.n, 8); /* 2 answers at Eco/Esu 1, 6 at 2 */
-
-    /* merge: the copies of a part without them are filled from the source
-     * another part holds; a source refined in a part carries its copies */
-    tbl_table *parts[3] = {NULL, NULL, NULL}, *m = NULL;
-    tbl_get_family(t, &f);
-    tbl_get_numerics(t, &num);
-    for (int k = 0; k < 3; k++)
-        check_ok(tbl_create(&f, &num, w, 2, tR, 3, E, 2, &parts[k]), "tbl_create part");
-    for (int i = 0; i < tbl_points(t); i++)
-        if (tbl_point_source(t, i) == i)
-            check_ok(tbl_point_set(parts[i % 2], i, tbl_point_get(t, i)), "tbl_point_set part");
-    tbl_point r = *tbl_point_get(t, 1);
-    r.members = 2, r.mu_s *= 1.1, r.cpu_s *= 2.0;
-    check_ok(tbl_point_set(parts[2], 1, &r), "tbl_point_set refined");
-    check_ok(tbl_merge(parts, 2, &m), "tbl_merge");
-    for (int i = 0; i < tbl_points(t); i++)
-        if (point_diff(tbl_point_get(t, i), tbl_point_get(m, i)))
-            fail_msg("merged point %d: %s differs", i,
-                     point_diff(tbl_point_get(t, i), tbl_point_get(m, i)));
-    tbl_destroy(&m);
-    check_ok(tbl_merge(parts, 3, &m), "tbl_merge with a refined source");
-    for (int i = 3; i < 6; i += 2) { /* δ 1, t/R 0.02 and 0.04 */
-        assert_int_equal(tbl_point_get(m, i)->members, 2);
-        assert_true(same_bits(tbl_point_get(m, i)->mu_s, r.mu_s));
-        assert_true(tbl_point_get(m, i)->copied && tbl_point_get(m, i)->cpu_s == 0.0);
-    }
-    tbl_destroy(&m);
-    for (int k = 0; k < 3; k++) tbl_destroy(&parts[k]);
-
-    /* a refinement computes the sources again and fills the copies: its
-     * plan counts the sources (one member's error at δ 1 is above 4 %) */
-    int k = -1;
-    double cpu = 0.0;
-    check_ok(tbl_refine_plan(t, 2, 1e-3, &k, &cpu), "tbl_refine_plan");
-    printf("one material: a refinement to 2 members computes %d of the 12 points again\n", k);
-    assert_int_equal(k, 8);
-    tbl_destroy(&t);
-}
-
 /* ---- 8. the normal grid ----------------------------------------------------- */
 
 /* The normal grid keeps the table's nodes on its axes and divides each
@@ -1657,6 +1524,176 @@ static int note_levels(void *ctx, const tbl_progress *p)
     if (l->calls++ == 0 || v < l->lo) l->lo = v;
     if (l->calls == 1 || v > l->hi) l->hi = v;
     return 0;
+}
+
+/* One material: at Eco/Esu = 1 in a family with the same E/Y and ν in both
+ * layers the coating is the substrate and t/R means nothing, so every t/R
+ * column of that Eco/Esu holds the first column's runs.  A build asked for a
+ * point there computes its source once (one coarse FE run) and fills the
+ * other columns from it, at no cost; the copies survive the file, the
+ * surrogate fits each answer once, a merge fills copies whose source another
+ * part holds and follows a refined source, and a refinement plan counts the
+ * sources only.  Other Eco/Esu, and families with different layers, are
+ * their own sources. */
+static void test_one_material(void **state)
+{
+    char path[192];
+    scratch_file(state, "one-material", "one.h5", path, sizeof path);
+    tbl_family f;
+    tbl_numerics num;
+    coarse_numerics(&f, &num);
+    const double w[2] = {0.5, 1.0}, tR[3] = {0.01, 0.02, 0.04}, E[2] = {1.0, 2.0};
+    tbl_table *t = NULL, *other = NULL;
+    check_ok(tbl_create(&f, &num, w, 2, tR, 3, E, 2, &t), "tbl_create");
+    tbl_family g = f;
+    g.E_over_Y_co = 500.0; /* a harder coating: two materials at any Eco/Esu */
+    check_ok(tbl_create(&g, &num, w, 2, tR, 3, E, 2, &other), "tbl_create two materials");
+    for (int i = 0; i < tbl_points(t); i++) {
+        int iw = i % 2, it = (i / 2) % 3, iE = i / 6;
+        assert_int_equal(tbl_point_source(t, i), iE == 0 && it > 0 ? iw : i);
+        assert_int_equal(tbl_point_source(other, i), i);
+    }
+    tbl_destroy(&other);
+    /* and its run is the uncoated sphere's, whose mesh has no interface */
+    stc_params p1;
+    tbl_point_params(&f, 0.02, 1.0, &p1);
+    assert_true(p1.t_over_R == 0.0);
+    tbl_point_params(&f, 0.02, 2.0, &p1);
+    assert_true(p1.t_over_R == 0.02);
+    tbl_point_params(&g, 0.02, 1.0, &p1);
+    assert_true(p1.t_over_R == 0.02);
+
+    /* δ 1 at the first t/R done by hand, and every Eco/Esu 2 point; δ 0.5
+     * at the first t/R (point 0) pending */
+    for (int i = 1; i < tbl_points(t); i++) {
+        if (tbl_point_source(t, i) != i) continue;
+        tbl_point p;
+        memset(&p, 0, sizeof p);
+        p.state = TBL_DONE, p.members = 1;
+        p.P_Pc = p.A_Ac = p.P_slide_Pc = 1.0 + i;
+        p.mu_s = 0.5 + 0.01 * i, p.mu_s_err = 0.05 * p.mu_s, p.Q_max_Pc = p.mu_s * p.P_slide_Pc;
+        p.mu_s_min = p.mu_s_max = p.mu_s;
+        p.wall_s = p.cpu_s = 1.0 + i;
+        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+    }
+    tbl_point bad = *tbl_point_get(t, 1);
+    bad.copied = 1; /* point 1 is its own source */
+    assert_int_equal(tbl_point_set(t, 1, &bad), STC_EINVAL);
+    stc_error_clear();
+    /* the normal grid's curves alike: those that are their own source done
+     * by hand (no curve to compute), the others left to the build */
+    const double *nw_ax, *nt_ax;
+    int nw = tbl_normal_axis(t, 0, &nw_ax), nt = tbl_normal_axis(t, 1, &nt_ax), ncopy = 0;
+    double P[16], A[16];
+    assert_true(nw <= 16);
+    for (int c = 0; c < tbl_curves(t); c++) {
+        int src = tbl_curve_source(t, c), iE = c / nt;
+        assert_int_equal(src, iE == 0 ? 0 : c); /* Eco/Esu 1: the first t/R's */
+        if (src != c) {
+            ncopy++;
+            continue;
+        }
+        for (int k = 0; k < nw; k++)
+            P[k] = nrm_P(nw_ax[k], nt_ax[c % nt], 1.0 + iE), A[k] = nw_ax[k] * (1.0 + c);
+        tbl_curve cv = {.state = TBL_DONE, .increments = 5, .cpu_s = 1.0 + c, .wall_s = 1.0};
+        check_ok(tbl_curve_set(t, c, &cv, P, A), "tbl_curve_set");
+    }
+    assert_int_equal(tbl_curves_pending(t, NULL), 0); /* the copies are not to compute */
+
+    /* a query at t/R 0.02-0.04, Eco/Esu 1 reads points 2-5, which are copies
+     * of points 0 and 1: of those only point 0 is to be computed */
+    unsigned char need[12] = {0};
+    assert_int_equal(tbl_mark_needed(t, 0.5, 1.0, 0.02, 0.04, 1.0, need), 1);
+    assert_true(need[0] && need[1] && need[4] && need[5]);
+
+    tbl_build_opts o;
+    tbl_build_summary sum;
+    tbl_build_opts_default(&o);
+    o.jobs = 1;
+    unsigned char only[12] = {0};
+    only[4] = 1; /* δ 0.5, t/R 0.04, Eco/Esu 1: its source is point 0 */
+    o.only = only;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build");
+    printf("one material: a build asked for point 4 computed %d (its source), filled %d copies\n",
+           sum.computed, sum.copied);
+    assert_int_equal(sum.computed, 1);
+    assert_int_equal(sum.copied, 4);
+    assert_int_equal(sum.curves_computed, 0);
+    tbl_destroy(&t);
+    check_ok(tbl_read(path, &t), "tbl_read");
+    int done, pending;
+    tbl_count(t, &done, NULL, &pending);
+    assert_int_equal(done, 12);
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i), *q = tbl_point_get(t, tbl_point_source(t, i));
+        if (p == q) {
+            assert_int_equal(p->copied, 0);
+            assert_true(p->cpu_s > 0.0);
+            continue;
+        }
+        assert_int_equal(p->copied, 1);
+        assert_true(same_bits(p->mu_s, q->mu_s) && same_bits(p->mu_s_err, q->mu_s_err) &&
+                    same_bits(p->P_Pc, q->P_Pc) && p->members == q->members);
+        assert_true(p->cpu_s == 0.0 && p->wall_s == 0.0 && p->newton_iterations == 0);
+    }
+    tbl_fit_info fi;
+    check_ok(tbl_get_fit_info(t, &fi), "tbl_get_fit_info");
+    assert_int_equal(fi.n, 8); /* 2 answers at Eco/Esu 1, 6 at 2 */
+    int cd;
+    tbl_curve_count(t, &cd, NULL, NULL);
+    assert_int_equal(cd, tbl_curves(t));
+    for (int c = 0; c < tbl_curves(t); c++) {
+        int src = tbl_curve_source(t, c);
+        const tbl_curve *cv = tbl_curve_get(t, c);
+        assert_int_equal(cv->copied, src != c);
+        if (src == c) continue;
+        assert_true(cv->cpu_s == 0.0 && cv->increments == 0);
+        for (int k = 0; k < nw; k++) {
+            double a[2], b[2];
+            tbl_curve_values(t, c, k, &a[0], &a[1]);
+            tbl_curve_values(t, src, k, &b[0], &b[1]);
+            assert_true(same_bits(a[0], b[0]) && same_bits(a[1], b[1]));
+        }
+    }
+    printf("one material: %d of %d normal curves filled from their source\n", ncopy,
+           tbl_curves(t));
+
+    /* merge: the copies of a part without them are filled from the source
+     * another part holds; a source refined in a part carries its copies */
+    tbl_table *parts[3] = {NULL, NULL, NULL}, *m = NULL;
+    tbl_get_family(t, &f);
+    tbl_get_numerics(t, &num);
+    for (int k = 0; k < 3; k++)
+        check_ok(tbl_create(&f, &num, w, 2, tR, 3, E, 2, &parts[k]), "tbl_create part");
+    for (int i = 0; i < tbl_points(t); i++)
+        if (tbl_point_source(t, i) == i)
+            check_ok(tbl_point_set(parts[i % 2], i, tbl_point_get(t, i)), "tbl_point_set part");
+    tbl_point r = *tbl_point_get(t, 1);
+    r.members = 2, r.mu_s *= 1.1, r.cpu_s *= 2.0;
+    check_ok(tbl_point_set(parts[2], 1, &r), "tbl_point_set refined");
+    check_ok(tbl_merge(parts, 2, &m), "tbl_merge");
+    for (int i = 0; i < tbl_points(t); i++)
+        if (point_diff(tbl_point_get(t, i), tbl_point_get(m, i)))
+            fail_msg("merged point %d: %s differs", i,
+                     point_diff(tbl_point_get(t, i), tbl_point_get(m, i)));
+    tbl_destroy(&m);
+    check_ok(tbl_merge(parts, 3, &m), "tbl_merge with a refined source");
+    for (int i = 3; i < 6; i += 2) { /* δ 1, t/R 0.02 and 0.04 */
+        assert_int_equal(tbl_point_get(m, i)->members, 2);
+        assert_true(same_bits(tbl_point_get(m, i)->mu_s, r.mu_s));
+        assert_true(tbl_point_get(m, i)->copied && tbl_point_get(m, i)->cpu_s == 0.0);
+    }
+    tbl_destroy(&m);
+    for (int k = 0; k < 3; k++) tbl_destroy(&parts[k]);
+
+    /* a refinement computes the sources again and fills the copies: its
+     * plan counts the sources (one member's error at δ 1 is above 4 %) */
+    int k = -1;
+    double cpu = 0.0;
+    check_ok(tbl_refine_plan(t, 2, 1e-3, &k, &cpu), "tbl_refine_plan");
+    printf("one material: a refinement to 2 members computes %d of the 12 points again\n", k);
+    assert_int_equal(k, 8);
+    tbl_destroy(&t);
 }
 
 /* A build leaves the caller's OpenMP settings alone: the progress callback

@@ -137,6 +137,7 @@ typedef struct tbl_curve {
     int increments, newton_iterations; /* of the curve's solver run */
     double wall_s, cpu_s; /* time of the curve, s */
     char reason[TBL_REASON_MAX]; /* why it failed; "" when done */
+    int copied;           /* 1: its source's run (tbl_curve_source; costs 0); 0: its own */
 } tbl_curve;
 
 /* Compute one curve: params at R = 10 mm, Esu = 200 GPa as tbl_point_compute,
@@ -190,6 +191,10 @@ STC_API void tbl_count(const tbl_table *t, int *done, int *failed, int *pending)
 STC_API int tbl_curves(const tbl_table *t);
 STC_API int tbl_normal_axis(const tbl_table *t, int axis, const double **values);
 STC_API const tbl_curve *tbl_curve_get(const tbl_table *t, int c); /* borrowed; NULL if out of range */
+/* The curve whose run gives curve c: c itself, or where the coating is the
+ * substrate (as tbl_point_source) the curve at the first t/R of its Eco/Esu.
+ * A build computes only the curves that are their own source. */
+STC_API int tbl_curve_source(const tbl_table *t, int c);
 /* The curve's values at δ node k of the normal grid; NaN when not done. */
 STC_API void tbl_curve_values(const tbl_table *t, int c, int k, double *P_Pc, double *A_Ac);
 /* Store a computed curve (copied; P_Pc, A_Ac: [n_w] of the normal grid). */

@@ -467,6 +467,21 @@ static void print_axis(const char *name, const double *v, int n)
     printf("\n");
 }
 
+/* CPU s of the curves computed (done or failed, not copies); *n of them,
+ * *copied the copies. */
+static double curve_cost(const tbl_table *t, int *n, int *copied)
+{
+    double cpu = 0.0;
+    *n = *copied = 0;
+    for (int c = 0; c < tbl_curves(t); c++) {
+        const tbl_curve *cv = tbl_curve_get(t, c);
+        if (cv->state == TBL_PENDING) continue;
+        if (cv->copied) (*copied)++;
+        else cpu += cv->cpu_s, (*n)++;
+    }
+    return cpu;
+}
+
 /* CPU s of the points computed (done or failed, not copies of another's run:
  * tbl_point.copied); *n of them, *copied the copies. */
 static double run_cost(const tbl_table *t, int *n, int *copied)
@@ -581,6 +596,10 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_int(&j, "done", cd);
     cj_int(&j, "failed", cf);
     cj_int(&j, "pending", cp);
+    int crun, ccopied;
+    double ccpu = curve_cost(t, &crun, &ccopied);
+    cj_int(&j, "copied", ccopied);
+    cj_num(&j, "cpu_s_per_curve", crun ? ccpu / crun : NAN);
     cj_end_obj(&j);
     cj_arr(&j, "failed_points");
     for (int i = 0; i < tbl_points(t); i++) {
@@ -629,13 +648,14 @@ static void info_normal_text(const tbl_table *t)
     int nk[3], cd, cf, cp;
     for (int k = 0; k < 3; k++) nk[k] = tbl_normal_axis(t, k, NULL);
     tbl_curve_count(t, &cd, &cf, &cp);
-    double cpu = 0;
-    for (int c = 0; c < tbl_curves(t); c++)
-        if (tbl_curve_get(t, c)->state != TBL_PENDING) cpu += tbl_curve_get(t, c)->cpu_s;
+    int nrun, ncopied;
+    double cpu = curve_cost(t, &nrun, &ncopied);
+    char copies[64] = "";
+    if (ncopied > 0) snprintf(copies, sizeof copies, " (%d copied: one material)", ncopied);
     printf("  normal grid (preload P and A): axisymmetric level %d, %d delta x %d t/R x %d "
-           "Eco/Esu; curves %d, done %d, failed %d, pending %d; %.1f CPU s per curve\n",
-           n.normal_level, nk[0], nk[1], nk[2], tbl_curves(t), cd, cf, cp,
-           cd + cf ? cpu / (cd + cf) : 0.0);
+           "Eco/Esu; curves %d, done %d%s, failed %d, pending %d; %.1f CPU s per curve "
+           "computed\n", n.normal_level, nk[0], nk[1], nk[2], tbl_curves(t), cd, copies, cf, cp,
+           nrun ? cpu / nrun : 0.0);
     for (int c = 0; c < tbl_curves(t); c++) {
         const tbl_curve *cv = tbl_curve_get(t, c);
         if (cv->state != TBL_FAILED) continue;
