@@ -67,10 +67,12 @@ static void run_members(const stc_params *p, const asp_options *o, const asp_she
     int n = (out->k - j0 + dj - 1) / dj;
     int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
     if (nt > n) nt = n;
-    /* one BLAS thread per member (threads.c); CHOLMOD's regions on the
-     * member's thread, whatever the caller's max-active-levels (this
-     * team's own setting, threads.h) */
-    if (nt > 1) asp_blas_serial_enter();
+    /* one BLAS thread per member (threads.c), also when it runs alone, so
+     * that a member's numbers do not depend on how many run beside it (a
+     * refined ensemble is the one made at once, to the bit); CHOLMOD's
+     * regions on the member's thread, whatever the caller's
+     * max-active-levels (this team's own setting, threads.h) */
+    asp_blas_serial_enter();
 #pragma omp parallel num_threads(nt)
     {
         omp_set_max_active_levels(0);
@@ -81,7 +83,7 @@ static void run_members(const stc_params *p, const asp_options *o, const asp_she
             member_shear(so, &out->m[j], &sv[j]);
         }
     }
-    if (nt > 1) asp_blas_serial_leave();
+    asp_blas_serial_leave();
 }
 
 /* The means, extremes and error of out's k members, and its status. */
@@ -137,7 +139,9 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     asp_placement_member *m = out->m;
     out->k = k;
     m[0].elements_per_contact = o->elements_per_contact; /* 0: the level's */
+    asp_blas_serial_enter(); /* member 0's normal step on one BLAS thread as the rest */
     member_load(p, o, delta, delta, P, &m[0], &sv[0]);
+    asp_blas_serial_leave();
     asp_info in;
     if (sv[0]) { /* the mesh resolves the level into elements per contact */
         asp_solver_info(sv[0], &in);
