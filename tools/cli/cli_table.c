@@ -418,7 +418,8 @@ typedef struct {
 
 static const cli_opt info_opts[] = {
     {"json", NULL, "print JSON"},
-    {"points", NULL, "print every point's stored values instead, as CSV (one row a point)"},
+    {"points", NULL, "print every point's stored values instead, as CSV (one row a point; "
+                     "source: the point whose run it holds)"},
     {"curves", NULL, "print the normal grid's values instead, as CSV (one row a delta of a "
                      "curve)"},
     {"placements-max", "K", "also say what a build with refinement up to K members (table "
