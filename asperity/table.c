@@ -253,6 +253,12 @@ stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
     return asp_run_serial(point_run, &j);
 }
 
+stc_status tbl_build_item(const tbl_table *t, int item, tbl_point *p, tbl_curve *cv, double *P,
+                          double *A)
+{
+    return item >= 0 ? tbl_build_compute(t, item, p) : tbl_build_curve(t, -item - 1, cv, P, A);
+}
+
 /* ---- the handle ----------------------------------------------------------------- */
 
 static stc_status check_axis(const char *name, const double *v, int n, double lo)
@@ -380,6 +386,16 @@ int tbl_point_wanted(const tbl_table *t, const unsigned char *only, int i)
     return 0;
 }
 
+/* A point or curve (state, copied) whose source is another, in state src:
+ * to be filled from it when the source has an answer and it is pending, an
+ * earlier copy (its source since refined or retried), or failed where the
+ * source is done. */
+static int refill(int state, int copied, int src)
+{
+    return src != TBL_PENDING &&
+           (state == TBL_PENDING || copied || (state == TBL_FAILED && src == TBL_DONE));
+}
+
 int tbl_fill_copies(tbl_table *t)
 {
     int n = 0;
@@ -387,12 +403,7 @@ int tbl_fill_copies(tbl_table *t)
         int j = tbl_point_source(t, i);
         tbl_point *p = &t->pt[i];
         const tbl_point *q = &t->pt[j];
-        if (j == i || q->state == TBL_PENDING) continue;
-        /* pending, an earlier copy (its source since refined or retried), or
-         * failed where the source is done */
-        if (!(p->state == TBL_PENDING || p->copied ||
-              (p->state == TBL_FAILED && q->state == TBL_DONE)))
-            continue;
+        if (j == i || !refill(p->state, p->copied, q->state)) continue;
         *p = *q; /* the same answer, which cost nothing here */
         p->copied = 1;
         p->newton_iterations = p->factorizations = 0;
@@ -403,13 +414,8 @@ int tbl_fill_copies(tbl_table *t)
     tbl_normal *g = &t->nrm; /* the curves the same way */
     for (int c = 0; c < tbl_curves(t); c++) {
         int j = tbl_curve_source(t, c);
-        const tbl_curve *q = &g->c[j];
-        tbl_curve cv = g->c[c];
-        if (j == c || q->state == TBL_PENDING ||
-            !(cv.state == TBL_PENDING || cv.copied ||
-              (cv.state == TBL_FAILED && q->state == TBL_DONE)))
-            continue;
-        cv = *q;
+        if (j == c || !refill(g->c[c].state, g->c[c].copied, g->c[j].state)) continue;
+        tbl_curve cv = g->c[j];
         cv.copied = 1;
         cv.increments = cv.newton_iterations = 0;
         cv.wall_s = cv.cpu_s = 0.0;

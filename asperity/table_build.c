@@ -310,15 +310,11 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
 /* Item k of a todo list: a point i >= 0, or the curve c coded as -(c + 1). */
 static stc_status run_item(tbl_build_state *b, int item, double *P, double *A)
 {
-    if (item >= 0) {
-        tbl_point p;
-        STC_CALL(tbl_build_compute(b->t, item, &p));
-        build_finish(b, item, &p);
-    } else {
-        tbl_curve cv;
-        STC_CALL(tbl_build_curve(b->t, -item - 1, &cv, P, A));
-        finish_curve(b, -item - 1, &cv, P, A);
-    }
+    tbl_point p;
+    tbl_curve cv;
+    STC_CALL(tbl_build_item(b->t, item, &p, &cv, P, A));
+    if (item >= 0) build_finish(b, item, &p);
+    else finish_curve(b, -item - 1, &cv, P, A);
     return STC_OK;
 }
 

@@ -144,6 +144,10 @@ typedef struct tbl_build_state {
 /* Point i of t computed on the calling thread alone: tbl_point_compute at
  * the point's coordinates (table.c). */
 stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p);
+/* Item `item` of a build's todo list on the calling thread: point item
+ * (>= 0) into *p, or curve -(item + 1) into *cv, P and A (tbl_build_curve). */
+stc_status tbl_build_item(const tbl_table *t, int item, tbl_point *p, tbl_curve *cv, double *P,
+                          double *A);
 
 /* ---- distributed builds: the MPI farm (table_mpi.c) ---- */
 

@@ -84,6 +84,8 @@ enum { TAG_UP = 1, TAG_DOWN = 2, TAG_VALUES = 3 };
 enum { UP_HELLO = 1, UP_POINT = 2, UP_FAIL = 3, UP_CURVE = 4 };
 /* Room for a message (stc_errmsg holds up to 1023 characters). */
 enum { WHY_MAX = 1024 };
+/* given[] of a rank without an item (items are points >= 0 and curves < 0). */
+#define NO_ITEM INT32_MIN
 /* Pause between two polls of a waiting rank, ns. */
 #define NAP_NS 1000000L
 
@@ -184,8 +186,7 @@ typedef struct {
     tbl_build_state *b; /* NULL when only releasing the other ranks */
     const int *todo;    /* items: points i >= 0, curves c as -(c + 1) */
     int n, next;        /* todo[next] is handed out next (atomic) */
-    int *given;         /* [size]: the item each rank computes */
-    unsigned char *busy; /* [size]: the rank has an item */
+    int *given;         /* [size]: the item each rank computes, NO_ITEM none */
     int open;           /* ranks not yet told to stop */
     uint64_t hash;
     int shard, shards;
@@ -233,7 +234,7 @@ static void farm_reply(farm *f, int src)
     msg_down d;
     memset(&d, 0, sizeof d);
     d.stop = !farm_take(f, &d.item);
-    if (f->given) f->given[src] = d.item, f->busy[src] = !d.stop;
+    if (f->given) f->given[src] = d.stop ? NO_ITEM : d.item;
     if (d.stop) {
         stc_status fail;
         int stop = 0;
@@ -267,7 +268,7 @@ static void curve_values(farm *f, int src, const msg_up *u, char *msg, size_t n)
         return; /* MPI's truncation error ends the job on the unread values */
     }
     MPI_Recv(v, count, MPI_DOUBLE, src, TAG_VALUES, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    if (!f->given || !f->busy[src] || u->index != f->given[src] || u->index >= 0)
+    if (!f->given || u->index != f->given[src] || u->index >= 0 || u->index == NO_ITEM)
         snprintf(msg, n, "rank %d: sent curve %d, which it was not given", src,
                  (int)(-u->index - 1));
     else if (count != 2 * nw)
@@ -302,7 +303,7 @@ static void farm_handle(farm *f)
                          "shard differ from rank 0's): start every rank with the same "
                          "options", src);
         } else if (u.kind == UP_POINT) {
-            if (!f->b || !f->given || !f->busy[src] || u.index != f->given[src] || u.index < 0)
+            if (!f->b || !f->given || u.index != f->given[src] || u.index < 0)
                 snprintf(msg, sizeof msg, "rank %d: sent point %d, which it was not given",
                          src, (int)u.index);
             else f->b->finish(f->b, u.index, &u.p);
@@ -334,8 +335,7 @@ static void farm_compute(farm *f)
     while (farm_take(f, &item)) {
         tbl_point p;
         tbl_curve cv;
-        stc_status s = item >= 0 ? tbl_build_compute(f->b->t, item, &p)
-                                 : tbl_build_curve(f->b->t, -item - 1, &cv, v, v + nw);
+        stc_status s = tbl_build_item(f->b->t, item, &p, &cv, v, v + nw);
         if (s != STC_OK) {
             char msg[WHY_MAX + 64];
             snprintf(msg, sizeof msg, "rank 0: %s", stc_errmsg());
@@ -353,12 +353,8 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
     omp_init_lock(&f->lock);
     f->open = m->size - 1;
     f->given = malloc((size_t)m->size * sizeof *f->given);
-    f->busy = calloc((size_t)m->size, 1);
-    if (!f->given || !f->busy) {
-        free(f->given), free(f->busy);
-        f->given = NULL, f->busy = NULL;
-        farm_fail(f, STC_ENOMEM, "rank 0: out of memory"); /* still release every rank */
-    }
+    if (f->given) for (int r = 0; r < m->size; r++) f->given[r] = NO_ITEM;
+    else farm_fail(f, STC_ENOMEM, "rank 0: out of memory"); /* still release every rank */
     int jobs = 0; /* compute threads besides the serving one */
     if (f->b && m->threads) jobs = f->b->o->jobs > 0 ? f->b->o->jobs : 1;
     if (jobs > f->n) jobs = f->n;
@@ -373,8 +369,7 @@ static stc_status farm_run(const tbl_mpi *m, farm *f)
         }
     }
     free(f->given);
-    free(f->busy);
-    f->given = NULL, f->busy = NULL;
+    f->given = NULL;
     omp_destroy_lock(&f->lock);
     if (f->fail != STC_OK) return STC_FAIL(f->fail, "%s", f->why);
     return STC_OK;
@@ -434,11 +429,10 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
         memset(&u, 0, sizeof u);
         u.index = d.item;
         int c = -d.item - 1;
-        stc_status s = d.item >= 0 ? (d.item < tbl_points(t)
-                                          ? tbl_build_compute(t, d.item, &u.p)
-                                          : STC_FAIL(STC_EINVAL, "point %d: not in the table "
-                                                     "of %d points", (int)d.item, tbl_points(t)))
-                                   : tbl_build_curve(t, c, &u.c, v, v + nw);
+        stc_status s = d.item < tbl_points(t)
+                           ? tbl_build_item(t, d.item, &u.p, &u.c, v, v + nw)
+                           : STC_FAIL(STC_EINVAL, "point %d: not in the table of %d points",
+                                      (int)d.item, tbl_points(t));
         if (s != STC_OK) { /* told to rank 0 in the next message; kept as our status */
             if (st == STC_OK) st = s;
             u.kind = UP_FAIL;

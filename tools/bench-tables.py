@@ -50,7 +50,7 @@ def table_costs(cli, path):
               % ("stored fit" if info.get("fit_reused") else "searched", read_s,
                  100 * info["loo_rms_rel"], info["gamma"]))
     copies = [r for r in rows if r.get("source", r["index"]) != r["index"]]
-    rows = [r for r in rows if r not in copies]  # the runs
+    rows = [r for r in rows if r.get("source", r["index"]) == r["index"]]  # the runs
     if copies:
         print("  one material (Eco/Esu 1, layers alike): %d points hold the first t/R's run, "
               "computed once" % len(copies))

@@ -468,32 +468,19 @@ static void print_axis(const char *name, const double *v, int n)
     printf("\n");
 }
 
-/* CPU s of the curves computed (done or failed, not copies); *n of them,
- * *copied the copies. */
-static double curve_cost(const tbl_table *t, int *n, int *copied)
+/* CPU s of the points (curves: the normal grid's curves) computed: done or
+ * failed, not copies of another's run (tbl_point.copied, tbl_curve.copied);
+ * *n of them, *copied the copies. */
+static double run_cost(const tbl_table *t, int curves, int *n, int *copied)
 {
     double cpu = 0.0;
     *n = *copied = 0;
-    for (int c = 0; c < tbl_curves(t); c++) {
-        const tbl_curve *cv = tbl_curve_get(t, c);
-        if (cv->state == TBL_PENDING) continue;
-        if (cv->copied) (*copied)++;
-        else cpu += cv->cpu_s, (*n)++;
-    }
-    return cpu;
-}
-
-/* CPU s of the points computed (done or failed, not copies of another's run:
- * tbl_point.copied); *n of them, *copied the copies. */
-static double run_cost(const tbl_table *t, int *n, int *copied)
-{
-    double cpu = 0.0;
-    *n = *copied = 0;
-    for (int i = 0; i < tbl_points(t); i++) {
-        const tbl_point *p = tbl_point_get(t, i);
-        if (p->state == TBL_PENDING) continue;
-        if (p->copied) (*copied)++;
-        else cpu += p->cpu_s, (*n)++;
+    for (int i = 0; i < (curves ? tbl_curves(t) : tbl_points(t)); i++) {
+        const tbl_point *p = curves ? NULL : tbl_point_get(t, i);
+        const tbl_curve *cv = curves ? tbl_curve_get(t, i) : NULL;
+        if ((p ? p->state : cv->state) == TBL_PENDING) continue;
+        if (p ? p->copied : cv->copied) (*copied)++;
+        else cpu += p ? p->cpu_s : cv->cpu_s, (*n)++;
     }
     return cpu;
 }
@@ -569,7 +556,7 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_int(&j, "pending", np);
     double wall;
     int nrun, ncopied;
-    double cpu = run_cost(t, &nrun, &ncopied);
+    double cpu = run_cost(t, 0, &nrun, &ncopied);
     cj_int(&j, "copied", ncopied);
     cj_str(&j, "command", tbl_provenance(t, &wall));
     cj_num(&j, "build_wall_s", wall);
@@ -598,7 +585,7 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_int(&j, "failed", cf);
     cj_int(&j, "pending", cp);
     int crun, ccopied;
-    double ccpu = curve_cost(t, &crun, &ccopied);
+    double ccpu = run_cost(t, 1, &crun, &ccopied);
     cj_int(&j, "copied", ccopied);
     cj_num(&j, "cpu_s_per_curve", crun ? ccpu / crun : NAN);
     cj_end_obj(&j);
@@ -650,7 +637,7 @@ static void info_normal_text(const tbl_table *t)
     for (int k = 0; k < 3; k++) nk[k] = tbl_normal_axis(t, k, NULL);
     tbl_curve_count(t, &cd, &cf, &cp);
     int nrun, ncopied;
-    double cpu = curve_cost(t, &nrun, &ncopied);
+    double cpu = run_cost(t, 1, &nrun, &ncopied);
     char copies[64] = "";
     if (ncopied > 0) snprintf(copies, sizeof copies, " (%d copied: one material)", ncopied);
     printf("  normal grid (preload P and A): axisymmetric level %d, %d delta x %d t/R x %d "
@@ -702,7 +689,7 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
     tbl_count(t, &nd, &nf, &np);
     double wall;
     int nrun, ncopied;
-    double cpu = run_cost(t, &nrun, &ncopied);
+    double cpu = run_cost(t, 0, &nrun, &ncopied);
     const char *cmd = tbl_provenance(t, &wall);
     printf("  points: %d, done %d, failed %d, pending %d\n", tbl_points(t), nd, nf, np);
     if (ncopied > 0)
