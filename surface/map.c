@@ -2,6 +2,7 @@
  * or HDF5 dataset), and the HDF5 file format of the project. */
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -301,16 +302,24 @@ done:
 
 stc_status srf_tmpname(const char *path, char *buf, size_t n)
 {
-    int len = snprintf(buf, n, "%s.tmp-XXXXXX", path);
-    STC_CHECK(len > 0 && (size_t)len < n, STC_EINVAL, "%s: path too long", path);
-    int fd = mkstemp(buf);
-    STC_CHECK(fd >= 0, STC_EIO, "%s: cannot create a file there: %s", path, strerror(errno));
-    /* mkstemp makes 0600; give the final file the usual 0666 & ~umask */
-    mode_t um = umask(0);
-    umask(um);
-    fchmod(fd, 0666 & ~um);
-    close(fd);
-    return STC_OK;
+    /* open(O_EXCL, 0666) rather than mkstemp: the file gets the usual
+     * 0666 & ~umask from the kernel, with no umask() round trip (process-wide
+     * state another thread could see changed) */
+    static unsigned counter;
+    for (int tries = 0; tries < 100; tries++) {
+        unsigned k = __atomic_fetch_add(&counter, 1u, __ATOMIC_RELAXED);
+        int len = snprintf(buf, n, "%s.tmp-%ld-%u", path, (long)getpid(), k);
+        STC_CHECK(len > 0 && (size_t)len < n, STC_EINVAL, "%s: path too long", path);
+        int fd = open(buf, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd >= 0) {
+            close(fd);
+            return STC_OK;
+        }
+        STC_CHECK(errno == EEXIST, STC_EIO, "%s: cannot create a file there: %s", path,
+                  strerror(errno));
+    }
+    return STC_FAIL(STC_EIO, "%s: cannot create a temporary file beside it (100 names taken)",
+                    path);
 }
 
 static const char *origin_name(srf_origin o)

@@ -20,29 +20,41 @@ int srf_threads(int requested) { return requested > 0 ? requested : omp_get_max_
 static pthread_mutex_t planner_lock = PTHREAD_MUTEX_INITIALIZER;
 static int fftw_threads_ready;
 
-static void plan_setup(int threads)
+/* Set the planner's thread count for one plan; returns the count it found
+ * (0: threads unavailable), which plan_done restores, so that a caller's
+ * own plans keep the setting they chose. */
+static int plan_setup(int threads)
 {
     if (!fftw_threads_ready) fftw_threads_ready = fftw_init_threads() ? 1 : -1;
-    if (fftw_threads_ready > 0) fftw_plan_with_nthreads(srf_threads(threads));
+    if (fftw_threads_ready < 0) return 0;
+    int old = fftw_planner_nthreads();
+    fftw_plan_with_nthreads(srf_threads(threads));
+    return old;
+}
+
+static void plan_done(int old)
+{
+    if (old > 0) fftw_plan_with_nthreads(old);
+    pthread_mutex_unlock(&planner_lock);
 }
 
 fftw_plan srf_plan_r2c(int nx, int ny, double *in, fftw_complex *out, int threads)
 {
     pthread_mutex_lock(&planner_lock);
-    plan_setup(threads);
+    int old = plan_setup(threads);
     /* ESTIMATE: planning must not overwrite the caller's data, and a
      * MEASURE plan of a 4096² grid costs more than many executions. */
     fftw_plan p = fftw_plan_dft_r2c_2d(ny, nx, in, out, FFTW_ESTIMATE);
-    pthread_mutex_unlock(&planner_lock);
+    plan_done(old);
     return p;
 }
 
 fftw_plan srf_plan_c2r(int nx, int ny, fftw_complex *in, double *out, int threads)
 {
     pthread_mutex_lock(&planner_lock);
-    plan_setup(threads);
+    int old = plan_setup(threads);
     fftw_plan p = fftw_plan_dft_c2r_2d(ny, nx, in, out, FFTW_ESTIMATE);
-    pthread_mutex_unlock(&planner_lock);
+    plan_done(old);
     return p;
 }
 

@@ -37,8 +37,8 @@ void srf_moments_from_power(const double *pw, int nx, int ny, double lx, double 
 /* Self-affine band edges λL, λr, λs (mm) with the 0 = automatic defaults resolved. */
 void srf_band(const srf_synth_params *p, double *lL, double *lr, double *ls);
 
-/* Temporary file name beside `path` ("path.tmp-XXXXXX", created empty);
- * buf must hold strlen(path) + 16. */
+/* Temporary file name beside `path` ("path.tmp-PID-K", created empty with
+ * mode 0666 & ~umask); buf must hold strlen(path) + 32. */
 stc_status srf_tmpname(const char *path, char *buf, size_t n);
 
 #endif

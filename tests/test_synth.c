@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <cmocka.h>
 #include <png.h>
@@ -662,6 +663,38 @@ static int teardown(void **state)
     return system(cmd) == 0 ? 0 : -1;
 }
 
+/* The library leaves its caller's settings alone: FFTW's planner thread
+ * count (process-wide) is what the caller set after a synthesis planned on
+ * two threads, and the files it writes get the caller's umask (no umask()
+ * round trip inside). */
+static void test_caller_settings(void **state)
+{
+    (void)state;
+    assert_int_not_equal(fftw_init_threads(), 0);
+    fftw_plan_with_nthreads(3);
+    srf_synth_params p = self_affine(64, 48);
+    p.threads = 2;
+    srf_map *m = NULL;
+    assert_int_equal(srf_synthesize(&p, 5, &m), STC_OK);
+    assert_int_equal(fftw_planner_nthreads(), 3);
+    fftw_plan_with_nthreads(1);
+    mode_t old = umask(027);
+    char h5[512], png[512];
+    path_in(h5, sizeof h5, "mode.h5");
+    path_in(png, sizeof png, "mode.png");
+    assert_int_equal(srf_map_write_h5(m, h5), STC_OK);
+    assert_int_equal(srf_map_write_png(m, png), STC_OK);
+    umask(old);
+    struct stat a, b;
+    assert_int_equal(stat(h5, &a), 0);
+    assert_int_equal(stat(png, &b), 0);
+    assert_int_equal(a.st_mode & 0777, 0640);
+    assert_int_equal(b.st_mode & 0777, 0640);
+    remove(h5);
+    remove(png);
+    srf_map_destroy(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -672,6 +705,7 @@ int main(void)
         cmocka_unit_test(test_johnson_fit),        cmocka_unit_test(test_johnson_map),
         cmocka_unit_test(test_import_text_detrend), cmocka_unit_test(test_import_malformed),
         cmocka_unit_test(test_h5_roundtrip),       cmocka_unit_test(test_png),
+        cmocka_unit_test(test_caller_settings),
     };
     return cmocka_run_group_tests_name("synth", tests, setup, teardown);
 }
