@@ -517,19 +517,22 @@ static stc_status ramp_attrs(const asp_solver *s, const char *prefix, const asp_
     asp_shear *sh = s->sh;
     char path[4096];
     snprintf(path, sizeof path, "%s.h5", prefix);
-    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t f = -1;
+    H5E_BEGIN_TRY { f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT); } H5E_END_TRY;
     STC_CHECK(f >= 0, STC_EIO, "fields: cannot reopen '%s'", path);
     const char *name[5] = {"ux_mm", "Q_N", "Q_over_Q_max", "tau_c_MPa", "friction_kt_MPa_per_mm"};
     double v[5] = {p->ux, p->Q, Qmax > 0.0 ? p->Q / Qmax : NAN, sh->fric.tau_c, sh->fric.kt};
     int bad = 0;
-    for (int i = 0; i < 5; i++) {
-        hid_t sp = H5Screate(H5S_SCALAR);
-        hid_t a = H5Acreate2(f, name[i], H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
-        bad |= a < 0 || H5Awrite(a, H5T_NATIVE_DOUBLE, &v[i]) < 0;
-        if (a >= 0) H5Aclose(a);
-        H5Sclose(sp);
-    }
-    bad |= H5Fclose(f) < 0;
+    H5E_BEGIN_TRY { /* failures are reported in the status, not on stderr */
+        for (int i = 0; i < 5; i++) {
+            hid_t sp = H5Screate(H5S_SCALAR);
+            hid_t a = H5Acreate2(f, name[i], H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
+            bad |= a < 0 || H5Awrite(a, H5T_NATIVE_DOUBLE, &v[i]) < 0;
+            if (a >= 0) H5Aclose(a);
+            H5Sclose(sp);
+        }
+        bad |= H5Fclose(f) < 0;
+    } H5E_END_TRY;
     STC_CHECK(!bad, STC_EIO, "fields: cannot write the ramp attributes into '%s'", path);
     return STC_OK;
 }

@@ -265,9 +265,21 @@ static stc_status render(const srf_map *m, double lo, double hi, double mean, do
     return STC_OK;
 }
 
+/* libpng's default handlers print to stderr; the library reports through
+ * its status instead: an error jumps back to write_png_file's setjmp, a
+ * warning (nothing this writer can act on) is dropped. */
+static void png_error_quiet(png_structp png, png_const_charp msg)
+{
+    (void)msg;
+    png_longjmp(png, 1);
+}
+
+static void png_warning_quiet(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
 static stc_status write_png_file(FILE *fp, const canvas *c)
 {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_error_quiet,
+                                              png_warning_quiet);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
