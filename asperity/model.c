@@ -327,12 +327,14 @@ static stc_status data_check(const asp_model_data *d)
               "n_tR = %d: a model that ignores the coating takes one t/R column", d->n_tR);
     for (int i = 1; i < d->n_w; i++)
         STC_CHECK(d->w[i] > d->w[i - 1], STC_EINVAL,
-                  "w[%d] = %g: interference values must increase strictly", i, d->w[i]);
+                  "w[%d] = %g after %g: interference values must increase strictly", i,
+                  d->w[i], d->w[i - 1]);
     for (int j = 0; j < d->n_tR; j++) {
         STC_CHECK(isfinite(d->tR[j]) && d->tR[j] >= 0, STC_EINVAL,
                   "tR[%d] = %g: must be >= 0", j, d->tR[j]);
         STC_CHECK(j == 0 || d->tR[j] > d->tR[j - 1], STC_EINVAL,
-                  "tR[%d] = %g: t/R values must increase strictly", j, d->tR[j]);
+                  "tR[%d] = %g after %g: t/R values must increase strictly", j, d->tR[j],
+                  d->tR[j - 1]);
     }
     return STC_OK;
 }

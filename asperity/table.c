@@ -30,10 +30,12 @@ stc_status tbl_family_validate(const tbl_family *f)
     STC_CALL(stc_check_range("nu-su", f->nu_su, 0.0, 1, 0.5, 0));
     STC_CALL(stc_check_range("nu-co", f->nu_co, 0.0, 1, 0.5, 0));
     STC_CHECK(f->contact == ASP_CONTACT_SLIP || f->contact == ASP_CONTACT_STICK, STC_EINVAL,
-              "contact = %d: must be slip or stick", (int)f->contact);
+              "contact = %d: must be slip (%d) or stick (%d)", (int)f->contact,
+              (int)ASP_CONTACT_SLIP, (int)ASP_CONTACT_STICK);
     STC_CALL(stc_check_range("tau-c-over-Y-co", f->tau_c_over_Y_co, 0.0, 0, 1.0, 1));
     STC_CHECK(f->criterion == ASP_SHEAR_CRIT_SHEAR || f->criterion == ASP_SHEAR_CRIT_STIFFNESS,
-              STC_EINVAL, "criterion = %d: must be shear or stiffness", (int)f->criterion);
+              STC_EINVAL, "criterion = %d: must be shear (%d) or stiffness (%d)",
+              (int)f->criterion, (int)ASP_SHEAR_CRIT_SHEAR, (int)ASP_SHEAR_CRIT_STIFFNESS);
     STC_CALL(stc_check_range("alpha", f->alpha, 0.0, 0, 1.0, 0));
     return STC_OK;
 }
@@ -288,7 +290,9 @@ stc_status tbl_create(const tbl_family *f, const tbl_numerics *num, const double
     STC_CALL(check_axis("E-ratio", E_ratio, n_E, 0.0));
     STC_CHECK(t_over_R[n_tR - 1] < 1.0, STC_EINVAL, "t/R = %g: must be < 1", t_over_R[n_tR - 1]);
     long np = (long)n_w * n_tR * n_E;
-    STC_CHECK(np <= 1000000, STC_EINVAL, "table of %ld points: at most 1000000", np);
+    STC_CHECK(np <= 1000000, STC_EINVAL,
+              "table of %d deltas x %d t-over-R x %d E-ratio = %ld points: at most 1000000",
+              n_w, n_tR, n_E, np);
     tbl_table *t = calloc(1, sizeof *t);
     STC_CHECK(t, STC_ENOMEM, "tbl_create: out of memory");
     t->fam = *f;

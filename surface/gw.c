@@ -289,7 +289,8 @@ stc_status srf_gw_create_summits(const asp_model *model, srf_gw_mode mode, const
     STC_CHECK(mode == SRF_GW_KDE || mode == SRF_GW_DETERMINISTIC, STC_EINVAL,
               "mode = %s: measured summits take kde or deterministic",
               srf_gw_mode_name(mode));
-    STC_CHECK(z && R && n >= 0, STC_EINVAL, "srf_gw: z and R arrays required");
+    STC_CHECK(z && R, STC_EINVAL, "srf_gw: z and R arrays required");
+    STC_CHECK(n >= 0, STC_EINVAL, "summits n = %d: must be >= 0", n);
     STC_CALL(stc_check_range("area", area_mm2, 0.0, 0, INFINITY, 0));
     STC_CALL(gw_alloc(model, mode, p, out));
     srf_gw *g = *out;

@@ -78,8 +78,8 @@ stc_status srf_synth_params_validate(const srf_synth_params *p)
         STC_CHECK(p->psd != NULL, STC_EINVAL, "spectrum = user: a PSD callback is required");
         break;
     default:
-        return STC_FAIL(STC_EINVAL, "spectrum = %d: must be exponential or self-affine",
-                        (int)p->spectrum);
+        return STC_FAIL(STC_EINVAL, "spectrum = %d: must be exponential, self-affine or user "
+                        "(srf_spectrum)", (int)p->spectrum);
     }
     if (p->non_gaussian) {
         STC_CHECK(isfinite(p->skewness), STC_EINVAL, "skewness = %g: must be finite", p->skewness);
