@@ -232,9 +232,9 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
             return bad(key, value, "an integer in [1, 256]");
         a->o.threads = (int)l;
     } else if (!strcmp(key, "no-separation")) {
-        a->o.no_separation = strcmp(value, "0") != 0;
+        return cli_parse_flag(key, value, &a->o.no_separation);
     } else if (!strcmp(key, "json")) {
-        a->json = strcmp(value, "0") != 0;
+        return cli_parse_flag(key, value, &a->json);
     } else if (!strcmp(key, "out")) {
         free(a->out);
         a->out = strdup(value);

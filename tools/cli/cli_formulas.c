@@ -46,16 +46,6 @@ typedef struct {
     char *output; /* owned */
 } fopts;
 
-static stc_status set_flag(const char *key, const char *value, int *flag)
-{
-    if (!strcmp(value, "1") || !strcmp(value, "true") || !strcmp(value, "yes")) *flag = 1;
-    else if (!strcmp(value, "0") || !strcmp(value, "false") || !strcmp(value, "no")) *flag = 0;
-    else
-        return stc_error(STC_EINVAL, __FILE__, __LINE__,
-                         "%s = '%s': must be 1/true/yes or 0/false/no", key, value);
-    return STC_OK;
-}
-
 /* Parse a list and check every value is in (lo, hi). */
 static stc_status set_list(const char *key, const char *value, double lo, double hi,
                            double **list, int *n)
@@ -92,8 +82,8 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
     if (!strcmp(key, "sweep-t-over-R")) return set_list(key, value, 0.0, 1.0, &o->sw_tr, &o->n_tr);
     if (!strcmp(key, "sweep-E-ratio"))
         return set_list(key, value, 1.0, INFINITY, &o->sw_er, &o->n_er);
-    if (!strcmp(key, "json")) return set_flag(key, value, &o->json);
-    if (!strcmp(key, "csv")) return set_flag(key, value, &o->csv);
+    if (!strcmp(key, "json")) return cli_parse_flag(key, value, &o->json);
+    if (!strcmp(key, "csv")) return cli_parse_flag(key, value, &o->csv);
     if (!strcmp(key, "output")) {
         if (!*value)
             return stc_error(STC_EINVAL, __FILE__, __LINE__, "output = '': must be a file name");
