@@ -56,7 +56,8 @@ static const cli_opt opts[] = {
      "the contact edge (node-placement ensemble), K in [1, 8] (default 1).  One level-0 "
      "mesh's mu_s scatters with where its nodes fall by up to 10.1 % (standard deviation; "
      "3.8 % with --foot-rows 0.6); the members' mean and spread are reported, with the "
-     "mean's standard error.  Costs K times the CPU time; the members run concurrently, "
+     "mean's standard error.  Costs K times the CPU time or more (two: 1.9-4.0x one run); "
+     "the members run concurrently, "
      "one thread each (docs/design.md §4.5)"},
     {"placements-max", "K",
      "--shear: refine the ensemble while its standard error exceeds --refine-err of mu_s: "
