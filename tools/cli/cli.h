@@ -176,10 +176,11 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
                        int json, const char *out);
 /* --- surface subcommands (cli_surface*.c) --- */
 struct srf_map;
-int cli_surface(const cli_cmd *cmd, int argc, char **argv); /* synth|stats|predict */
+int cli_surface(const cli_cmd *cmd, int argc, char **argv); /* synth|stats|predict|sweep */
 int cli_surface_synth(const cli_cmd *cmd, int argc, char **argv);
 int cli_surface_stats(const cli_cmd *cmd, int argc, char **argv);
 int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv);
+int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv);
 /* "a" or "a,b" → (a, a) or (a, b). */
 stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b);
 /* A flag's value: 1/true/yes or 0/false/no ("--json" alone passes "1"). */
@@ -229,5 +230,48 @@ typedef struct cli_table_progress {
 /* tbl_progress_fn: after each point, one line on stderr (rewritten in place
  * on a terminal), with the point's μs, elapsed time and ETA. */
 int cli_table_progress_line(void *ctx, const tbl_progress *p);
+
+/* --- the sums `surface predict` and `surface sweep` share (cli_surface_gw.c) --- */
+#include "stiction/gw.h"
+#include "stiction/model.h"
+#include "stiction/surface.h"
+/* The summit population: the map's summits (read once) or, without a map,
+ * a Gaussian population of eta, R, sigma_s; summed as the options say. */
+typedef struct cli_gw_pop {
+    int rule, deterministic, kde; /* --rule, --mode, --density */
+    double eta, R, sigma_s;       /* without --surface */
+    srf_summits *sm;              /* with --surface (owned) */
+    srf_stats st;
+} cli_gw_pop;
+/* Read the map's summits and statistics (nothing without a map). */
+stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp);
+/* The GW sums of model m over the population. */
+stc_status cli_gw_pop_sum(const cli_gw_pop *pop, const asp_model *m, srf_gw **out);
+void cli_gw_pop_free(cli_gw_pop *pop);
+/* One coating on an FE friction table: its models at the preload, at
+ * sliding inception and μs's error band, each summed over the population. */
+typedef struct cli_table_design {
+    asp_model *m[3];
+    srf_gw *g[3];
+} cli_table_design;
+stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, double t_mm,
+                                   const cli_gw_pop *pop, cli_table_design *d);
+/* The sums at a pressure (MPa; by_pressure) or separation, with μs's error
+ * band and μs with P at inception. */
+stc_status cli_table_design_at(const cli_table_design *d, int by_pressure, double x,
+                               srf_gw_point *pt, double *mu_s_err, double *mu_s_slide);
+void cli_table_design_free(cli_table_design *d);
+/* --fill over one or more coatings (t_mm[k] with materials p[k]): the table
+ * file's missing points that the loads touch, computed into it; the counts
+ * on stderr. */
+typedef struct cli_table_fill_job {
+    const char *table;
+    const cli_gw_pop *pop;
+    const stc_params *p;
+    const double *t_mm;
+    const double *loads;
+    int nloads, by_pressure;
+} cli_table_fill_job;
+stc_status cli_table_fill(const char *cmd, const cli_table_fill_job *job, int ndesign, int jobs);
 
 #endif

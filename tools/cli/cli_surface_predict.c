@@ -209,29 +209,12 @@ static stc_status check_opts(const predict_opts *o)
 
 /* ------------------------------------------------------------ set-up */
 
-/* With --table: the sums at the main model's separations with P at inception
- * (aux[0]) and with Qmax = σ(μs) P (aux[1], the error band). */
+/* With --table: the table and its three models at --t-mm (design.m[0] is
+ * the main model, the preload's). */
 typedef struct {
     tbl_table *t;
-    asp_model *m[2];
-    srf_gw *g[2];
+    cli_table_design d;
 } table_aux;
-
-static stc_status make_table_models(const predict_opts *o, const stc_params *p, table_aux *x,
-                                    asp_model **out)
-{
-    stc_status s = tbl_read(o->table, &x->t);
-    if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_PRELOAD, out);
-    if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_SLIDE, &x->m[0]);
-    if (s == STC_OK) s = tbl_model_create(x->t, p, o->t_mm, TBL_MODEL_ERR, &x->m[1]);
-    return cli_name_error(s, "table", o->table);
-}
-
-static void table_aux_free(table_aux *x)
-{
-    for (int k = 0; k < 2; k++) srf_gw_destroy(&x->g[k]), asp_model_destroy(&x->m[k]);
-    tbl_destroy(&x->t);
-}
 
 static stc_status make_model(const predict_opts *o, const stc_params *p, asp_model **out)
 {
@@ -247,84 +230,6 @@ static stc_status make_model(const predict_opts *o, const stc_params *p, asp_mod
     return s;
 }
 
-static stc_status make_gw(const predict_opts *o, const asp_model *m, srf_gw **out)
-{
-    if (!o->surface) return srf_gw_create_gaussian(m, o->eta, o->R, o->sigma_s, NULL, out);
-    srf_map *map = NULL;
-    srf_summits *sm = NULL;
-    srf_stats st;
-    stc_status s = cli_surface_load("surface", o->surface, &o->imp, &map);
-    if (s == STC_OK) s = srf_summits_find(map, o->rule, &sm);
-    if (s == STC_OK) s = srf_stats_compute(map, sm, &st);
-    if (s == STC_OK) {
-        if (o->deterministic) s = srf_gw_create_from_summits(m, SRF_GW_DETERMINISTIC, sm, NULL, out);
-        else if (o->kde) s = srf_gw_create_from_summits(m, SRF_GW_KDE, sm, NULL, out);
-        else s = srf_gw_create_gaussian(m, st.summit_density_per_mm2, st.mean_summit_radius_mm,
-                                        st.sigma_s_mm, NULL, out);
-    }
-    srf_summits_destroy(&sm);
-    srf_map_destroy(&map);
-    return s;
-}
-
-/* --fill: the table's missing points that the loads touch, computed and
- * added to the table file.  The contact states come from a guide model: the
- * table's own where it has one at these materials, else the closed-form wsp
- * model (substrate); a round with the table's model after a fill checks
- * that the filled table needs nothing more (at most 3 rounds). */
-static stc_status fill_table(const char *cmd, const predict_opts *o, const stc_params *p)
-{
-    tbl_table *t = NULL;
-    unsigned char *need = NULL;
-    int n = o->np ? o->np : o->ns, computed = 0, marked = 0, failed = 0, curves = 0;
-    double wall = 0.0;
-    stc_status s = tbl_read(o->table, &t);
-    if (s == STC_OK) s = tbl_check_params(t, p);
-    if (s == STC_OK && !(need = calloc((size_t)tbl_points(t), 1)))
-        s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
-    for (int round = 0; round < 3 && s == STC_OK; round++) {
-        asp_model *guide = NULL;
-        srf_gw *g = NULL;
-        int pending = 0;
-        if (tbl_model_create(t, p, o->t_mm, TBL_MODEL_PRELOAD, &guide) != STC_OK) {
-            stc_error_clear();
-            s = asp_model_create_wsp(p, o->t_mm, ASP_LAYER_SUBSTRATE, &guide);
-        }
-        if (s == STC_OK) s = make_gw(o, guide, &g);
-        if (s == STC_OK)
-            s = srf_gw_table_needs(g, t, p->E_ratio, o->np > 0, o->np ? o->pressures
-                                                                      : o->separations,
-                                   n, need, &pending);
-        srf_gw_destroy(&g);
-        asp_model_destroy(&guide);
-        if (s != STC_OK || (pending == 0 && tbl_curves_pending(t, need) == 0)) break;
-        tbl_build_opts bo;
-        tbl_build_summary sum;
-        tbl_build_opts_default(&bo);
-        bo.only = need;
-        bo.jobs = o->jobs;
-        cli_table_progress pc = {isatty(2), 0, t};
-        bo.progress = cli_table_progress_line;
-        bo.ctx = &pc;
-        fprintf(stderr, "stiction %s: filling %s: %d points and %d normal curves to compute\n",
-                cmd, o->table, pending, tbl_curves_pending(t, need));
-        s = tbl_build(t, o->table, &bo, &sum);
-        if (pc.tty && sum.computed > 0) fputc('\n', stderr);
-        computed += sum.computed;
-        curves += sum.curves_computed;
-        failed += sum.failed;
-        wall += sum.wall_s;
-    }
-    for (int i = 0; need && i < tbl_points(t); i++) marked += need[i] != 0;
-    if (s == STC_OK)
-        fprintf(stderr, "stiction %s: fill: the loads touch %d of the table's %d points; %d "
-                "computed now (%d failed, %.1f s, with %d normal curves), %d were there\n",
-                cmd, marked, tbl_points(t), computed, failed, wall, curves, marked - computed);
-    free(need);
-    tbl_destroy(&t);
-    return cli_name_error(s, "table", o->table);
-}
-
 /* Per load point with --table: μs's error band and μs with P at inception. */
 typedef struct {
     double mu_s_err, mu_s_slide;
@@ -335,16 +240,14 @@ static stc_status run_points(const predict_opts *o, srf_gw *g, const table_aux *
 {
     int n = o->np ? o->np : o->ns;
     for (int i = 0; i < n; i++) {
-        stc_status s = o->np ? srf_gw_at_pressure(g, o->pressures[i], &pts[i])
-                             : srf_gw_at_separation(g, o->separations[i], &pts[i]);
+        stc_status s;
+        if (x->t)
+            s = cli_table_design_at(&x->d, o->np > 0, o->np ? o->pressures[i] : o->separations[i],
+                                    &pts[i], &ex[i].mu_s_err, &ex[i].mu_s_slide);
+        else
+            s = o->np ? srf_gw_at_pressure(g, o->pressures[i], &pts[i])
+                      : srf_gw_at_separation(g, o->separations[i], &pts[i]);
         if (s != STC_OK) return s;
-        if (!x->t) continue;
-        srf_gw_point a, b; /* the same summits at the same separation */
-        if ((s = srf_gw_at_separation(x->g[0], pts[i].h, &a)) ||
-            (s = srf_gw_at_separation(x->g[1], pts[i].h, &b)))
-            return s;
-        ex[i].mu_s_slide = pts[i].Q_MPa / a.pressure_MPa;
-        ex[i].mu_s_err = b.Q_MPa / pts[i].pressure_MPa; /* errors taken fully correlated */
     }
     return STC_OK;
 }
@@ -764,10 +667,25 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
         goto out;
     o.t_mm = p.t_mm; /* 0 unless --t-mm: uncoated */
-    if (s == STC_OK && o.fill) s = fill_table(cmd->name, &o, &p);
-    if (s == STC_OK) s = o.table ? make_table_models(&o, &p, &aux, &m) : make_model(&o, &p, &m);
-    if (s == STC_OK) s = make_gw(&o, m, &g);
-    for (int k = 0; k < 2 && s == STC_OK && o.table; k++) s = make_gw(&o, aux.m[k], &aux.g[k]);
+    cli_gw_pop pop = {.rule = o.rule, .deterministic = o.deterministic, .kde = o.kde,
+                      .eta = o.eta, .R = o.R, .sigma_s = o.sigma_s};
+    if (s == STC_OK) s = cli_gw_pop_load(&pop, o.surface, &o.imp);
+    if (s == STC_OK && o.fill) {
+        int nl = o.np ? o.np : o.ns;
+        cli_table_fill_job job = {o.table, &pop, &p, &o.t_mm, o.np ? o.pressures : o.separations,
+                                  nl, o.np > 0};
+        s = cli_table_fill(cmd->name, &job, 1, o.jobs);
+    }
+    if (s == STC_OK && o.table) {
+        s = tbl_read(o.table, &aux.t);
+        if (s == STC_OK) s = cli_table_design_create(aux.t, &p, o.t_mm, &pop, &aux.d);
+        s = cli_name_error(s, "table", o.table);
+        if (s == STC_OK) m = aux.d.m[0], g = aux.d.g[0]; /* owned by aux */
+    } else if (s == STC_OK) {
+        s = make_model(&o, &p, &m);
+        if (s == STC_OK) s = cli_gw_pop_sum(&pop, m, &g);
+    }
+    cli_gw_pop_free(&pop);
     int n = o.np ? o.np : o.ns;
     if (s == STC_OK && (!(pts = calloc((size_t)n, sizeof *pts)) ||
                         !(ex = calloc((size_t)n, sizeof *ex))))
@@ -804,7 +722,9 @@ out:
     free(pts);
     free(ex);
     free(o.table);
-    table_aux_free(&aux);
+    if (aux.t) m = NULL, g = NULL; /* the design's */
+    cli_table_design_free(&aux.d);
+    tbl_destroy(&aux.t);
     free(o.pressures);
     free(o.separations);
     free(o.surface);

@@ -1,0 +1,134 @@
+/* What `surface predict` and `surface sweep` share: the summit population
+ * (read once, summed with any number of asperity models), the three models
+ * of an FE friction table at one coating (preload, P at inception, μs's
+ * error band) and their sums at one load, and --fill (the table's missing
+ * points that the loads touch, computed into the table file). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "stiction/gw.h"
+#include "stiction/model.h"
+#include "stiction/surface.h"
+#include "stiction/table.h"
+
+stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp)
+{
+    if (!surface) return STC_OK; /* a Gaussian population from its three statistics */
+    srf_map *map = NULL;
+    stc_status s = cli_surface_load("surface", surface, imp, &map);
+    if (s == STC_OK) s = srf_summits_find(map, pop->rule, &pop->sm);
+    if (s == STC_OK) s = srf_stats_compute(map, pop->sm, &pop->st);
+    srf_map_destroy(&map);
+    return s;
+}
+
+stc_status cli_gw_pop_sum(const cli_gw_pop *pop, const asp_model *m, srf_gw **out)
+{
+    if (!pop->sm) return srf_gw_create_gaussian(m, pop->eta, pop->R, pop->sigma_s, NULL, out);
+    if (pop->deterministic)
+        return srf_gw_create_from_summits(m, SRF_GW_DETERMINISTIC, pop->sm, NULL, out);
+    if (pop->kde) return srf_gw_create_from_summits(m, SRF_GW_KDE, pop->sm, NULL, out);
+    return srf_gw_create_gaussian(m, pop->st.summit_density_per_mm2, pop->st.mean_summit_radius_mm,
+                                  pop->st.sigma_s_mm, NULL, out);
+}
+
+void cli_gw_pop_free(cli_gw_pop *pop) { srf_summits_destroy(&pop->sm); }
+
+stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, double t_mm,
+                                   const cli_gw_pop *pop, cli_table_design *d)
+{
+    static const tbl_model_kind kind[3] = {TBL_MODEL_PRELOAD, TBL_MODEL_SLIDE, TBL_MODEL_ERR};
+    memset(d, 0, sizeof *d);
+    stc_status s = STC_OK;
+    for (int k = 0; k < 3 && s == STC_OK; k++) {
+        s = tbl_model_create(t, p, t_mm, kind[k], &d->m[k]);
+        if (s == STC_OK) s = cli_gw_pop_sum(pop, d->m[k], &d->g[k]);
+    }
+    if (s != STC_OK) cli_table_design_free(d);
+    return s;
+}
+
+stc_status cli_table_design_at(const cli_table_design *d, int by_pressure, double x,
+                               srf_gw_point *pt, double *mu_s_err, double *mu_s_slide)
+{
+    stc_status s = by_pressure ? srf_gw_at_pressure(d->g[0], x, pt)
+                               : srf_gw_at_separation(d->g[0], x, pt);
+    if (s != STC_OK) return s;
+    srf_gw_point a, b; /* the same summits at the same separation */
+    if ((s = srf_gw_at_separation(d->g[1], pt->h, &a)) ||
+        (s = srf_gw_at_separation(d->g[2], pt->h, &b)))
+        return s;
+    *mu_s_slide = pt->Q_MPa / a.pressure_MPa;
+    *mu_s_err = b.Q_MPa / pt->pressure_MPa; /* errors taken fully correlated */
+    return STC_OK;
+}
+
+void cli_table_design_free(cli_table_design *d)
+{
+    for (int k = 0; k < 3; k++) srf_gw_destroy(&d->g[k]), asp_model_destroy(&d->m[k]);
+}
+
+/* The contact states come from a guide model: the table's own where it has
+ * one at these materials, else the closed-form wsp model (substrate); a
+ * round with the table's model after a fill checks that the filled table
+ * needs nothing more (at most 3 rounds). */
+stc_status cli_table_fill(const char *cmd, const cli_table_fill_job *job, int ndesign,
+                          int jobs)
+{
+    tbl_table *t = NULL;
+    unsigned char *need = NULL;
+    int computed = 0, marked = 0, failed = 0, curves = 0;
+    double wall = 0.0;
+    stc_status s = tbl_read(job->table, &t);
+    for (int k = 0; k < ndesign && s == STC_OK; k++) s = tbl_check_params(t, &job->p[k]);
+    if (s == STC_OK && !(need = calloc((size_t)tbl_points(t), 1)))
+        s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
+    for (int round = 0; round < 3 && s == STC_OK; round++) {
+        int pending = 0;
+        for (int k = 0; k < ndesign && s == STC_OK; k++) {
+            asp_model *guide = NULL;
+            srf_gw *g = NULL;
+            int pk = 0;
+            if (tbl_model_create(t, &job->p[k], job->t_mm[k], TBL_MODEL_PRELOAD, &guide) !=
+                STC_OK) {
+                stc_error_clear();
+                s = asp_model_create_wsp(&job->p[k], job->t_mm[k], ASP_LAYER_SUBSTRATE, &guide);
+            }
+            if (s == STC_OK) s = cli_gw_pop_sum(job->pop, guide, &g);
+            if (s == STC_OK)
+                s = srf_gw_table_needs(g, t, job->p[k].E_ratio, job->by_pressure, job->loads,
+                                       job->nloads, need, &pk);
+            srf_gw_destroy(&g);
+            asp_model_destroy(&guide);
+            pending += pk; /* each design counts the points not yet marked by another */
+        }
+        if (s != STC_OK || (pending == 0 && tbl_curves_pending(t, need) == 0)) break;
+        tbl_build_opts bo;
+        tbl_build_summary sum;
+        tbl_build_opts_default(&bo);
+        bo.only = need;
+        bo.jobs = jobs;
+        cli_table_progress pc = {isatty(2), 0, t};
+        bo.progress = cli_table_progress_line;
+        bo.ctx = &pc;
+        fprintf(stderr, "stiction %s: filling %s: %d points and %d normal curves to compute\n",
+                cmd, job->table, pending, tbl_curves_pending(t, need));
+        s = tbl_build(t, job->table, &bo, &sum);
+        if (pc.tty && sum.computed > 0) fputc('\n', stderr);
+        computed += sum.computed;
+        curves += sum.curves_computed;
+        failed += sum.failed;
+        wall += sum.wall_s;
+    }
+    for (int i = 0; need && i < tbl_points(t); i++) marked += need[i] != 0;
+    if (s == STC_OK)
+        fprintf(stderr, "stiction %s: fill: the loads touch %d of the table's %d points; %d "
+                "computed now (%d failed, %.1f s, with %d normal curves), %d were there\n",
+                cmd, marked, tbl_points(t), computed, failed, wall, curves, marked - computed);
+    free(need);
+    tbl_destroy(&t);
+    return cli_name_error(s, "table", job->table);
+}
