@@ -178,6 +178,7 @@ static void test_config_directory(void **state)
     (void)state;
     static const char *const cmds[] = {"formulas",      "asperity",      "halfspace",
                                        "surface synth", "surface stats", "surface predict",
+                                       "surface sweep",
                                        "table build",   "table info",    "table query",
                                        "table merge"};
     char args[512], needle[384], err[4096];

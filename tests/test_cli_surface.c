@@ -827,6 +827,90 @@ static void test_roundtrip_predict(void **state)
     rm_outputs();
 }
 
+/* surface sweep: every design reads what `surface predict --table` gives
+ * for it alone (the same numbers: the summits read once, each coating the
+ * table's model summed over them), the coating's yield strength from the
+ * table's family; --out writes its two files and nothing else; bad input is
+ * refused naming the key and leaves nothing behind. */
+#define SW_POP "--summit-density 1000 --summit-radius 0.1 --sigma-s 2e-6 "
+#define SW_TABLE "--table '" STC_DATA_DIR "/tables/thesis.h5' "
+static void test_sweep(void **state)
+{
+    (void)state;
+    assert_int_equal(run("surface sweep " SW_POP SW_TABLE "--t-mm 1e-3,2.5e-3 --E-ratio 2,4 "
+                         "--pressures 0.02,0.2 --json --out out-sweep", 1, buf, sizeof buf), 0);
+    assert_json(buf);
+    static char one[1 << 15];
+    const double T[2] = {1e-3, 2.5e-3}, E[2] = {2, 4};
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            char args[1024];
+            int k = 2 * a + b;
+            snprintf(args, sizeof args, "surface predict " SW_POP SW_TABLE "--t-mm %g "
+                     "--E-ratio %g --pressures 0.02,0.2 --json", T[a], E[b]);
+            assert_int_equal(run(args, 1, one, sizeof one), 0);
+            assert_true(jnum_k(buf, "t_mm", k) == T[a] && jnum_k(buf, "E_ratio", k) == E[b]);
+            assert_true(fabs(jnum_k(buf, "Y_co_MPa", k) / (200.0 * E[b]) - 1) < 1e-12);
+            for (int i = 0; i < 2; i++) {
+                static const char *const key[] = {"mu_s", "mu_s_err", "mu_s_P_at_inception",
+                                                  "A_over_An", "load_fraction_outside_model_range"};
+                for (int m = 0; m < 5; m++) {
+                    double x = jnum_k(buf, key[m], 2 * k + i), y = jnum_k(one, key[m], i);
+                    if (fabs(x - y) > 1e-12 * fabs(y))
+                        fail_msg("sweep t %g E %g point %d: %s %.17g, predict %.17g", T[a], E[b],
+                                 i, key[m], x, y);
+                }
+            }
+        }
+    /* the thesis family's trend (SPEC §6): a stiffer coating, a higher surface mu_s */
+    for (int a = 0; a < 2; a++)
+        for (int i = 0; i < 2; i++)
+            assert_true(jnum_k(buf, "mu_s", 2 * (2 * a + 1) + i) >
+                        jnum_k(buf, "mu_s", 2 * (2 * a) + i));
+    FILE *f = fopen(P("out-sweep/sweep.csv"), "r");
+    assert_non_null(f);
+    int lines = 0, c;
+    while ((c = fgetc(f)) != EOF) lines += c == '\n';
+    fclose(f);
+    assert_int_equal(lines, 1 + 4 * 2); /* header, 4 designs x 2 pressures */
+    static char js[1 << 15];
+    f = fopen(P("out-sweep/sweep.json"), "r");
+    assert_non_null(f);
+    size_t n = fread(js, 1, sizeof js - 1, f);
+    fclose(f);
+    js[n] = '\0';
+    assert_string_equal(js, buf); /* the file is what --json printed */
+    DIR *d = opendir(P("out-sweep"));
+    assert_non_null(d);
+    struct dirent *e;
+    int entries = 0;
+    while ((e = readdir(d)))
+        if (e->d_name[0] != '.') entries++;
+    closedir(d);
+    assert_int_equal(entries, 2);
+    /* the text form: one row per design in each of the two blocks */
+    assert_int_equal(run("surface sweep " SW_POP SW_TABLE "--t-mm 1e-3 --E-ratio 2,4 "
+                         "--pressures 0.02", 1, buf, sizeof buf), 0);
+    assert_non_null(strstr(buf, "mu_s +- the table's one standard error"));
+    assert_non_null(strstr(buf, "A/An"));
+    rm_outputs();
+
+#define SW "surface sweep " SW_POP SW_TABLE "--pressures 0.02 --out out-bad "
+    expect_fail(SW "--t-mm 0,1e-3", "t-mm = 0", "value 1", "> 0");
+    expect_fail(SW "--t-mm 1e-3 --E-ratio 2,-4", "E-ratio = -4", "value 2", "> 0");
+    expect_fail(SW "--t-mm 1e-3 --Y-co 800", "Y-co = 800", "table's family", NULL);
+    expect_fail(SW "--t-mm 1e-3 --t-over-R 0.01", "t-over-R = 0.01", "--t-mm", NULL);
+    expect_fail(SW "--E-ratio 2", "t-mm: required", NULL, NULL);
+    expect_fail("surface sweep " SW_POP "--t-mm 1e-3 --pressures 0.02 --out out-bad",
+                "table: required", NULL, NULL);
+    expect_fail("surface sweep " SW_POP SW_TABLE "--t-mm 1e-3 --out out-bad",
+                "pressures: required", NULL, NULL);
+    expect_fail(SW "--t-mm 1e-3 --E-over-Y 500", "table", "family", NULL);
+    expect_fail(SW "--t-mm 1e-3 --pressures 1e9", "pressure", NULL, NULL);
+    expect_done();
+#undef SW
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -841,6 +925,7 @@ int main(void)
         cmocka_unit_test(test_roundtrip_synth_stats),
         cmocka_unit_test(test_roundtrip_import),
         cmocka_unit_test(test_roundtrip_predict),
+        cmocka_unit_test(test_sweep),
     };
     return cmocka_run_group_tests_name("cli_surface", tests, setup, teardown);
 }

@@ -437,6 +437,21 @@ static void test_fill(void **state)
     expect_refusal("surface predict --fill --summit-density 2000 --summit-radius 0.07 "
                    "--sigma-s 1e-7 --pressures 1", 2, "--fill needs --table FILE", NULL);
     expect_refusal(FILL_RUN " --jobs 2", 2, "--jobs 2 needs --fill", NULL);
+    /* a design sweep fills for every design: Eco/Esu 1 adds its 4 points,
+     * those of 2 are there; then each design reads what predict reads */
+#define SWEEP_RUN "surface sweep --table fill.h5 --E-ratio 1,2 --t-mm 0.0014 " \
+                  "--summit-density 2000 --summit-radius 0.07 --sigma-s 1e-7 --pressures 0.01"
+    assert_int_equal(run(SWEEP_RUN " --fill --jobs 2", 2, out, sizeof out), 0);
+    assert_non_null(strstr(out, "the loads touch 8 of the table's 10 points; 4 computed now "
+                                "(0 failed"));
+    assert_non_null(strstr(out, "4 were there"));
+    assert_int_equal(run(SWEEP_RUN " --json", 1, a, sizeof a), 0);
+    assert_int_equal(run(FILL_RUN " --json", 1, b, sizeof b), 0);
+    assert_json(a);
+    double sw = cli_jnum_at(a, "mu_s", 1), pr = cli_jnum(b, "mu_s");
+    printf("  sweep Eco/Esu 2: mu_s %.10g, predict %.10g\n", sw, pr);
+    assert_true(sw == pr);
+#undef SWEEP_RUN
 #undef FILL_RUN
 }
 

@@ -1,4 +1,4 @@
-/* stiction surface synth|stats|predict — the nested dispatcher, and helpers
+/* stiction surface synth|stats|predict|sweep — the nested dispatcher, and helpers
  * the surface subcommands share. */
 #include <math.h>
 #include <stdio.h>
@@ -15,6 +15,8 @@ static const cli_cmd surface_cmds[] = {
      cli_surface_stats},
     {"surface predict", "Greenwood-Williamson friction summation: mu_s, A/An vs load",
      cli_surface_predict},
+    {"surface sweep", "coating designs (thickness x Eco/Esu) on a friction table: mu_s, A/An",
+     cli_surface_sweep},
     {NULL, NULL, NULL},
 };
 
