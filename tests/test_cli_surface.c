@@ -152,6 +152,29 @@ static void expect_fail(const char *args, const char *n1, const char *n2, const 
 static void expect_done(void) { run_batch(); }
 
 
+/* Lines of a file, and entries (not . or ..) of a directory. */
+static int file_lines(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    int lines = 0, c;
+    while ((c = fgetc(f)) != EOF) lines += c == '\n';
+    fclose(f);
+    return lines;
+}
+
+static int dir_entries(const char *path)
+{
+    DIR *d = opendir(path);
+    assert_non_null(d);
+    struct dirent *e;
+    int entries = 0;
+    while ((e = readdir(d)))
+        if (e->d_name[0] != '.') entries++;
+    closedir(d);
+    return entries;
+}
+
 /* Number of the k-th occurrence (0-based) of "key": in text (NaN for null). */
 static double jnum_k(const char *text, const char *key, int k)
 {
@@ -781,20 +804,9 @@ static void test_roundtrip_predict(void **state)
     assert_int_equal(stat(P("out-dir/gw.json"), &st), 0);
     assert_int_equal(stat(P("out-dir/gw.png"), &st), 0);
     assert_true(st.st_size > 1000);
-    FILE *f = fopen(P("out-dir/gw.csv"), "r");
-    assert_non_null(f);
-    int lines = 0, c;
-    while ((c = fgetc(f)) != EOF) lines += c == '\n';
-    fclose(f);
-    assert_int_equal(lines, 3 + 1 + 3); /* 3 comment lines, header, 3 points */
-    DIR *d = opendir(P("out-dir"));
-    assert_non_null(d);
-    struct dirent *e;
-    int entries = 0;
-    while ((e = readdir(d)))
-        if (e->d_name[0] != '.') entries++;
-    closedir(d);
-    assert_int_equal(entries, 3);
+    assert_int_equal(file_lines(P("out-dir/gw.csv")), 3 + 1 + 3); /* 3 comment lines, header,
+                                                                      3 points */
+    assert_int_equal(dir_entries(P("out-dir")), 3);
     /* separation-controlled, statistics given directly: monotone in d */
     assert_int_equal(run("surface predict " ST "--separations 3,2,1,0 --json", 1, buf,
                          sizeof buf), 0);
@@ -809,7 +821,7 @@ static void test_roundtrip_predict(void **state)
     printf("%s", buf);
     assert_non_null(strstr(buf, "n/a"));
     assert_null(strstr(buf, "nan"));
-    f = fopen(P("out.csv"), "r");
+    FILE *f = fopen(P("out.csv"), "r");
     assert_non_null(f);
     size_t got = fread(det, 1, sizeof det - 1, f);
     det[got] = '\0';
@@ -867,27 +879,16 @@ static void test_sweep(void **state)
         for (int i = 0; i < 2; i++)
             assert_true(jnum_k(buf, "mu_s", 2 * (2 * a + 1) + i) >
                         jnum_k(buf, "mu_s", 2 * (2 * a) + i));
-    FILE *f = fopen(P("out-sweep/sweep.csv"), "r");
-    assert_non_null(f);
-    int lines = 0, c;
-    while ((c = fgetc(f)) != EOF) lines += c == '\n';
-    fclose(f);
-    assert_int_equal(lines, 1 + 4 * 2); /* header, 4 designs x 2 pressures */
+    assert_int_equal(file_lines(P("out-sweep/sweep.csv")), 1 + 4 * 2); /* header, 4 designs x
+                                                                           2 pressures */
     static char js[1 << 15];
-    f = fopen(P("out-sweep/sweep.json"), "r");
+    FILE *f = fopen(P("out-sweep/sweep.json"), "r");
     assert_non_null(f);
     size_t n = fread(js, 1, sizeof js - 1, f);
     fclose(f);
     js[n] = '\0';
     assert_string_equal(js, buf); /* the file is what --json printed */
-    DIR *d = opendir(P("out-sweep"));
-    assert_non_null(d);
-    struct dirent *e;
-    int entries = 0;
-    while ((e = readdir(d)))
-        if (e->d_name[0] != '.') entries++;
-    closedir(d);
-    assert_int_equal(entries, 2);
+    assert_int_equal(dir_entries(P("out-sweep")), 2);
     /* the text form: one row per design in each of the two blocks */
     assert_int_equal(run("surface sweep " SW_POP SW_TABLE "--t-mm 1e-3 --E-ratio 2,4 "
                          "--pressures 0.02", 1, buf, sizeof buf), 0);
@@ -907,6 +908,9 @@ static void test_sweep(void **state)
                 "pressures: required", NULL, NULL);
     expect_fail(SW "--t-mm 1e-3 --E-over-Y 500", "table", "family", NULL);
     expect_fail(SW "--t-mm 1e-3 --pressures 1e9", "pressure", NULL, NULL);
+    expect_fail(SW "--t-mm 1e-3 --mode deterministic", "mode deterministic", "summits of a map",
+                NULL);
+    expect_fail(SW "--t-mm 1e-3 --jobs 2", "--jobs 2 needs --fill", NULL, NULL);
     expect_done();
 #undef SW
 }

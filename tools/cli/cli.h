@@ -238,11 +238,22 @@ int cli_table_progress_line(void *ctx, const tbl_progress *p);
 /* The summit population: the map's summits (read once) or, without a map,
  * a Gaussian population of eta, R, sigma_s; summed as the options say. */
 typedef struct cli_gw_pop {
-    int rule, deterministic, kde; /* --rule, --mode, --density */
+    int rule, deterministic, kde; /* --rule (default SRF_RULE_8), --mode, --density */
+    int rule_given, density_given;
     double eta, R, sigma_s;       /* without --surface */
     srf_summits *sm;              /* with --surface (owned) */
     srf_stats st;
 } cli_gw_pop;
+/* "a" or "b" → *second = 0 or 1, else an error naming key and both. */
+stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
+                            int *second);
+/* The population's options: rule, mode, density, summit-density,
+ * summit-radius, sigma-s; STC_EUNSUPPORTED for others. */
+stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v);
+/* One population: a map, or all three statistics (not both), and no map
+ * option (or --mode deterministic) without a map; then the import options. */
+stc_status cli_gw_pop_check(const cli_gw_pop *pop, const char *surface,
+                            const cli_surface_import *imp);
 /* Read the map's summits and statistics (nothing without a map). */
 stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp);
 /* The GW sums of model m over the population. */

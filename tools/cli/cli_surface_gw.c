@@ -3,6 +3,7 @@
  * of an FE friction table at one coating (preload, P at inception, μs's
  * error band) and their sums at one load, and --fill (the table's missing
  * points that the loads touch, computed into the table file). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +14,71 @@
 #include "stiction/model.h"
 #include "stiction/surface.h"
 #include "stiction/table.h"
+
+stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
+                            int *second)
+{
+    if (strcmp(v, a) == 0) *second = 0;
+    else if (strcmp(v, b) == 0) *second = 1;
+    else return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s or %s", key, v,
+                          a, b);
+    return STC_OK;
+}
+
+stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v)
+{
+    int c = 0;
+    stc_status s = STC_OK;
+    double *x = !strcmp(key, "summit-density") ? &pop->eta
+              : !strcmp(key, "summit-radius")  ? &pop->R
+              : !strcmp(key, "sigma-s")        ? &pop->sigma_s
+                                               : NULL;
+    if (x) {
+        s = stc_parse_double(key, v, x);
+        return s == STC_OK ? stc_check_range(key, *x, 0.0, 0, INFINITY, 0) : s;
+    }
+    if (!strcmp(key, "rule")) {
+        s = cli_parse_choice(key, v, "8", "4", &c);
+        pop->rule = c ? SRF_RULE_4 : SRF_RULE_8;
+        pop->rule_given = 1;
+    } else if (!strcmp(key, "mode"))
+        s = cli_parse_choice(key, v, "statistical", "deterministic", &pop->deterministic);
+    else if (!strcmp(key, "density")) {
+        s = cli_parse_choice(key, v, "gaussian", "kde", &pop->kde);
+        pop->density_given = 1;
+    } else return STC_EUNSUPPORTED;
+    return s;
+}
+
+stc_status cli_gw_pop_check(const cli_gw_pop *pop, const char *surface,
+                            const cli_surface_import *imp)
+{
+    int stats = (pop->eta > 0) + (pop->R > 0) + (pop->sigma_s > 0);
+    if (!surface && stats != 3)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "need --surface FILE, or all of --summit-density, --summit-radius, "
+                         "--sigma-s (got %d of 3)", stats);
+    if (surface && stats)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__,
+                         "surface = '%s': give either --surface or the summit statistics, "
+                         "not both", surface);
+    if (!surface && pop->deterministic)
+        return cli_conflict("mode deterministic", "summit-density", "the deterministic sums "
+                            "need the summits of a map (--surface FILE)");
+    /* the options of a map, in the order of the help */
+    const char *map_key = pop->rule_given ? "rule" : imp->dx > 0 ? "pixel-size"
+                        : imp->dataset    ? "dataset" : imp->zscale_set ? "z-scale"
+                        : pop->density_given ? "density" : NULL;
+    if (!surface && map_key)
+        return cli_conflict(map_key, "summit-density", "only used with a map (--surface FILE); "
+                            "the summit statistics given directly define a Gaussian "
+                            "population");
+    if (pop->deterministic && pop->density_given)
+        return cli_conflict("density", "mode deterministic", "the deterministic sums run over "
+                            "the map's own summits; a height density (gaussian|kde) is only "
+                            "used by --mode statistical");
+    return cli_surface_import_check(imp);
+}
 
 stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp)
 {

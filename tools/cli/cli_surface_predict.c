@@ -18,10 +18,11 @@
 
 typedef struct {
     char *surface, *out, *csv, *png, *table; /* owned */
-    int rule, json, deterministic, kde, wsp, sampled, timing, fill, jobs;
+    int json, wsp, sampled, timing, fill, jobs;
     unsigned long long seen; /* cli_opt_bit() of every option given */
     asp_layer layer;
-    double eta, R, sigma_s, t_mm;
+    cli_gw_pop pop; /* the population's options (its summits are read later) */
+    double t_mm;
     double *pressures, *separations;
     int np, ns;
     cli_surface_import imp;
@@ -74,23 +75,6 @@ static const cli_opt opts[] = {
     {NULL, NULL, NULL},
 };
 
-static stc_status set_choice(const char *key, const char *v, const char *a, const char *b,
-                             int *out)
-{
-    if (strcmp(v, a) == 0) *out = 0;
-    else if (strcmp(v, b) == 0) *out = 1;
-    else return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s or %s", key, v,
-                          a, b);
-    return STC_OK;
-}
-
-static stc_status set_positive(const char *key, const char *v, double *out, int allow_zero)
-{
-    stc_status s = stc_parse_double(key, v, out);
-    if (s != STC_OK) return s;
-    return stc_check_range(key, *out, 0.0, allow_zero, INFINITY, 0);
-}
-
 static stc_status set_list(const char *key, const char *v, double **out, int *n, int positive)
 {
     free(*out);
@@ -122,20 +106,11 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
                           "[1, 1024]", key, v);
         o->jobs = (int)j;
     }
-    else if (strcmp(key, "rule") == 0) {
-        s = set_choice(key, v, "8", "4", &c);
-        o->rule = c ? SRF_RULE_4 : SRF_RULE_8;
-    } else if (strcmp(key, "model") == 0) s = set_choice(key, v, "hertz", "wsp", &o->wsp);
+    else if (strcmp(key, "model") == 0) s = cli_parse_choice(key, v, "hertz", "wsp", &o->wsp);
     else if (strcmp(key, "layer") == 0) {
-        s = set_choice(key, v, "substrate", "coating", &c);
+        s = cli_parse_choice(key, v, "substrate", "coating", &c);
         o->layer = c ? ASP_LAYER_COATING : ASP_LAYER_SUBSTRATE;
-    } else if (strcmp(key, "mode") == 0)
-        s = set_choice(key, v, "statistical", "deterministic", &o->deterministic);
-    else if (strcmp(key, "density") == 0) s = set_choice(key, v, "gaussian", "kde", &o->kde);
-    else if (strcmp(key, "summit-density") == 0) s = set_positive(key, v, &o->eta, 0);
-    else if (strcmp(key, "summit-radius") == 0) s = set_positive(key, v, &o->R, 0);
-    else if (strcmp(key, "sigma-s") == 0) s = set_positive(key, v, &o->sigma_s, 0);
-    else if (strcmp(key, "R") == 0)
+    } else if (strcmp(key, "R") == 0)
         /* the common R (10 mm) is not a summit's: it would change nothing */
         s = stc_error(STC_EINVAL, __FILE__, __LINE__, "R = %s: the summits' radii come from "
                       "the map (--surface) or --summit-radius; R is not used here", v);
@@ -146,7 +121,8 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
                       "--t-mm MM", v);
     else if (strcmp(key, "pressures") == 0) s = set_list(key, v, &o->pressures, &o->np, 1);
     else if (strcmp(key, "separations") == 0) s = set_list(key, v, &o->separations, &o->ns, 0);
-    else return cli_surface_import_opt(&o->imp, key, v);
+    else if ((s = cli_gw_pop_opt(&o->pop, key, v)) == STC_EUNSUPPORTED)
+        return cli_surface_import_opt(&o->imp, key, v);
     return s;
 }
 
@@ -160,33 +136,12 @@ static stc_status set_opt(void *ctx, const char *key, const char *v)
 
 static int given(const predict_opts *o, const char *key) { return (o->seen & cli_opt_bit(opts, key)) != 0; }
 
-/* Options that only apply to a map (--surface). */
-static const char *const MAP_KEYS[] = {"rule", "pixel-size", "dataset", "z-scale", "density", NULL};
 
 /* Cross-option checks: exactly one population and one load range. */
 static stc_status check_opts(const predict_opts *o)
 {
-    int stats = (o->eta > 0) + (o->R > 0) + (o->sigma_s > 0);
-    if (!o->surface && stats != 3)
-        return stc_error(STC_EINVAL, __FILE__, __LINE__,
-                         "need --surface FILE, or all of --summit-density, --summit-radius, "
-                         "--sigma-s (got %d of 3)", stats);
-    if (o->surface && stats)
-        return stc_error(STC_EINVAL, __FILE__, __LINE__,
-                         "surface = '%s': give either --surface or the summit statistics, "
-                         "not both", o->surface);
-    if (!o->surface && o->deterministic)
-        return cli_conflict("mode deterministic", "summit-density", "the deterministic sums "
-                            "need the summits of a map (--surface FILE)");
-    for (const char *const *k = MAP_KEYS; !o->surface && *k; k++)
-        if (given(o, *k))
-            return cli_conflict(*k, "summit-density", "only used with a map (--surface FILE); "
-                                "the summit statistics given directly define a Gaussian "
-                                "population");
-    if (o->deterministic && given(o, "density"))
-        return cli_conflict("density", "mode deterministic", "the deterministic sums run over "
-                            "the map's own summits; a height density (gaussian|kde) is only "
-                            "used by --mode statistical");
+    stc_status s = cli_gw_pop_check(&o->pop, o->surface, &o->imp);
+    if (s != STC_OK) return s;
     static const char *const CLOSED_FORM_KEYS[] = {"model", "layer", "sampled", NULL};
     for (const char *const *k = CLOSED_FORM_KEYS; o->table && *k; k++)
         if (given(o, *k))
@@ -198,8 +153,6 @@ static stc_status check_opts(const predict_opts *o)
     if (given(o, "jobs") && !o->fill)
         return stc_error(STC_EINVAL, __FILE__, __LINE__, "--jobs %d needs --fill: it sets "
                          "how many table points --fill computes at once", o->jobs);
-    stc_status s = cli_surface_import_check(&o->imp);
-    if (s != STC_OK) return s;
     if ((o->np > 0) == (o->ns > 0))
         return stc_error(STC_EINVAL, __FILE__, __LINE__,
                          "give exactly one of --pressures (MPa) or --separations (units of "
@@ -655,7 +608,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     srf_gw *g = NULL;
     srf_gw_point *pts = NULL;
     int done, rc;
-    o.rule = SRF_RULE_8;
+    o.pop.rule = SRF_RULE_8;
     o.wsp = 1;
     o.imp.zscale = 1.0;
     stc_params_default(&p);
@@ -667,8 +620,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK && o.out && (rc = cli_out_dir(cmd->name, o.out, &o.out_made)) != CLI_EXIT_OK)
         goto out;
     o.t_mm = p.t_mm; /* 0 unless --t-mm: uncoated */
-    cli_gw_pop pop = {.rule = o.rule, .deterministic = o.deterministic, .kde = o.kde,
-                      .eta = o.eta, .R = o.R, .sigma_s = o.sigma_s};
+    cli_gw_pop pop = o.pop; /* its summits, read here, freed below */
     if (s == STC_OK) s = cli_gw_pop_load(&pop, o.surface, &o.imp);
     if (s == STC_OK && o.fill) {
         int nl = o.np ? o.np : o.ns;

@@ -17,8 +17,8 @@
 
 typedef struct {
     char *surface, *table, *out; /* owned */
-    int rule, json, deterministic, kde, fill, jobs;
-    double eta, R, sigma_s;
+    int json, fill, jobs;
+    cli_gw_pop pop; /* the population's options (its summits are read later) */
     double *t_mm, *E_ratio, *pressures; /* owned lists */
     int nt, nE, np;
     cli_surface_import imp;
@@ -72,20 +72,9 @@ static stc_status set_list(const char *key, const char *v, double **out, int *n)
     return s;
 }
 
-static stc_status set_choice(const char *key, const char *v, const char *a, const char *b,
-                             int *second)
-{
-    if (strcmp(v, a) == 0) *second = 0;
-    else if (strcmp(v, b) == 0) *second = 1;
-    else return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s or %s", key,
-                          v, a, b);
-    return STC_OK;
-}
-
 static stc_status set_opt(void *ctx, const char *key, const char *v)
 {
     sweep_opts *o = ctx;
-    int c = 0;
     double x;
     stc_status s = STC_OK;
     if (!strcmp(key, "surface")) s = cli_set_string(key, v, &o->surface);
@@ -102,39 +91,20 @@ static stc_status set_opt(void *ctx, const char *key, const char *v)
             s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be an integer in "
                           "[1, 1024]", key, v);
         o->jobs = (int)x;
-    } else if (!strcmp(key, "rule")) {
-        s = set_choice(key, v, "8", "4", &c);
-        o->rule = c ? SRF_RULE_4 : SRF_RULE_8;
-    } else if (!strcmp(key, "mode"))
-        s = set_choice(key, v, "statistical", "deterministic", &o->deterministic);
-    else if (!strcmp(key, "density")) s = set_choice(key, v, "gaussian", "kde", &o->kde);
-    else if (!strcmp(key, "summit-density") || !strcmp(key, "summit-radius") ||
-             !strcmp(key, "sigma-s")) {
-        s = stc_parse_double(key, v, &x);
-        if (s == STC_OK) s = stc_check_range(key, x, 0.0, 0, INFINITY, 0);
-        if (!strcmp(key, "summit-density")) o->eta = x;
-        else if (!strcmp(key, "summit-radius")) o->R = x;
-        else o->sigma_s = x;
     } else if (!strcmp(key, "t-over-R") || !strcmp(key, "R") || !strcmp(key, "Y-co"))
         s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = %s: not an option of a sweep (%s)",
                       key, v, key[0] == 'Y' ? "the coating's yield strength follows from "
                       "Eco/Esu and the table's family" : "give the coating thickness as "
                       "--t-mm, each summit having its own radius");
-    else return cli_surface_import_opt(&o->imp, key, v);
+    else if ((s = cli_gw_pop_opt(&o->pop, key, v)) == STC_EUNSUPPORTED)
+        return cli_surface_import_opt(&o->imp, key, v);
     return s;
 }
 
 static stc_status check_opts(const sweep_opts *o)
 {
-    int stats = (o->eta > 0) + (o->R > 0) + (o->sigma_s > 0);
-    if (!o->surface && stats != 3)
-        return stc_error(STC_EINVAL, __FILE__, __LINE__, "give --surface FILE, or all three "
-                         "of --summit-density, --summit-radius and --sigma-s");
-    if (o->surface && stats)
-        return cli_conflict("surface", "summit-density", "the statistics come from the map");
-    if (!o->surface && (o->deterministic || o->kde))
-        return stc_error(STC_EINVAL, __FILE__, __LINE__, "--mode deterministic and --density "
-                         "kde need the summits of a map (--surface FILE)");
+    stc_status s = cli_gw_pop_check(&o->pop, o->surface, &o->imp);
+    if (s != STC_OK) return s;
     if (!o->table)
         return stc_error(STC_EINVAL, __FILE__, __LINE__, "table: required (--table FILE, an FE "
                          "friction table of the coating's family)");
@@ -144,7 +114,10 @@ static stc_status check_opts(const sweep_opts *o)
     if (!o->np)
         return stc_error(STC_EINVAL, __FILE__, __LINE__, "pressures: required (--pressures "
                          "LIST, MPa)");
-    return cli_surface_import_check(&o->imp);
+    if (o->jobs && !o->fill)
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "--jobs %d needs --fill: it sets "
+                         "how many table points --fill computes at once", o->jobs);
+    return STC_OK;
 }
 
 /* One design's materials: Eco/Esu = E, the coating's Y from the table's
@@ -326,13 +299,12 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
 {
     sweep_opts o = {0};
     stc_params p;
-    cli_gw_pop pop = {0};
     tbl_table *t = NULL;
     design *d = NULL;
     stc_params *dp = NULL;
     double *dt = NULL;
     int done, rc, nd = 0;
-    o.rule = SRF_RULE_8;
+    o.pop.rule = SRF_RULE_8;
     o.imp.zscale = 1.0;
     stc_params_default(&p);
     rc = cli_parse(cmd->name, USAGE, argc, argv, opts, &p, set_opt, &o, &done);
@@ -361,11 +333,9 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
                                 !(d[k].mu_pi = calloc((size_t)o.np, sizeof(double)))))
                 s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
         }
-    pop.rule = o.rule, pop.deterministic = o.deterministic, pop.kde = o.kde;
-    pop.eta = o.eta, pop.R = o.R, pop.sigma_s = o.sigma_s;
-    if (s == STC_OK) s = cli_gw_pop_load(&pop, o.surface, &o.imp);
+    if (s == STC_OK) s = cli_gw_pop_load(&o.pop, o.surface, &o.imp);
     if (s == STC_OK && o.fill) {
-        cli_table_fill_job job = {o.table, &pop, dp, dt, o.pressures, o.np, 1};
+        cli_table_fill_job job = {o.table, &o.pop, dp, dt, o.pressures, o.np, 1};
         s = cli_table_fill(cmd->name, &job, nd, o.jobs);
         if (s == STC_OK) { /* the filled table */
             tbl_destroy(&t);
@@ -375,7 +345,7 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
     srf_gw_info gi = {0};
     for (int k = 0; k < nd && s == STC_OK; k++) {
         cli_table_design td;
-        s = cli_name_error(cli_table_design_create(t, &dp[k], d[k].t_mm, &pop, &td), "table",
+        s = cli_name_error(cli_table_design_create(t, &dp[k], d[k].t_mm, &o.pop, &td), "table",
                            o.table);
         if (s != STC_OK) break; /* td freed */
         if (k == 0) srf_gw_get_info(td.g[0], &gi);
@@ -405,7 +375,7 @@ out:
     free(dp);
     free(dt);
     tbl_destroy(&t);
-    cli_gw_pop_free(&pop);
+    cli_gw_pop_free(&o.pop);
     free(o.surface), free(o.table), free(o.out);
     free(o.t_mm), free(o.E_ratio), free(o.pressures);
     cli_surface_import_free(&o.imp);
