@@ -244,6 +244,22 @@ typedef struct cli_gw_pop {
     srf_summits *sm;              /* with --surface (owned) */
     srf_stats st;
 } cli_gw_pop;
+/* The options cli_gw_pop_opt takes (with the map's import options), as
+ * two sections of a subcommand's help. */
+#define CLI_GW_POP_OPTS                                                                       \
+    CLI_HEADING("Surface (a map, or its summit statistics; units mm, N, MPa)"),              \
+        {"surface", "FILE", "surface HDF5 (from `surface synth`): summits found, stats "       \
+                            "measured"},                                                      \
+        {"rule", "8|4", "summit rule for --surface (default 8)"}, CLI_SURFACE_IMPORT_OPTS,     \
+        {"summit-density", "ETA", "statistical run without a map: summits per mm²"},          \
+        {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},           \
+        {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"}
+#define CLI_GW_SUM_OPTS                                                                       \
+    CLI_HEADING("Summation"),                                                                 \
+        {"mode", "statistical|deterministic", "quadrature over a height density, or the sums " \
+                                              "over the map's summits (default statistical)"}, \
+        {"density", "gaussian|kde", "statistical height density for --surface (default "       \
+                                    "gaussian)"}
 /* "a" or "b" → *second = 0 or 1, else an error naming key and both. */
 stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
                             int *second);

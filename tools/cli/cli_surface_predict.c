@@ -30,13 +30,7 @@ typedef struct {
 } predict_opts;
 
 static const cli_opt opts[] = {
-    CLI_HEADING("Surface (a map, or its summit statistics; units mm, N, MPa)"),
-    {"surface", "FILE", "surface HDF5 (from `surface synth`): summits found, stats measured"},
-    {"rule", "8|4", "summit rule for --surface (default 8)"},
-    CLI_SURFACE_IMPORT_OPTS,
-    {"summit-density", "ETA", "statistical run without a map: summits per mm²"},
-    {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},
-    {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"},
+    CLI_GW_POP_OPTS,
     CLI_HEADING("Coating and materials"),
     {"t-mm", "MM", "coating thickness in mm, the same on every summit: each summit's t/R = "
                    "t-mm / R with its own radius R (default 0: uncoated)"},
@@ -58,10 +52,7 @@ static const cli_opt opts[] = {
                            "law)"},
     {"layer", "substrate|coating", "layer whose properties the closed-form model uses "
                                    "(default substrate)"},
-    CLI_HEADING("Summation"),
-    {"mode", "statistical|deterministic", "quadrature over a height density, or the sums "
-                                          "over the map's summits (default statistical)"},
-    {"density", "gaussian|kde", "statistical height density for --surface (default gaussian)"},
+    CLI_GW_SUM_OPTS,
     CLI_HEADING("Common options"),
     {"out", "DIR", "write DIR/gw.csv, DIR/gw.json, DIR/gw.png"},
     {"csv", "FILE", "write the CSV here"},

@@ -26,13 +26,7 @@ typedef struct {
 } sweep_opts;
 
 static const cli_opt opts[] = {
-    CLI_HEADING("Surface (a map, or its summit statistics; units mm, N, MPa)"),
-    {"surface", "FILE", "surface HDF5 (from `surface synth`): summits found, stats measured"},
-    {"rule", "8|4", "summit rule for --surface (default 8)"},
-    CLI_SURFACE_IMPORT_OPTS,
-    {"summit-density", "ETA", "statistical run without a map: summits per mm²"},
-    {"summit-radius", "MM", "statistical run without a map: summit radius, mm"},
-    {"sigma-s", "MM", "statistical run without a map: summit-height std, mm (Gaussian)"},
+    CLI_GW_POP_OPTS,
     CLI_HEADING("The designs"),
     {"table", "FILE", "FE friction table (`stiction table build`) of the coating's family"},
     {"t-mm", "LIST", "coating thicknesses in mm (> 0): a,b,c or start:stop:count; each "
@@ -49,10 +43,7 @@ static const cli_opt opts[] = {
     {"fill", NULL, "first compute the table's missing points that these designs and loads "
                    "touch (FE runs, added to the table file; resumable)"},
     {"jobs", "N", "with --fill: points computed at once (default: one per core)"},
-    CLI_HEADING("Summation"),
-    {"mode", "statistical|deterministic", "quadrature over a height density, or the sums "
-                                          "over the map's summits (default statistical)"},
-    {"density", "gaussian|kde", "statistical height density for --surface (default gaussian)"},
+    CLI_GW_SUM_OPTS,
     CLI_HEADING("Common options"),
     {"out", "DIR", "write DIR/sweep.csv and DIR/sweep.json"},
     {"json", NULL, "print JSON: the designs, each with its load points"},
