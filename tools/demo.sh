@@ -29,3 +29,12 @@ echo "-- uncoated: FE table data/tables/steel.h5"
 sh tools/demo-compare.sh "$out/coated/gw.csv" "$out/uncoated/gw.csv" "$out/compare.png"
 echo "wrote $out/compare.png (mu_s and A/An versus nominal pressure, coated and uncoated, with"
 echo "the error bands) and $out/coated/, $out/uncoated/ (gw.csv, gw.json, gw.png of each)"
+
+# Which thickness: the same surface and table, TiN of 1, 1.5 and 2 um (the
+# thicknesses whose summits the bundled table covers at these loads).
+echo
+echo "== stiction surface sweep: TiN 1 / 1.5 / 2 um on the same surface"
+"$CLI" surface sweep --surface "$out/surface.h5" --mode deterministic \
+    --table data/tables/tin-on-steel.h5 --E-su 200000 --Y-su 1500 --nu 0.3 \
+    --t-mm 1e-3,1.5e-3,2e-3 --E-ratio 2 --pressures 1,5,20 --out "$out/sweep"
+echo "wrote $out/sweep/ (sweep.csv, sweep.json)"

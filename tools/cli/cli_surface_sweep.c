@@ -226,10 +226,10 @@ static void text_out(const sweep_opts *o, const design *d, int nd, const srf_gw_
                 char c[48];
                 int out = q->load_fraction_outside > OUTSIDE_MARK;
                 marked |= out;
-                if (block) snprintf(c, sizeof c, "%.4e%s", q->area_fraction, out ? "*" : " ");
-                else snprintf(c, sizeof c, "%.3f +- %.3f%s", q->mu_s, d[k].mu_err[i],
-                              out ? "*" : " ");
-                printf(" %16s", c);
+                if (block) snprintf(c, sizeof c, "%.4e", q->area_fraction);
+                else snprintf(c, sizeof c, "%.3f +- %.3f", q->mu_s, d[k].mu_err[i]);
+                /* the mark, or a blank that keeps the columns (none at the end) */
+                printf(" %15s%s", c, out ? "*" : i + 1 < o->np ? " " : "");
             }
             putchar('\n');
         }
