@@ -895,6 +895,15 @@ static void test_sweep(void **state)
     assert_non_null(strstr(buf, "mu_s +- the table's one standard error"));
     assert_non_null(strstr(buf, "A/An"));
     rm_outputs();
+    /* a rename that fails (sweep.json a directory) leaves none of the files */
+    assert_int_equal(mkdir(P("out-rn"), 0755), 0);
+    assert_int_equal(mkdir(P("out-rn/sweep.json"), 0755), 0);
+    write_file("out-rn/sweep.json/x", "");
+    assert_int_equal(run("surface sweep " SW_POP SW_TABLE "--t-mm 1e-3 --pressures 0.02 "
+                         "--out out-rn", 2, buf, sizeof buf), 1);
+    assert_non_null(strstr(buf, "cannot rename"));
+    assert_int_equal(dir_entries(P("out-rn")), 1);
+    rm_outputs();
 
 #define SW "surface sweep " SW_POP SW_TABLE "--pressures 0.02 --out out-bad "
     expect_fail(SW "--t-mm 0,1e-3", "t-mm = 0", "value 1", "> 0");

@@ -260,6 +260,8 @@ typedef struct cli_gw_pop {
                                               "over the map's summits (default statistical)"}, \
         {"density", "gaussian|kde", "statistical height density for --surface (default "       \
                                     "gaussian)"}
+/* --jobs: an integer in [1, 1024], set only when valid. */
+stc_status cli_parse_jobs(const char *key, const char *v, int *jobs);
 /* "a" or "b" → *second = 0 or 1, else an error naming key and both. */
 stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
                             int *second);

@@ -25,6 +25,17 @@ stc_status cli_parse_choice(const char *key, const char *v, const char *a, const
     return STC_OK;
 }
 
+stc_status cli_parse_jobs(const char *key, const char *v, int *jobs)
+{
+    double x;
+    stc_status s = stc_parse_double(key, v, &x);
+    if (s == STC_OK && !(x == floor(x) && x >= 1 && x <= 1024))
+        s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be an integer in "
+                      "[1, 1024]", key, v);
+    if (s == STC_OK) *jobs = (int)x;
+    return s;
+}
+
 stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v)
 {
     int c = 0;
@@ -173,7 +184,7 @@ stc_status cli_table_fill(const char *cmd, const cli_table_fill_job *job, int nd
         }
         if (s != STC_OK || (pending == 0 && tbl_curves_pending(t, need) == 0)) break;
         tbl_build_opts bo;
-        tbl_build_summary sum;
+        tbl_build_summary sum = {0};
         tbl_build_opts_default(&bo);
         bo.only = need;
         bo.jobs = jobs;

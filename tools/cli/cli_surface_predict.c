@@ -88,15 +88,7 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
     else if (strcmp(key, "sampled") == 0) s = cli_parse_flag(key, v, &o->sampled);
     else if (strcmp(key, "timing") == 0) s = cli_parse_flag(key, v, &o->timing);
     else if (strcmp(key, "fill") == 0) s = cli_parse_flag(key, v, &o->fill);
-    else if (strcmp(key, "jobs") == 0) {
-        double j;
-        s = stc_parse_double(key, v, &j);
-        if (s == STC_OK) s = stc_check_range(key, j, 1.0, 1, 1024.0, 1);
-        if (s == STC_OK && j != floor(j))
-            s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be an integer in "
-                          "[1, 1024]", key, v);
-        o->jobs = (int)j;
-    }
+    else if (strcmp(key, "jobs") == 0) s = cli_parse_jobs(key, v, &o->jobs);
     else if (strcmp(key, "model") == 0) s = cli_parse_choice(key, v, "hertz", "wsp", &o->wsp);
     else if (strcmp(key, "layer") == 0) {
         s = cli_parse_choice(key, v, "substrate", "coating", &c);
@@ -536,6 +528,7 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
         if (rc == CLI_EXIT_OK) rc = write_png(&fp, src, c);
     }
     if (fs.made) remove(fs.tmp);
+    int placed[3] = {0, 0, 0};
     for (int k = 0; k < 3; k++) {
         out_file *f = all[k];
         if (!f->made) continue;
@@ -543,9 +536,12 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
             char why[4400];
             snprintf(why, sizeof why, "cannot rename %s into place (%s)", f->tmp, strerror(errno));
             rc = out_error(f, why);
-        }
+        } else if (rc == CLI_EXIT_OK) placed[k] = 1;
         if (rc != CLI_EXIT_OK) remove(f->tmp);
     }
+    /* no partial output: the files placed before a failed rename go too */
+    for (int k = 0; rc != CLI_EXIT_OK && k < 3; k++)
+        if (placed[k]) remove(all[k]->path);
     return rc;
 }
 

@@ -18,6 +18,7 @@
 typedef struct {
     char *surface, *table, *out; /* owned */
     int json, fill, jobs;
+    double Y_su; /* --Y-su, MPa; 0: E-su / E-over-Y */
     cli_gw_pop pop; /* the population's options (its summits are read later) */
     double *t_mm, *E_ratio, *pressures; /* owned lists */
     int nt, nE, np;
@@ -37,7 +38,10 @@ static const cli_opt opts[] = {
     {"R", "MM", "refused: the summits' radii come from the map or --summit-radius"},
     {"Y-co", "MPA", "refused: the coating's yield strength follows from Eco/Esu and the "
                     "table's family"},
-    CLI_SUBSTRATE_OPTS,
+    {"E-su", "MPA", "Young's modulus of the substrate (default 200000)"},
+    {"E-over-Y", "X", "E/Y of the substrate (default 1000; the coating's is the table's)"},
+    {"Y-su", "MPA", "yield strength of the substrate (overrides E-over-Y)"},
+    {"nu", "X", "Poisson's ratio (default 0.32)"},
     {"nu-co", "X", "Poisson's ratio of the coating (default: --nu)"},
     {"pressures", "LIST", "nominal pressures P/An, MPa: a,b,c or start:stop:count"},
     {"fill", NULL, "first compute the table's missing points that these designs and loads "
@@ -66,7 +70,6 @@ static stc_status set_list(const char *key, const char *v, double **out, int *n)
 static stc_status set_opt(void *ctx, const char *key, const char *v)
 {
     sweep_opts *o = ctx;
-    double x;
     stc_status s = STC_OK;
     if (!strcmp(key, "surface")) s = cli_set_string(key, v, &o->surface);
     else if (!strcmp(key, "table")) s = cli_set_string(key, v, &o->table);
@@ -76,12 +79,10 @@ static stc_status set_opt(void *ctx, const char *key, const char *v)
     else if (!strcmp(key, "t-mm")) s = set_list(key, v, &o->t_mm, &o->nt);
     else if (!strcmp(key, "E-ratio")) s = set_list(key, v, &o->E_ratio, &o->nE);
     else if (!strcmp(key, "pressures")) s = set_list(key, v, &o->pressures, &o->np);
-    else if (!strcmp(key, "jobs")) {
-        s = stc_parse_double(key, v, &x);
-        if (s == STC_OK && (x != floor(x) || x < 1 || x > 1024))
-            s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be an integer in "
-                          "[1, 1024]", key, v);
-        o->jobs = (int)x;
+    else if (!strcmp(key, "jobs")) s = cli_parse_jobs(key, v, &o->jobs);
+    else if (!strcmp(key, "Y-su")) {
+        s = stc_parse_double(key, v, &o->Y_su);
+        if (s == STC_OK) s = stc_check_range(key, o->Y_su, 0.0, 0, INFINITY, 0);
     } else if (!strcmp(key, "t-over-R") || !strcmp(key, "R") || !strcmp(key, "Y-co"))
         s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = %s: not an option of a sweep (%s)",
                       key, v, key[0] == 'Y' ? "the coating's yield strength follows from "
@@ -113,16 +114,14 @@ static stc_status check_opts(const sweep_opts *o)
 
 /* One design's materials: Eco/Esu = E, the coating's Y from the table's
  * family (its E/Y held along the Eco/Esu axis), the substrate's as given. */
-static stc_status design_params(const tbl_table *t, const stc_params *base, double E,
-                                stc_params *p)
+static stc_status design_params(const tbl_table *t, const stc_params *base, double Y_su,
+                                double E, stc_params *p)
 {
     tbl_family f;
     tbl_get_family(t, &f);
     *p = *base;
     p->E_ratio = E;
-    stc_material su;
-    stc_params_materials(base, &su, NULL);
-    p->Y_su = su.Y;
+    p->Y_su = Y_su > 0.0 ? Y_su : base->E_su / base->E_over_Y;
     p->Y_co = E * base->E_su / f.E_over_Y_co;
     stc_status s = stc_params_validate(p);
     return s == STC_OK ? tbl_check_params(t, p) : s;
@@ -266,12 +265,18 @@ static stc_status write_files(const sweep_opts *o, const design *d, int nd, cons
             s = stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': write failed (disk full?)",
                           o->out);
     }
-    for (int k = 0; k < 2 && s == STC_OK; k++)
-        if (rename(tmp[k], path[k]) != 0)
+    int placed = 0;
+    while (s == STC_OK && placed < 2) {
+        if (rename(tmp[placed], path[placed]) != 0)
             s = stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': cannot rename %s (%s)",
-                          o->out, tmp[k], strerror(errno));
-    for (int k = 0; k < 2; k++)
-        if (made[k] && s != STC_OK) remove(tmp[k]);
+                          o->out, tmp[placed], strerror(errno));
+        else placed++;
+    }
+    if (s != STC_OK) { /* no partial output: what was placed before the failure goes too */
+        for (int k = 0; k < placed; k++) remove(path[k]);
+        for (int k = placed; k < 2; k++)
+            if (made[k]) remove(tmp[k]);
+    }
     return s;
 }
 
@@ -282,8 +287,8 @@ static const char *USAGE =
     "Coating design sweep: the surface mu_s (with the table's error band) and A/An at each\n"
     "nominal pressure for every coating thickness x Eco/Esu, one summit population, one FE\n"
     "friction table.  Each design is what `surface predict --table FILE --t-mm T\n"
-    "--E-ratio E` gives; along Eco/Esu the coating's E/Y is the table's family's, so a\n"
-    "stiffer coating is proportionally harder.  A value with more than 5 % of its load\n"
+    "--E-ratio E --Y-co Yco` gives with Yco = E Esu / (E/Y)_co: along Eco/Esu the coating's\n"
+    "E/Y is the table's family's, so a stiffer coating is proportionally harder.  A value with more than 5 % of its load\n"
     "from summits outside the table's range is marked with *.";
 
 int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
@@ -306,7 +311,10 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
     double one = 1.0;
     const double *E = o.nE ? o.E_ratio : &one;
     int nE = o.nE ? o.nE : 1;
-    nd = o.nt * nE;
+    if (s == STC_OK && (long)o.nt * nE > 100000)
+        s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%d t-mm x %d E-ratio = %ld designs: at "
+                      "most 100000", o.nt, nE, (long)o.nt * nE);
+    nd = s == STC_OK ? o.nt * nE : 0;
     if (s == STC_OK && (!(d = calloc((size_t)nd, sizeof *d)) ||
                         !(dp = calloc((size_t)nd, sizeof *dp)) ||
                         !(dt = calloc((size_t)nd, sizeof *dt))))
@@ -315,7 +323,7 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
     for (int a = 0; a < o.nt && s == STC_OK; a++)
         for (int b = 0; b < nE && s == STC_OK; b++) {
             int k = a * nE + b;
-            s = cli_name_error(design_params(t, &p, E[b], &dp[k]), "table", o.table);
+            s = cli_name_error(design_params(t, &p, o.Y_su, E[b], &dp[k]), "table", o.table);
             dt[k] = d[k].t_mm = o.t_mm[a];
             d[k].E_ratio = E[b];
             d[k].Y_co = dp[k].Y_co;
