@@ -888,7 +888,13 @@ static void test_sweep(void **state)
     fclose(f);
     js[n] = '\0';
     assert_string_equal(js, buf); /* the file is what --json printed */
-    assert_int_equal(dir_entries(P("out-sweep")), 2);
+    assert_int_equal(dir_entries(P("out-sweep")), 3);
+    unsigned char h[8];
+    f = fopen(P("out-sweep/sweep.png"), "rb");
+    assert_non_null(f);
+    assert_int_equal(fread(h, 1, 8, f), 8);
+    fclose(f);
+    assert_memory_equal(h, "\x89PNG\r\n\x1a\n", 8);
     /* the text form: one row per design in each of the two blocks */
     assert_int_equal(run("surface sweep " SW_POP SW_TABLE "--t-mm 1e-3 --E-ratio 2,4 "
                          "--pressures 0.02", 1, buf, sizeof buf), 0);

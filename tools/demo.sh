@@ -37,4 +37,4 @@ echo "== stiction surface sweep: TiN 1 / 1.5 / 2 um on the same surface"
 "$CLI" surface sweep --surface "$out/surface.h5" --mode deterministic \
     --table data/tables/tin-on-steel.h5 --E-su 200000 --Y-su 1500 --nu 0.3 \
     --t-mm 1e-3,1.5e-3,2e-3 --E-ratio 2 --pressures 1,5,20 --out "$out/sweep"
-echo "wrote $out/sweep/ (sweep.csv, sweep.json)"
+echo "wrote $out/sweep/ (sweep.csv, sweep.json, sweep.png: mu_s against the thickness)"

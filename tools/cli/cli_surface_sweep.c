@@ -7,7 +7,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -49,7 +51,8 @@ static const cli_opt opts[] = {
     {"jobs", "N", "with --fill: points computed at once (default: one per core)"},
     CLI_GW_SUM_OPTS,
     CLI_HEADING("Common options"),
-    {"out", "DIR", "write DIR/sweep.csv and DIR/sweep.json"},
+    {"out", "DIR", "write DIR/sweep.csv, DIR/sweep.json and DIR/sweep.png (mu_s against the "
+                   "thickness, one line per Eco/Esu and pressure)"},
     {"json", NULL, "print JSON: the designs, each with its load points"},
     CLI_CONFIG_HELP,
     {NULL, NULL, NULL},
@@ -240,15 +243,68 @@ static void text_out(const sweep_opts *o, const design *d, int nd, const srf_gw_
            "coating's E/Y)\n");
 }
 
-/* DIR/sweep.csv and DIR/sweep.json, each written beside its name and
- * renamed once both are complete. */
-static stc_status write_files(const sweep_opts *o, const design *d, int nd, const srf_gw_info *gi)
+/* The design chart: mu_s with its band against the thickness, one line per
+ * Eco/Esu and pressure (against Eco/Esu, one line per pressure, when there
+ * is one thickness), drawn by gnuplot into the (existing, empty) file tmp. */
+static stc_status png_out(const char *tmp, const sweep_opts *o, const design *d, int nE)
 {
-    char path[2][4096], tmp[2][4200];
+    int by_E = o->nt == 1 && nE > 1;
+    char name[512];
+    const char *t = strrchr(o->table, '/');
+    snprintf(name, sizeof name, "%s", t ? t + 1 : o->table);
+    for (char *q = name; *q; q++) /* a quote would end gnuplot's string */
+        if (*q == '\'' || *q == '"' || *q == '\\') *q = '_';
+    void (*old)(int) = signal(SIGPIPE, SIG_IGN); /* a gnuplot that dies early */
+    FILE *g = popen("gnuplot >/dev/null", "w");
+    if (!g) {
+        signal(SIGPIPE, old);
+        return stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': cannot run gnuplot", o->out);
+    }
+    fprintf(g, "set terminal pngcairo enhanced size 1000,650 font ',10'\nset encoding utf8\n"
+               "set output '%s'\nset grid\nset key outside right\n"
+               "set xlabel '%s'\nset ylabel 'static friction coefficient μ_s = ΣQ_{max} / ΣP'\n"
+               "set title 'coating designs on %s: surface μ_s ± the table''s one standard error"
+               "%s' noenhanced\nset offsets graph 0.05, graph 0.05, 0, 0\nplot ",
+            tmp, by_E ? "E_{co} / E_{su}" : "coating thickness t [μm]", name,
+            by_E ? "" : "; one line per Eco/Esu and pressure");
+    int nl = by_E ? 1 : nE, nx = by_E ? nE : o->nt;
+    for (int l = 0; l < nl; l++)
+        for (int i = 0; i < o->np; i++) {
+            if (by_E) fprintf(g, "%s'-' using 1:2:3 with yerrorlines lw 2 title '%g MPa'",
+                              l + i ? ", " : "", o->pressures[i]);
+            else fprintf(g, "%s'-' using 1:2:3 with yerrorlines lw 2 title 'E_{co}/E_{su} %g, "
+                         "%g MPa'", l + i ? ", " : "", d[l].E_ratio, o->pressures[i]);
+        }
+    fputc('\n', g);
+    for (int l = 0; l < nl; l++)
+        for (int i = 0; i < o->np; i++) {
+            for (int x = 0; x < nx; x++) {
+                const design *e = by_E ? &d[x] : &d[x * nE + l];
+                fprintf(g, "%.10g %.10g %.10g\n", by_E ? e->E_ratio : 1000 * e->t_mm,
+                        e->pt[i].mu_s, e->mu_err[i]);
+            }
+            fputs("e\n", g);
+        }
+    int rc = pclose(g);
+    signal(SIGPIPE, old);
+    struct stat sb;
+    if (rc != 0 || stat(tmp, &sb) != 0 || sb.st_size == 0)
+        return stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': gnuplot failed (status %d)",
+                         o->out, rc);
+    return STC_OK;
+}
+
+/* DIR/sweep.csv, DIR/sweep.json and DIR/sweep.png, each written beside its
+ * name and renamed once all three are complete. */
+static stc_status write_files(const sweep_opts *o, const design *d, int nd, int nE,
+                              const srf_gw_info *gi)
+{
+    static const char *const ext[3] = {"csv", "json", "png"};
+    char path[3][4096], tmp[3][4200];
     stc_status s = STC_OK;
-    int made[2] = {0, 0};
-    for (int k = 0; k < 2 && s == STC_OK; k++) {
-        snprintf(path[k], sizeof path[k], "%s/sweep.%s", o->out, k ? "json" : "csv");
+    int made[3] = {0, 0, 0};
+    for (int k = 0; k < 3 && s == STC_OK; k++) {
+        snprintf(path[k], sizeof path[k], "%s/sweep.%s", o->out, ext[k]);
         snprintf(tmp[k], sizeof tmp[k], "%s.tmp%ld", path[k], (long)getpid());
         FILE *f = fopen(tmp[k], "w");
         if (!f) {
@@ -257,16 +313,17 @@ static stc_status write_files(const sweep_opts *o, const design *d, int nd, cons
             break;
         }
         made[k] = 1;
-        if (k) json_out(f, o, d, nd, gi);
-        else csv_out(f, o, d, nd);
+        if (k == 1) json_out(f, o, d, nd, gi);
+        else if (k == 0) csv_out(f, o, d, nd);
         int bad = ferror(f);
         bad |= fclose(f) != 0;
         if (bad)
             s = stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': write failed (disk full?)",
                           o->out);
+        else if (k == 2) s = png_out(tmp[k], o, d, nE);
     }
     int placed = 0;
-    while (s == STC_OK && placed < 2) {
+    while (s == STC_OK && placed < 3) {
         if (rename(tmp[placed], path[placed]) != 0)
             s = stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': cannot rename %s (%s)",
                           o->out, tmp[placed], strerror(errno));
@@ -274,7 +331,7 @@ static stc_status write_files(const sweep_opts *o, const design *d, int nd, cons
     }
     if (s != STC_OK) { /* no partial output: what was placed before the failure goes too */
         for (int k = 0; k < placed; k++) remove(path[k]);
-        for (int k = placed; k < 2; k++)
+        for (int k = placed; k < 3; k++)
             if (made[k]) remove(tmp[k]);
     }
     return s;
@@ -353,7 +410,7 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
                                     &d[k].mu_pi[i]);
         cli_table_design_free(&td);
     }
-    if (s == STC_OK && o.out) s = write_files(&o, d, nd, &gi);
+    if (s == STC_OK && o.out) s = write_files(&o, d, nd, nE, &gi);
     if (s != STC_OK) {
         rc = cli_fail(cmd->name, s);
         goto out;
