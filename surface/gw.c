@@ -28,6 +28,7 @@
 
 #include "stiction/gw.h"
 #include "stiction/parse.h"
+#include "srf_impl.h"
 #include "srf_quad.h"
 #include "stc_check.h"
 
@@ -157,14 +158,6 @@ stc_status srf_gw_create_gaussian(const asp_model *model, double eta_per_mm2, do
 
 /* ------------------------------------------------------------ summits */
 
-typedef struct { double z, R; } zr_pair;
-
-static int by_height_desc(const void *a, const void *b)
-{
-    double za = ((const zr_pair *)a)->z, zb = ((const zr_pair *)b)->z;
-    return (za < zb) - (za > zb);
-}
-
 /* Per-summit normalisation of the deterministic hot loop. */
 static stc_status per_summit(srf_gw *g, int k)
 {
@@ -183,13 +176,13 @@ static stc_status per_summit(srf_gw *g, int k)
 /* Keep summits with 0 < R < inf, standardise heights, sort descending. */
 static stc_status load_summits(srf_gw *g, const double *z, const double *R, int n)
 {
-    zr_pair *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v);
+    srf_zr *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v);
     STC_CHECK(v, STC_ENOMEM, "srf_gw: out of memory");
     int k = 0;
     double sum = 0, sumk = 0;
     for (int i = 0; i < n; i++) {
         if (!(R[i] > 0 && isfinite(R[i]) && isfinite(z[i]))) continue;
-        v[k++] = (zr_pair){z[i], R[i]};
+        v[k++] = (srf_zr){z[i], R[i]};
         sum += z[i];
         sumk += 1.0 / R[i];
     }
@@ -201,7 +194,11 @@ static stc_status load_summits(srf_gw *g, const double *z, const double *R, int 
     }
     double mean = sum / k, ss = 0;
     for (int i = 0; i < k; i++) ss += (v[i].z - mean) * (v[i].z - mean);
-    qsort(v, (size_t)k, sizeof *v, by_height_desc);
+    stc_status st = srf_sort_desc(v, k);
+    if (st != STC_OK) {
+        free(v);
+        return st;
+    }
     g->zs = malloc((size_t)k * sizeof *g->zs);
     g->R = malloc((size_t)k * sizeof *g->R);
     if (!g->zs || !g->R) {

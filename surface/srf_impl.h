@@ -37,6 +37,15 @@ void srf_moments_from_power(const double *pw, int nx, int ny, double lx, double 
 /* Self-affine band edges λL, λr, λs (mm) with the 0 = automatic defaults resolved. */
 void srf_band(const srf_synth_params *p, double *lL, double *lr, double *ls);
 
+/* A summit's height and radius (mm). */
+typedef struct srf_zr {
+    double z, R;
+} srf_zr;
+
+/* Sort v[n] by height, highest first, stably (equal heights keep their
+ * order; -0 ranks with +0): heightsort.c.  STC_ENOMEM if out of memory. */
+stc_status srf_sort_desc(srf_zr *v, int n);
+
 /* Temporary file name beside `path` ("path.tmp-PID-K", created empty with
  * mode 0666 & ~umask); buf must hold strlen(path) + 32. */
 stc_status srf_tmpname(const char *path, char *buf, size_t n);

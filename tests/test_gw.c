@@ -15,6 +15,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "stiction/gw.h"
+#include "srf_impl.h"
 
 #define ETA 2000.0     /* summits per mm² */
 #define RADIUS 0.05    /* mm */
@@ -441,6 +442,65 @@ static void test_threads_leave_gsl_handler_alone(void **state)
     asp_model_destroy(&m);
 }
 
+/* The deterministic sums' height order (srf_sort_desc, a radix sort) is the
+ * stable order of a height comparator, ties and -0 = +0 included: against a
+ * reference that sorts (height desc, input position asc) by qsort, on
+ * heights with many ties, on an already sorted input, a reversed one and
+ * one of a single value. */
+typedef struct {
+    srf_zr v;
+    int pos;
+} ref_item;
+
+static int ref_cmp(const void *a, const void *b)
+{
+    const ref_item *x = a, *y = b;
+    if (x->v.z != y->v.z) return x->v.z < y->v.z ? 1 : -1;
+    return (x->pos > y->pos) - (x->pos < y->pos);
+}
+
+static void check_sorted_like_ref(srf_zr *v, int n)
+{
+    ref_item *r = malloc((size_t)n * sizeof *r);
+    assert_non_null(r);
+    for (int i = 0; i < n; i++) r[i] = (ref_item){v[i], i};
+    qsort(r, (size_t)n, sizeof *r, ref_cmp);
+    assert_int_equal(srf_sort_desc(v, n), STC_OK);
+    for (int i = 0; i < n; i++)
+        if (memcmp(&v[i], &r[i].v, sizeof v[i]) != 0)
+            fail_msg("position %d: (%g, %g) against the reference's (%g, %g)", i, v[i].z,
+                     v[i].R, r[i].v.z, r[i].v.R);
+    free(r);
+}
+
+static void test_height_sort(void **state)
+{
+    (void)state;
+    enum { N = 200003 };
+    srf_zr *v = malloc(N * sizeof *v);
+    assert_non_null(v);
+    unsigned long x = 12345;
+    for (int i = 0; i < N; i++) {
+        x = x * 6364136223846793005UL + 1442695040888963407UL;
+        /* 4001 distinct heights, both signs, plus exact zeros of both signs */
+        double z = ((double)((x >> 33) % 4001) - 2000.0) * 1e-7;
+        if (i % 97 == 0) z = (i % 194 == 0) ? -0.0 : 0.0;
+        v[i] = (srf_zr){z, 1.0 + i}; /* R tags the input position */
+    }
+    check_sorted_like_ref(v, N);
+    check_sorted_like_ref(v, N); /* already in order */
+    for (int i = 0; i < N / 2; i++) {
+        srf_zr t = v[i];
+        v[i] = v[N - 1 - i], v[N - 1 - i] = t;
+    }
+    check_sorted_like_ref(v, N); /* reversed */
+    for (int i = 0; i < N; i++) v[i] = (srf_zr){3e-4, 1.0 + i};
+    v[N / 2].z = 2e-4; /* one digit for most passes */
+    check_sorted_like_ref(v, N);
+    check_sorted_like_ref(v, 1);
+    free(v);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -454,6 +514,7 @@ int main(void)
         cmocka_unit_test(test_plasticity_and_coverage),
         cmocka_unit_test(test_invalid),
         cmocka_unit_test(test_threads_leave_gsl_handler_alone),
+        cmocka_unit_test(test_height_sort),
     };
     return cmocka_run_group_tests_name("gw", tests, NULL, NULL);
 }
