@@ -311,6 +311,47 @@ stc_status srf_gw_create_from_summits(const asp_model *model, srf_gw_mode mode,
     return srf_gw_create_summits(model, mode, s->z, s->R, s->n, s->area, p, out);
 }
 
+stc_status srf_gw_create_like(const srf_gw *src, const asp_model *model, srf_gw **out)
+{
+    STC_CHECK(src, STC_EINVAL, "srf_gw_create_like: src must not be NULL");
+    STC_CALL(gw_alloc(model, src->info.mode, &src->par, out));
+    srf_gw *g = *out;
+    srf_gw_info i = src->info; /* the population's; E* and H are the model's */
+    i.E_star_MPa = g->info.E_star_MPa;
+    i.H_MPa = g->info.H_MPa;
+    g->info = i;
+    stc_status st = STC_OK;
+    if (src->n > 0) { /* measured summits, sorted and standardised */
+        g->zs = malloc((size_t)src->n * sizeof *g->zs);
+        g->R = malloc((size_t)src->n * sizeof *g->R);
+        if (!g->zs || !g->R) st = STC_FAIL(STC_ENOMEM, "srf_gw: out of memory");
+        else {
+            memcpy(g->zs, src->zs, (size_t)src->n * sizeof *g->zs);
+            memcpy(g->R, src->R, (size_t)src->n * sizeof *g->R);
+            g->n = src->n;
+            st = per_summit(g, g->n);
+        }
+    }
+    if (st == STC_OK && src->kn > 0) { /* the KDE density */
+        g->ks = malloc((size_t)src->kn * sizeof *g->ks);
+        g->kf = malloc((size_t)src->kn * sizeof *g->kf);
+        g->kip = gsl_interp_alloc(gsl_interp_steffen, (size_t)src->kn);
+        if (!g->ks || !g->kf || !g->kip) st = STC_FAIL(STC_ENOMEM, "srf_gw: out of memory");
+        else {
+            memcpy(g->ks, src->ks, (size_t)src->kn * sizeof *g->ks);
+            memcpy(g->kf, src->kf, (size_t)src->kn * sizeof *g->kf);
+            g->kn = src->kn;
+            gsl_interp_init(g->kip, g->ks, g->kf, (size_t)g->kn);
+        }
+    }
+    if (st != STC_OK) {
+        srf_gw_destroy(out);
+        return st;
+    }
+    finish_info(g);
+    return STC_OK;
+}
+
 void srf_gw_destroy(srf_gw **pg)
 {
     if (!pg || !*pg) return;

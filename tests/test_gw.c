@@ -501,6 +501,60 @@ static void test_height_sort(void **state)
     free(v);
 }
 
+/* srf_gw_create_like: the population of a handle made with one model (Hertz),
+ * summed with another (wsp), gives what a handle made with that model gives,
+ * to the bit, in every mode; its info is the population's with the model's
+ * E*, H and plasticity index. */
+static void test_create_like(void **state)
+{
+    (void)state;
+    asp_model *hz = NULL, *wsp = NULL;
+    make_model(0, &hz);
+    make_model(1, &wsp);
+    int n = 5000;
+    double *z = quantile_heights(n), *R = const_radii(n);
+    for (int i = 0; i < n; i++) R[i] *= 1.0 + 0.3 * sin(1.7 * i); /* radii of their own */
+    for (int mode = 0; mode < 3; mode++) {
+        srf_gw *src = NULL, *fresh = NULL, *like = NULL;
+        if (mode == 0) {
+            assert_int_equal(srf_gw_create_gaussian(hz, ETA, RADIUS, SIGMA_S, NULL, &src), 0);
+            assert_int_equal(srf_gw_create_gaussian(wsp, ETA, RADIUS, SIGMA_S, NULL, &fresh), 0);
+        } else {
+            srf_gw_mode md = mode == 1 ? SRF_GW_KDE : SRF_GW_DETERMINISTIC;
+            assert_int_equal(srf_gw_create_summits(hz, md, z, R, n, n / ETA, NULL, &src), 0);
+            assert_int_equal(srf_gw_create_summits(wsp, md, z, R, n, n / ETA, NULL, &fresh), 0);
+        }
+        assert_int_equal(srf_gw_create_like(src, wsp, &like), STC_OK);
+        srf_gw_info a, b;
+        srf_gw_get_info(fresh, &a);
+        srf_gw_get_info(like, &b);
+        const double fa[] = {a.eta_per_mm2, a.sigma_s_mm, a.mean_height_mm, a.R_mm, a.area_mm2,
+                             a.E_star_MPa, a.H_MPa, a.plasticity_index, a.bandwidth_mm};
+        const double fb[] = {b.eta_per_mm2, b.sigma_s_mm, b.mean_height_mm, b.R_mm, b.area_mm2,
+                             b.E_star_MPa, b.H_MPa, b.plasticity_index, b.bandwidth_mm};
+        assert_memory_equal(fa, fb, sizeof fa); /* NaN where unused: bitwise */
+        assert_true(a.mode == b.mode && a.n_summits == b.n_summits &&
+                    a.n_excluded == b.n_excluded);
+        const double H[] = {-1.0, 0.0, 1.0, 2.5};
+        for (int k = 0; k < 4; k++) {
+            srf_gw_point p, q;
+            assert_int_equal(srf_gw_at_separation(fresh, H[k], &p), STC_OK);
+            assert_int_equal(srf_gw_at_separation(like, H[k], &q), STC_OK);
+            assert_memory_equal(&p, &q, sizeof p);
+        }
+        srf_gw_point p, q;
+        assert_int_equal(srf_gw_at_pressure(fresh, 1.0, &p), STC_OK);
+        assert_int_equal(srf_gw_at_pressure(like, 1.0, &q), STC_OK);
+        assert_memory_equal(&p, &q, sizeof p);
+        srf_gw_destroy(&src), srf_gw_destroy(&fresh), srf_gw_destroy(&like);
+    }
+    srf_gw *g = NULL;
+    assert_int_equal(srf_gw_create_like(NULL, wsp, &g), STC_EINVAL);
+    assert_null(g);
+    free(z), free(R);
+    asp_model_destroy(&hz), asp_model_destroy(&wsp);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -515,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_invalid),
         cmocka_unit_test(test_threads_leave_gsl_handler_alone),
         cmocka_unit_test(test_height_sort),
+        cmocka_unit_test(test_create_like),
     };
     return cmocka_run_group_tests_name("gw", tests, NULL, NULL);
 }

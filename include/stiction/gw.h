@@ -80,6 +80,13 @@ STC_API stc_status srf_gw_create_from_summits(const asp_model *model, srf_gw_mod
                                               const srf_summits *s, const srf_gw_params *p,
                                               srf_gw **out);
 
+/* The same summit population as src (its heights, radii, KDE density and
+ * parameters, sorted and standardised once) summed with another model:
+ * what srf_gw_create_* would give for model, to the bit, without sorting
+ * the summits again (a design sweep sums one population with many
+ * models).  src is only read. */
+STC_API stc_status srf_gw_create_like(const srf_gw *src, const asp_model *model, srf_gw **out);
+
 STC_API void srf_gw_destroy(srf_gw **g);
 
 /* Population summary. */

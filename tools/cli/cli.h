@@ -243,6 +243,10 @@ typedef struct cli_gw_pop {
     double eta, R, sigma_s;       /* without --surface */
     srf_summits *sm;              /* with --surface (owned) */
     srf_stats st;
+    /* the map's summits sorted once (deterministic, kde): each sum is made
+     * like this one (srf_gw_create_like), with the model it sums (owned) */
+    asp_model *proto_model;
+    srf_gw *proto;
 } cli_gw_pop;
 /* The options cli_gw_pop_opt takes (with the map's import options), as
  * two sections of a subcommand's help. */
@@ -272,8 +276,10 @@ stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v);
  * option (or --mode deterministic) without a map; then the import options. */
 stc_status cli_gw_pop_check(const cli_gw_pop *pop, const char *surface,
                             const cli_surface_import *imp);
-/* Read the map's summits and statistics (nothing without a map). */
-stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp);
+/* Read the map's summits and statistics (nothing without a map); p: the
+ * materials of the sums' prototype, any valid set. */
+stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp,
+                           const stc_params *p);
 /* The GW sums of model m over the population. */
 stc_status cli_gw_pop_sum(const cli_gw_pop *pop, const asp_model *m, srf_gw **out);
 void cli_gw_pop_free(cli_gw_pop *pop);

@@ -91,7 +91,8 @@ stc_status cli_gw_pop_check(const cli_gw_pop *pop, const char *surface,
     return cli_surface_import_check(imp);
 }
 
-stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp)
+stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp,
+                           const stc_params *p)
 {
     if (!surface) return STC_OK; /* a Gaussian population from its three statistics */
     srf_map *map = NULL;
@@ -99,20 +100,31 @@ stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surfa
     if (s == STC_OK) s = srf_summits_find(map, pop->rule, &pop->sm);
     if (s == STC_OK) s = srf_stats_compute(map, pop->sm, &pop->st);
     srf_map_destroy(&map);
+    if (s == STC_OK && (pop->deterministic || pop->kde)) {
+        s = asp_model_create_hertz(p, 0.0, ASP_LAYER_SUBSTRATE, &pop->proto_model);
+        if (s == STC_OK)
+            s = srf_gw_create_from_summits(pop->proto_model, pop->deterministic
+                                                                 ? SRF_GW_DETERMINISTIC
+                                                                 : SRF_GW_KDE,
+                                           pop->sm, NULL, &pop->proto);
+    }
     return s;
 }
 
 stc_status cli_gw_pop_sum(const cli_gw_pop *pop, const asp_model *m, srf_gw **out)
 {
+    if (pop->proto) return srf_gw_create_like(pop->proto, m, out);
     if (!pop->sm) return srf_gw_create_gaussian(m, pop->eta, pop->R, pop->sigma_s, NULL, out);
-    if (pop->deterministic)
-        return srf_gw_create_from_summits(m, SRF_GW_DETERMINISTIC, pop->sm, NULL, out);
-    if (pop->kde) return srf_gw_create_from_summits(m, SRF_GW_KDE, pop->sm, NULL, out);
     return srf_gw_create_gaussian(m, pop->st.summit_density_per_mm2, pop->st.mean_summit_radius_mm,
                                   pop->st.sigma_s_mm, NULL, out);
 }
 
-void cli_gw_pop_free(cli_gw_pop *pop) { srf_summits_destroy(&pop->sm); }
+void cli_gw_pop_free(cli_gw_pop *pop)
+{
+    srf_gw_destroy(&pop->proto);
+    asp_model_destroy(&pop->proto_model);
+    srf_summits_destroy(&pop->sm);
+}
 
 stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, double t_mm,
                                    const cli_gw_pop *pop, cli_table_design *d)

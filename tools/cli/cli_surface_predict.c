@@ -608,7 +608,7 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
         goto out;
     o.t_mm = p.t_mm; /* 0 unless --t-mm: uncoated */
     cli_gw_pop pop = o.pop; /* its summits, read here, freed below */
-    if (s == STC_OK) s = cli_gw_pop_load(&pop, o.surface, &o.imp);
+    if (s == STC_OK) s = cli_gw_pop_load(&pop, o.surface, &o.imp, &p);
     if (s == STC_OK && o.fill) {
         int nl = o.np ? o.np : o.ns;
         cli_table_fill_job job = {o.table, &pop, &p, &o.t_mm, o.np ? o.pressures : o.separations,

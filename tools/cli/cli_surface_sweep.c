@@ -389,7 +389,7 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
                                 !(d[k].mu_pi = calloc((size_t)o.np, sizeof(double)))))
                 s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
         }
-    if (s == STC_OK) s = cli_gw_pop_load(&o.pop, o.surface, &o.imp);
+    if (s == STC_OK) s = cli_gw_pop_load(&o.pop, o.surface, &o.imp, &p);
     if (s == STC_OK && o.fill) {
         cli_table_fill_job job = {o.table, &o.pop, dp, dt, o.pressures, o.np, 1};
         s = cli_table_fill(cmd->name, &job, nd, o.jobs);
