@@ -20,11 +20,12 @@ int srf_threads(int requested) { return requested > 0 ? requested : omp_get_max_
 static pthread_mutex_t planner_lock = PTHREAD_MUTEX_INITIALIZER;
 static int fftw_threads_ready;
 
-/* Set the planner's thread count for one plan; returns the count it found
- * (0: threads unavailable), which plan_done restores, so that a caller's
- * own plans keep the setting they chose. */
+/* Take the planner and set its thread count for one plan; returns the count
+ * it found (0: threads unavailable), which plan_done restores before it
+ * lets the planner go, so that a caller's own plans keep their setting. */
 static int plan_setup(int threads)
 {
+    pthread_mutex_lock(&planner_lock);
     if (!fftw_threads_ready) fftw_threads_ready = fftw_init_threads() ? 1 : -1;
     if (fftw_threads_ready < 0) return 0;
     int old = fftw_planner_nthreads();
@@ -40,7 +41,6 @@ static void plan_done(int old)
 
 fftw_plan srf_plan_r2c(int nx, int ny, double *in, fftw_complex *out, int threads)
 {
-    pthread_mutex_lock(&planner_lock);
     int old = plan_setup(threads);
     /* ESTIMATE: planning must not overwrite the caller's data, and a
      * MEASURE plan of a 4096² grid costs more than many executions. */
@@ -51,7 +51,6 @@ fftw_plan srf_plan_r2c(int nx, int ny, double *in, fftw_complex *out, int thread
 
 fftw_plan srf_plan_c2r(int nx, int ny, fftw_complex *in, double *out, int threads)
 {
-    pthread_mutex_lock(&planner_lock);
     int old = plan_setup(threads);
     fftw_plan p = fftw_plan_dft_c2r_2d(ny, nx, in, out, FFTW_ESTIMATE);
     plan_done(old);

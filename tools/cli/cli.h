@@ -185,6 +185,15 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv);
 stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b);
 /* A flag's value: 1/true/yes or 0/false/no ("--json" alone passes "1"). */
 stc_status cli_parse_flag(const char *key, const char *value, int *flag);
+/* A whole number in [lo, hi] into *out (set only when valid). */
+stc_status cli_parse_int(const char *key, const char *value, long lo, long hi, int *out);
+/* "a" or "b" → *second = 0 or 1, else an error naming key and both. */
+stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
+                            int *second);
+/* A list (cli_parse_list) into *out (owned; freed first), every value > 0
+ * if `positive` (an error names the first that is not and its place). */
+stc_status cli_parse_values(const char *key, const char *value, int positive, double **out,
+                            int *n);
 /* "midpoint", "radial" or "exact" → *rm (--return-map, --ramp-return-map). */
 stc_status cli_parse_return_map(const char *key, const char *value, asp_return_map *rm);
 /* Replace *out (owned, freed first) by a copy of a non-empty `value`: option
@@ -235,18 +244,15 @@ int cli_table_progress_line(void *ctx, const tbl_progress *p);
 #include "stiction/gw.h"
 #include "stiction/model.h"
 #include "stiction/surface.h"
-/* The summit population: the map's summits (read once) or, without a map,
- * a Gaussian population of eta, R, sigma_s; summed as the options say. */
+/* The summit population: a Gaussian one of eta, R, sigma_s (given, or a
+ * map's statistics), or a map's summits, sorted once into a prototype that
+ * every sum is made like (srf_gw_create_like; deterministic, kde). */
 typedef struct cli_gw_pop {
     int rule, deterministic, kde; /* --rule (default SRF_RULE_8), --mode, --density */
     int rule_given, density_given;
-    double eta, R, sigma_s;       /* without --surface */
-    srf_summits *sm;              /* with --surface (owned) */
-    srf_stats st;
-    /* the map's summits sorted once (deterministic, kde): each sum is made
-     * like this one (srf_gw_create_like), with the model it sums (owned) */
-    asp_model *proto_model;
-    srf_gw *proto;
+    double eta, R, sigma_s;       /* Gaussian heights */
+    asp_model *proto_model;       /* the prototype's model (owned) */
+    srf_gw *proto;                /* the map's summits (owned), or NULL */
 } cli_gw_pop;
 /* The options cli_gw_pop_opt takes (with the map's import options), as
  * two sections of a subcommand's help. */
@@ -264,11 +270,6 @@ typedef struct cli_gw_pop {
                                               "over the map's summits (default statistical)"}, \
         {"density", "gaussian|kde", "statistical height density for --surface (default "       \
                                     "gaussian)"}
-/* --jobs: an integer in [1, 1024], set only when valid. */
-stc_status cli_parse_jobs(const char *key, const char *v, int *jobs);
-/* "a" or "b" → *second = 0 or 1, else an error naming key and both. */
-stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
-                            int *second);
 /* The population's options: rule, mode, density, summit-density,
  * summit-radius, sigma-s; STC_EUNSUPPORTED for others. */
 stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v);
@@ -276,8 +277,9 @@ stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v);
  * option (or --mode deterministic) without a map; then the import options. */
 stc_status cli_gw_pop_check(const cli_gw_pop *pop, const char *surface,
                             const cli_surface_import *imp);
-/* Read the map's summits and statistics (nothing without a map); p: the
- * materials of the sums' prototype, any valid set. */
+/* Read the map: its summits into the prototype, or its statistics into
+ * eta, R, sigma_s (nothing without a map); p: the materials of the
+ * prototype's model, any valid set. */
 stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surface_import *imp,
                            const stc_params *p);
 /* The GW sums of model m over the population. */

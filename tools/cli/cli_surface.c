@@ -53,6 +53,40 @@ stc_status cli_parse_flag(const char *key, const char *value, int *flag)
     return STC_OK;
 }
 
+stc_status cli_parse_int(const char *key, const char *value, long lo, long hi, int *out)
+{
+    long l;
+    if (stc_parse_long(key, value, &l) != STC_OK || l < lo || l > hi) {
+        return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be a whole number "
+                         "in [%ld, %ld]", key, value, lo, hi);
+    }
+    *out = (int)l;
+    return STC_OK;
+}
+
+stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
+                            int *second)
+{
+    if (strcmp(v, a) == 0) *second = 0;
+    else if (strcmp(v, b) == 0) *second = 1;
+    else return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s or %s", key, v,
+                          a, b);
+    return STC_OK;
+}
+
+stc_status cli_parse_values(const char *key, const char *value, int positive, double **out,
+                            int *n)
+{
+    free(*out);
+    *out = NULL;
+    stc_status s = cli_parse_list(key, value, out, n); /* finite numbers */
+    for (int i = 0; s == STC_OK && positive && i < *n; i++)
+        if (!((*out)[i] > 0.0))
+            s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = %g (value %d of '%s'): must be "
+                          "> 0", key, (*out)[i], i + 1, value);
+    return s;
+}
+
 stc_status cli_set_string(const char *key, const char *value, char **out)
 {
     if (!value || !*value)

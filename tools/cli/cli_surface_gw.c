@@ -15,27 +15,6 @@
 #include "stiction/surface.h"
 #include "stiction/table.h"
 
-stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,
-                            int *second)
-{
-    if (strcmp(v, a) == 0) *second = 0;
-    else if (strcmp(v, b) == 0) *second = 1;
-    else return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be %s or %s", key, v,
-                          a, b);
-    return STC_OK;
-}
-
-stc_status cli_parse_jobs(const char *key, const char *v, int *jobs)
-{
-    double x;
-    stc_status s = stc_parse_double(key, v, &x);
-    if (s == STC_OK && !(x == floor(x) && x >= 1 && x <= 1024))
-        s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be an integer in "
-                      "[1, 1024]", key, v);
-    if (s == STC_OK) *jobs = (int)x;
-    return s;
-}
-
 stc_status cli_gw_pop_opt(cli_gw_pop *pop, const char *key, const char *v)
 {
     int c = 0;
@@ -96,9 +75,11 @@ stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surfa
 {
     if (!surface) return STC_OK; /* a Gaussian population from its three statistics */
     srf_map *map = NULL;
+    srf_summits *sm = NULL;
+    srf_stats st;
     stc_status s = cli_surface_load("surface", surface, imp, &map);
-    if (s == STC_OK) s = srf_summits_find(map, pop->rule, &pop->sm);
-    if (s == STC_OK) s = srf_stats_compute(map, pop->sm, &pop->st);
+    if (s == STC_OK) s = srf_summits_find(map, pop->rule, &sm);
+    if (s == STC_OK) s = srf_stats_compute(map, sm, &st);
     srf_map_destroy(&map);
     if (s == STC_OK && (pop->deterministic || pop->kde)) {
         s = asp_model_create_hertz(p, 0.0, ASP_LAYER_SUBSTRATE, &pop->proto_model);
@@ -106,24 +87,26 @@ stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surfa
             s = srf_gw_create_from_summits(pop->proto_model, pop->deterministic
                                                                  ? SRF_GW_DETERMINISTIC
                                                                  : SRF_GW_KDE,
-                                           pop->sm, NULL, &pop->proto);
+                                           sm, NULL, &pop->proto);
+    } else if (s == STC_OK) { /* Gaussian heights of the map's statistics */
+        pop->eta = st.summit_density_per_mm2;
+        pop->R = st.mean_summit_radius_mm;
+        pop->sigma_s = st.sigma_s_mm;
     }
+    srf_summits_destroy(&sm);
     return s;
 }
 
 stc_status cli_gw_pop_sum(const cli_gw_pop *pop, const asp_model *m, srf_gw **out)
 {
     if (pop->proto) return srf_gw_create_like(pop->proto, m, out);
-    if (!pop->sm) return srf_gw_create_gaussian(m, pop->eta, pop->R, pop->sigma_s, NULL, out);
-    return srf_gw_create_gaussian(m, pop->st.summit_density_per_mm2, pop->st.mean_summit_radius_mm,
-                                  pop->st.sigma_s_mm, NULL, out);
+    return srf_gw_create_gaussian(m, pop->eta, pop->R, pop->sigma_s, NULL, out);
 }
 
 void cli_gw_pop_free(cli_gw_pop *pop)
 {
     srf_gw_destroy(&pop->proto);
     asp_model_destroy(&pop->proto_model);
-    srf_summits_destroy(&pop->sm);
 }
 
 stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, double t_mm,

@@ -66,15 +66,6 @@ static const cli_opt opts[] = {
     {NULL, NULL, NULL},
 };
 
-static stc_status set_list(const char *key, const char *v, double **out, int *n, int positive)
-{
-    free(*out);
-    stc_status s = cli_parse_list(key, v, out, n);
-    for (int i = 0; s == STC_OK && i < *n; i++)
-        if (positive) s = stc_check_range(key, (*out)[i], 0.0, 0, INFINITY, 0);
-    return s;
-}
-
 static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
 {
     int c = 0;
@@ -88,7 +79,7 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
     else if (strcmp(key, "sampled") == 0) s = cli_parse_flag(key, v, &o->sampled);
     else if (strcmp(key, "timing") == 0) s = cli_parse_flag(key, v, &o->timing);
     else if (strcmp(key, "fill") == 0) s = cli_parse_flag(key, v, &o->fill);
-    else if (strcmp(key, "jobs") == 0) s = cli_parse_jobs(key, v, &o->jobs);
+    else if (strcmp(key, "jobs") == 0) s = cli_parse_int(key, v, 1, 1024, &o->jobs);
     else if (strcmp(key, "model") == 0) s = cli_parse_choice(key, v, "hertz", "wsp", &o->wsp);
     else if (strcmp(key, "layer") == 0) {
         s = cli_parse_choice(key, v, "substrate", "coating", &c);
@@ -102,8 +93,9 @@ static stc_status set_opt1(predict_opts *o, const char *key, const char *v)
         s = stc_error(STC_EINVAL, __FILE__, __LINE__, "t-over-R = %s: every summit has its own "
                       "radius, so one t/R is no thickness; give the coating thickness with "
                       "--t-mm MM", v);
-    else if (strcmp(key, "pressures") == 0) s = set_list(key, v, &o->pressures, &o->np, 1);
-    else if (strcmp(key, "separations") == 0) s = set_list(key, v, &o->separations, &o->ns, 0);
+    else if (strcmp(key, "pressures") == 0) s = cli_parse_values(key, v, 1, &o->pressures, &o->np);
+    else if (strcmp(key, "separations") == 0)
+        s = cli_parse_values(key, v, 0, &o->separations, &o->ns);
     else if ((s = cli_gw_pop_opt(&o->pop, key, v)) == STC_EUNSUPPORTED)
         return cli_surface_import_opt(&o->imp, key, v);
     return s;

@@ -58,18 +58,6 @@ static const cli_opt opts[] = {
     {NULL, NULL, NULL},
 };
 
-static stc_status set_list(const char *key, const char *v, double **out, int *n)
-{
-    free(*out);
-    *out = NULL;
-    stc_status s = cli_parse_list(key, v, out, n);
-    for (int i = 0; s == STC_OK && i < *n; i++)
-        if (!((*out)[i] > 0.0) || !isfinite((*out)[i]))
-            s = stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = %g (value %d of '%s'): must be "
-                          "> 0", key, (*out)[i], i + 1, v);
-    return s;
-}
-
 static stc_status set_opt(void *ctx, const char *key, const char *v)
 {
     sweep_opts *o = ctx;
@@ -79,10 +67,10 @@ static stc_status set_opt(void *ctx, const char *key, const char *v)
     else if (!strcmp(key, "out")) s = cli_set_string(key, v, &o->out);
     else if (!strcmp(key, "json")) s = cli_parse_flag(key, v, &o->json);
     else if (!strcmp(key, "fill")) s = cli_parse_flag(key, v, &o->fill);
-    else if (!strcmp(key, "t-mm")) s = set_list(key, v, &o->t_mm, &o->nt);
-    else if (!strcmp(key, "E-ratio")) s = set_list(key, v, &o->E_ratio, &o->nE);
-    else if (!strcmp(key, "pressures")) s = set_list(key, v, &o->pressures, &o->np);
-    else if (!strcmp(key, "jobs")) s = cli_parse_jobs(key, v, &o->jobs);
+    else if (!strcmp(key, "t-mm")) s = cli_parse_values(key, v, 1, &o->t_mm, &o->nt);
+    else if (!strcmp(key, "E-ratio")) s = cli_parse_values(key, v, 1, &o->E_ratio, &o->nE);
+    else if (!strcmp(key, "pressures")) s = cli_parse_values(key, v, 1, &o->pressures, &o->np);
+    else if (!strcmp(key, "jobs")) s = cli_parse_int(key, v, 1, 1024, &o->jobs);
     else if (!strcmp(key, "Y-su")) {
         s = stc_parse_double(key, v, &o->Y_su);
         if (s == STC_OK) s = stc_check_range(key, o->Y_su, 0.0, 0, INFINITY, 0);

@@ -27,18 +27,6 @@ static stc_status set_num(const char *key, const char *value, double lo, double 
     return stc_check_range(key, *out, lo, 1, hi, 1);
 }
 
-static stc_status set_int(const char *key, const char *value, long lo, long hi, int *out)
-{
-    long l;
-    if (stc_parse_long(key, value, &l) != STC_OK || l < lo || l > hi) {
-        char what[64];
-        snprintf(what, sizeof what, "a whole number in [%ld, %ld]", lo, hi);
-        return bad(key, value, what);
-    }
-    *out = (int)l;
-    return STC_OK;
-}
-
 /* Every positional argument before the first option (input files). */
 static int peel_files(int *argc, char ***argv, const char **files, int cap)
 {
@@ -180,23 +168,23 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
     } else if (!strcmp(key, "alpha")) {
         s = set_num(key, value, 1e-3, 0.999, &f->alpha);
     } else if (!strcmp(key, "mesh-level")) {
-        s = set_int(key, value, 0, 3, &a->num.mesh_level);
+        s = cli_parse_int(key, value, 0, 3, &a->num.mesh_level);
     } else if (!strcmp(key, "placements")) {
-        s = set_int(key, value, 1, ASP_PLACEMENTS_MAX, &a->num.placements);
+        s = cli_parse_int(key, value, 1, ASP_PLACEMENTS_MAX, &a->num.placements);
     } else if (!strcmp(key, "placements-max")) {
-        s = set_int(key, value, 0, ASP_PLACEMENTS_MAX, &a->num.placements_max);
+        s = cli_parse_int(key, value, 0, ASP_PLACEMENTS_MAX, &a->num.placements_max);
     } else if (!strcmp(key, "refine-err")) {
         s = stc_parse_double(key, value, &a->num.refine_err);
     } else if (!strcmp(key, "foot-rows")) {
         s = stc_parse_double(key, value, &a->num.foot_rows);
     } else if (!strcmp(key, "normal-level")) {
-        s = set_int(key, value, -1, 3, &a->num.normal_level);
+        s = cli_parse_int(key, value, -1, 3, &a->num.normal_level);
     } else if (!strcmp(key, "elements-per-contact")) {
         s = stc_parse_double(key, value, &a->num.elements_per_contact);
     } else if (!strcmp(key, "out")) {
         s = cli_set_string(key, value, &a->out);
     } else if (!strcmp(key, "jobs")) {
-        s = set_int(key, value, 1, 1024, &a->bo.jobs);
+        s = cli_parse_int(key, value, 1, 1024, &a->bo.jobs);
     } else if (!strcmp(key, "shard")) {
         int i, n, used = 0;
         if (sscanf(value, "%d/%d%n", &i, &n, &used) != 2 || value[used] || n < 1 || i < 0 ||
@@ -445,7 +433,7 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
     if (!strcmp(key, "E-ratio")) return set_num(key, value, 1e-3, 1e3, &q->E);
     if (!strcmp(key, "out")) return cli_set_string(key, value, &q->out);
     if (!strcmp(key, "placements-max"))
-        return set_int(key, value, 2, ASP_PLACEMENTS_MAX, &q->plan_k);
+        return cli_parse_int(key, value, 2, ASP_PLACEMENTS_MAX, &q->plan_k);
     if (!strcmp(key, "refine-err")) return set_num(key, value, 1e-9, 0.5, &q->plan_x);
     return STC_EUNSUPPORTED;
 }
