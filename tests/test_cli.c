@@ -568,8 +568,8 @@ static void test_halfspace(void **state)
     (void)state;
     const char *w = "halfspace --R 10.5 --E-su 74000 --nu 0.33 --Y-su 325";
     char args[512];
-    expect_fail_on(w, "--delta 0.5 --cells 8", "cells = 8", "[16, 4096]");
-    expect_fail_on(w, "--delta 0.5 --cells 64.5", "cells = 64.5", "whole number");
+    expect_fail_on(w, "--delta 0.5 --cells 8", "cells = '8'", "[16, 4096]");
+    expect_fail_on(w, "--delta 0.5 --cells 64.5", "cells = '64.5'", "whole number");
     expect_fail_on(w, "--delta 0.5 --span 9", "span = 9", "[1.05, 4]");
     expect_fail_on(w, "--delta -1", "delta = -1", "> 0");
     expect_fail_on(w, "--delta 0.5 --delta-mm 0.001", "one of --delta and --delta-mm", NULL);

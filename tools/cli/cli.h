@@ -185,7 +185,9 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv);
 stc_status cli_parse_pair(const char *key, const char *value, double *a, double *b);
 /* A flag's value: 1/true/yes or 0/false/no ("--json" alone passes "1"). */
 stc_status cli_parse_flag(const char *key, const char *value, int *flag);
-/* A whole number in [lo, hi] into *out (set only when valid). */
+/* A whole number in [lo, hi] into *out (set only when valid); for int, [lo, hi]
+ * within int's range. */
+stc_status cli_parse_long(const char *key, const char *value, long lo, long hi, long *out);
 stc_status cli_parse_int(const char *key, const char *value, long lo, long hi, int *out);
 /* "a" or "b" → *second = 0 or 1, else an error naming key and both. */
 stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,

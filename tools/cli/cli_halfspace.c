@@ -59,18 +59,6 @@ static stc_status set_num(const char *key, const char *value, double lo, int lo_
     return s != STC_OK ? s : stc_check_range(key, *v, lo, lo_incl, hi, 1);
 }
 
-static stc_status set_int(const char *key, const char *value, int lo, int hi, int *v)
-{
-    double x;
-    stc_status s = set_num(key, value, lo, 1, hi, &x);
-    if (s != STC_OK) return s;
-    if (x != floor(x))
-        return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = %s: must be a whole number", key,
-                         value);
-    *v = (int)x;
-    return STC_OK;
-}
-
 static stc_status set_opt(void *ctx, const char *key, const char *value)
 {
     hopts *o = ctx;
@@ -78,8 +66,8 @@ static stc_status set_opt(void *ctx, const char *key, const char *value)
     if (!strcmp(key, "delta-mm")) return set_num(key, value, 0.0, 0, INFINITY, &o->delta_mm);
     if (!strcmp(key, "tau-c")) return set_num(key, value, 0.0, 0, INFINITY, &o->tau_c);
     if (!strcmp(key, "span")) return set_num(key, value, 1.05, 1, 4.0, &o->span);
-    if (!strcmp(key, "cells")) return set_int(key, value, 16, 4096, &o->cells);
-    if (!strcmp(key, "steps")) return set_int(key, value, 1, 1000, &o->steps);
+    if (!strcmp(key, "cells")) return cli_parse_int(key, value, 16, 4096, &o->cells);
+    if (!strcmp(key, "steps")) return cli_parse_int(key, value, 1, 1000, &o->steps);
     if (!strcmp(key, "json")) return cli_parse_flag(key, value, &o->json);
     return STC_EUNSUPPORTED;
 }

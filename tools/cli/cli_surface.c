@@ -53,15 +53,23 @@ stc_status cli_parse_flag(const char *key, const char *value, int *flag)
     return STC_OK;
 }
 
-stc_status cli_parse_int(const char *key, const char *value, long lo, long hi, int *out)
+stc_status cli_parse_long(const char *key, const char *value, long lo, long hi, long *out)
 {
     long l;
     if (stc_parse_long(key, value, &l) != STC_OK || l < lo || l > hi) {
         return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = '%s': must be a whole number "
                          "in [%ld, %ld]", key, value, lo, hi);
     }
-    *out = (int)l;
+    *out = l;
     return STC_OK;
+}
+
+stc_status cli_parse_int(const char *key, const char *value, long lo, long hi, int *out)
+{
+    long l;
+    stc_status s = cli_parse_long(key, value, lo, hi, &l);
+    if (s == STC_OK) *out = (int)l;
+    return s;
 }
 
 stc_status cli_parse_choice(const char *key, const char *v, const char *a, const char *b,

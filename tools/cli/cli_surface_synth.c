@@ -47,15 +47,6 @@ static const cli_opt opts[] = {
     {NULL, NULL, NULL},
 };
 
-static stc_status set_int(const char *key, const char *v, long lo, long hi, long *out)
-{
-    stc_status s = stc_parse_long(key, v, out);
-    if (s == STC_OK && (*out < lo || *out > hi))
-        return stc_error(STC_EINVAL, __FILE__, __LINE__, "%s = %ld: must be an integer in [%ld, %ld]",
-                         key, *out, lo, hi);
-    return s;
-}
-
 static stc_status set_size(synth_opts *o, const char *key, const char *v)
 {
     double a, b;
@@ -131,14 +122,12 @@ static stc_status set_opt1(synth_opts *o, const char *key, const char *v)
         return STC_OK;
     }
     if (strcmp(key, "seed") == 0) {
-        if ((s = set_int(key, v, 0, 4294967295L, &l))) return s;
+        if ((s = cli_parse_long(key, v, 0, 4294967295L, &l))) return s;
         o->seed = (unsigned long)l;
         return STC_OK;
     }
     if (strcmp(key, "threads") == 0) {
-        if ((s = set_int(key, v, 0, 1024, &l))) return s;
-        o->p.threads = (int)l;
-        return STC_OK;
+        return cli_parse_int(key, v, 0, 1024, &o->p.threads);
     }
     if (strcmp(key, "out") == 0) return cli_set_string(key, v, &o->out);
     if (strcmp(key, "png") == 0) return cli_set_string(key, v, &o->png);
