@@ -487,6 +487,43 @@ static int member_counts(const tbl_table *t, int count[ASP_PLACEMENTS_MAX + 1])
     return kinds;
 }
 
+/* The stored error estimates of the done points run as themselves (a
+ * copy repeats its source's), relative to their mu_s: how many, their
+ * median, how many reach ERR_NOISY (a one-member point's err_single of
+ * 10 % counts, to rounding), and the largest (imax its point, -1 with
+ * none). */
+#define ERR_NOISY 0.10
+typedef struct err_summary {
+    int n, noisy, imax;
+    double median, max;
+} err_summary;
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void err_summarise(const tbl_table *t, err_summary *e)
+{
+    *e = (err_summary){.imax = -1, .median = NAN, .max = NAN};
+    double *r = malloc((size_t)tbl_points(t) * sizeof *r);
+    for (int i = 0; r && i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        if (p->state != TBL_DONE || p->copied || !(p->mu_s > 0.0) || !isfinite(p->mu_s_err))
+            continue;
+        double x = p->mu_s_err / p->mu_s;
+        e->noisy += x >= ERR_NOISY * (1.0 - 1e-9);
+        if (e->imax < 0 || x > e->max) e->max = x, e->imax = i;
+        r[e->n++] = x;
+    }
+    if (e->n > 0) {
+        qsort(r, (size_t)e->n, sizeof *r, cmp_dbl);
+        e->median = e->n % 2 ? r[e->n / 2] : 0.5 * (r[e->n / 2 - 1] + r[e->n / 2]);
+    }
+    free(r);
+}
+
 static void info_json(const tbl_table *t, const char *path, const refine_plan *rp)
 {
     cli_json j;
@@ -549,6 +586,25 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_str(&j, "command", tbl_provenance(t, &wall));
     cj_num(&j, "build_wall_s", wall);
     cj_num(&j, "cpu_s_per_point", nrun ? cpu / nrun : NAN);
+    err_summary es;
+    err_summarise(t, &es);
+    cj_obj(&j, "mu_s_err_rel"); /* the done points' error estimates over their mu_s */
+    cj_int(&j, "points", es.n);
+    cj_num(&j, "median", es.median);
+    cj_num(&j, "noisy_from", ERR_NOISY);
+    cj_int(&j, "noisy", es.noisy);
+    cj_num(&j, "largest", es.max);
+    if (es.imax >= 0) {
+        double w, tR, E;
+        tbl_coords(t, es.imax, &w, &tR, &E);
+        cj_obj(&j, "largest_at");
+        cj_num(&j, "delta_over_omega_c", w);
+        cj_num(&j, "t_over_R", tR);
+        cj_num(&j, "E_ratio", E);
+        cj_int(&j, "members", tbl_point_get(t, es.imax)->members);
+        cj_end_obj(&j);
+    }
+    cj_end_obj(&j);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK) {
         cj_num(&j, "loo_rms_rel", fi.loo_rms);
@@ -685,6 +741,17 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
                "t/R's run at their delta\n", ncopied);
     printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point computed\n", cmd,
            wall, nrun ? cpu / nrun : 0.0);
+    err_summary es;
+    err_summarise(t, &es);
+    if (es.n > 0) {
+        double w, tR, E;
+        tbl_coords(t, es.imax, &w, &tR, &E);
+        int m = tbl_point_get(t, es.imax)->members;
+        printf("  mu_s error estimates (one standard error) of the %d point%s computed: median "
+               "%.1f %%, %d at %.0f %% or more, largest %.1f %% (delta %g, t/R %g, Eco/Esu %g; %d "
+               "member%s)\n", es.n, es.n == 1 ? "" : "s", 100 * es.median, es.noisy,
+               100 * ERR_NOISY, 100 * es.max, w, tR, E, m, m == 1 ? "" : "s");
+    }
     info_normal_text(t);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK)
