@@ -388,8 +388,10 @@ static void test_fill(void **state)
 {
     (void)state;
     char out[8192], a[8192], b[8192];
+    /* (its normal grid on the coarse axisymmetric level 0: a third of level 1's time) */
     assert_int_equal(run("table build --deltas 0.5,1,2,4,8 --t-over-R 0.02 --E-ratio 1,2 "
-                         BUILD_NUM " --out fill.h5 --init", 1, out, sizeof out), 0);
+                         BUILD_NUM " --normal-level 0 --out fill.h5 --init", 1, out,
+                         sizeof out), 0);
     assert_non_null(strstr(out, "10 points (5 x 1 x 2), 0 done, 0 failed, 10 pending"));
     /* E-ratio 2 on its node, t/R = 0.0014/0.07 = 0.02; delta/omega_c up to
      * 1.2 here: delta nodes 0.5, 1, 2 and one more */
@@ -405,7 +407,14 @@ static void test_fill(void **state)
     assert_non_null(strstr(out, "\"elements_per_contact\": 3"));
     assert_non_null(strstr(out, "\"placements\": 1"));
     assert_non_null(strstr(out, "\"placements_max\": 0"));
+    assert_non_null(strstr(out, "\"normal_level\": 0"));
     assert_non_null(strstr(out, "\"done\": 4"));
+    /* one member each: every error estimate is err_single, 10 % */
+    const char *es = strstr(out, "\"mu_s_err_rel\": {");
+    assert_non_null(es);
+    assert_non_null(strstr(es, "\"points\": 4,"));
+    assert_non_null(strstr(es, "\"noisy\": 4,"));
+    assert_true(fabs(cli_jnum(es, "median") - 0.1) < 1e-9);
     assert_non_null(strstr(out, "\"pending\": 6"));
     /* the filled table carries its surrogate's fit: read without a search */
     assert_non_null(strstr(out, "\"fit_reused\": 1"));
@@ -514,6 +523,8 @@ static void test_refined_build(void **state)
     printf("%s", out);
     assert_non_null(strstr(out, "refined up to 2 where their standard error exceeds 0.1 %"));
     assert_non_null(strstr(out, "node placements of the done points: 2 (1 point)"));
+    assert_non_null(strstr(out, "error estimates (one standard error) of the 1 point computed: "
+                                "median "));
     assert_int_equal(run("table info refined.h5 --json", 1, out, sizeof out), 0);
     assert_json(out);
     const char *by = strstr(out, "\"done_points_by_placements\": {");
