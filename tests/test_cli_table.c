@@ -450,10 +450,21 @@ static void test_fill(void **state)
      * those of 2 are there; then each design reads what predict reads */
 #define SWEEP_RUN "surface sweep --table fill.h5 --E-ratio 1,2 --t-mm 0.0014 " \
                   "--summit-density 2000 --summit-radius 0.07 --sigma-s 1e-7 --pressures 0.01"
+    assert_int_equal(run("table info fill.h5 --json", 1, out, sizeof out), 0);
+    double w1 = cli_jnum(out, "build_wall_s"), ws = -1.0;
     assert_int_equal(run(SWEEP_RUN " --fill --jobs 2", 2, out, sizeof out), 0);
-    assert_non_null(strstr(out, "the loads touch 8 of the table's 10 points; 4 computed now "
-                                "(0 failed"));
+    const char *cn = strstr(out, "the loads touch 8 of the table's 10 points; 4 computed now "
+                                 "(0 failed, ");
+    assert_non_null(cn);
+    assert_int_equal(sscanf(strstr(cn, "(0 failed, ") + 11, "%lf", &ws), 1);
     assert_non_null(strstr(out, "4 were there"));
+    /* the file's build time: the earlier builds' and this one's, each once;
+     * the command: this fill's */
+    assert_int_equal(run("table info fill.h5 --json", 1, out, sizeof out), 0);
+    double w2 = cli_jnum(out, "build_wall_s");
+    printf("  build wall time %.2f s + this fill's %.1f s -> %.2f s\n", w1, ws, w2);
+    assert_true(w1 > 1.0 && fabs(w2 - (w1 + ws)) < 0.2);
+    assert_non_null(strstr(out, "\"command\": \"stiction surface sweep --table fill.h5"));
     assert_int_equal(run(SWEEP_RUN " --json", 1, a, sizeof a), 0);
     assert_int_equal(run(FILL_RUN " --json", 1, b, sizeof b), 0);
     assert_json(a);

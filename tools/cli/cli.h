@@ -93,6 +93,8 @@ int cli_fail(const char *cmdname, stc_status s);
 stc_status cli_name_error(stc_status s, const char *key, const char *value);
 /* Monotonic wall clock, s (progress lines, timings). */
 double cli_now_s(void);
+/* "stiction <cmd> argv..." into buf[n] (truncated): a table's provenance. */
+void cli_command_line(char *buf, size_t n, const char *cmd, int argc, char **argv);
 
 /* An output file written under a temporary name and renamed on success, so
  * a failed run leaves no partial file: cli_out_open(&o, dir, name) opens
@@ -302,9 +304,10 @@ stc_status cli_table_design_at(const cli_table_design *d, int by_pressure, doubl
 void cli_table_design_free(cli_table_design *d);
 /* --fill over one or more coatings (t_mm[k] with materials p[k]): the table
  * file's missing points that the loads touch, computed into it; the counts
- * on stderr. */
+ * on stderr.  A fill that computes writes `command` as the table's
+ * provenance (the build's command line). */
 typedef struct cli_table_fill_job {
-    const char *table;
+    const char *table, *command;
     const cli_gw_pop *pop;
     const stc_params *p;
     const double *t_mm;

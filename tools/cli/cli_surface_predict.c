@@ -603,8 +603,10 @@ int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
     if (s == STC_OK) s = cli_gw_pop_load(&pop, o.surface, &o.imp, &p);
     if (s == STC_OK && o.fill) {
         int nl = o.np ? o.np : o.ns;
-        cli_table_fill_job job = {o.table, &pop, &p, &o.t_mm, o.np ? o.pressures : o.separations,
-                                  nl, o.np > 0};
+        char prov[1024];
+        cli_command_line(prov, sizeof prov, cmd->name, argc, argv);
+        cli_table_fill_job job = {o.table, prov, &pop, &p, &o.t_mm,
+                                  o.np ? o.pressures : o.separations, nl, o.np > 0};
         s = cli_table_fill(cmd->name, &job, 1, o.jobs);
     }
     if (s == STC_OK && o.table) {

@@ -379,7 +379,9 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
         }
     if (s == STC_OK) s = cli_gw_pop_load(&o.pop, o.surface, &o.imp, &p);
     if (s == STC_OK && o.fill) {
-        cli_table_fill_job job = {o.table, &o.pop, dp, dt, o.pressures, o.np, 1};
+        char prov[1024];
+        cli_command_line(prov, sizeof prov, cmd->name, argc, argv);
+        cli_table_fill_job job = {o.table, prov, &o.pop, dp, dt, o.pressures, o.np, 1};
         s = cli_table_fill(cmd->name, &job, nd, o.jobs);
         if (s == STC_OK) { /* the filled table */
             tbl_destroy(&t);

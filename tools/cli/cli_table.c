@@ -209,15 +209,6 @@ static stc_status build_set(void *ctx, const char *key, const char *value)
     return s;
 }
 
-static void command_line(char *buf, size_t n, const char *cmd, int argc, char **argv)
-{
-    snprintf(buf, n, "stiction %s", cmd);
-    for (int i = 0; i < argc; i++) {
-        size_t l = strlen(buf);
-        snprintf(buf + l, n - l, " %s", argv[i]);
-    }
-}
-
 /* table build --json: what the text lines say, as one object. */
 static void build_json(const tbl_table *t, const char *out, const tbl_build_summary *sum,
                        int ranks)
@@ -347,7 +338,7 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
         goto out;
     }
     char prov[512];
-    command_line(prov, sizeof prov, cmd->name, argc, argv);
+    cli_command_line(prov, sizeof prov, cmd->name, argc, argv);
     tbl_set_provenance(t, prov, 0.0);
     /* Under mpirun only rank 0 speaks: it has every point and every failure
      * (a failing rank tells rank 0, rank 0 tells every rank).  The others

@@ -229,6 +229,15 @@ int cli_out_close(cli_out *o)
     return 0;
 }
 
+void cli_command_line(char *buf, size_t n, const char *cmd, int argc, char **argv)
+{
+    snprintf(buf, n, "stiction %s", cmd);
+    for (int i = 0; i < argc; i++) {
+        size_t l = strlen(buf);
+        snprintf(buf + l, n - l, " %s", argv[i]);
+    }
+}
+
 double cli_now_s(void)
 {
     struct timespec ts;
