@@ -30,11 +30,13 @@ sh tools/demo-compare.sh "$out/coated/gw.csv" "$out/uncoated/gw.csv" "$out/compa
 echo "wrote $out/compare.png (mu_s and A/An versus nominal pressure, coated and uncoated, with"
 echo "the error bands) and $out/coated/, $out/uncoated/ (gw.csv, gw.json, gw.png of each)"
 
-# Which thickness: the same surface and table, TiN of 1, 1.5 and 2 um (the
-# thicknesses whose summits the bundled table covers at these loads).
+# Which TiN: the same surface and table, 1, 1.5 and 2 um thick, with the
+# film's modulus 300, 400 or 600 GPa (Eco/Esu 1.5, 2, 3; the table's family
+# holds the coating's E/Y, so its hardness scales with it).  The bundled
+# table covers these designs' summits at these loads.
 echo
-echo "== stiction surface sweep: TiN 1 / 1.5 / 2 um on the same surface"
+echo "== stiction surface sweep: TiN 1 / 1.5 / 2 um, Eco/Esu 1.5 / 2 / 3, on the same surface"
 "$CLI" surface sweep --surface "$out/surface.h5" --mode deterministic \
     --table data/tables/tin-on-steel.h5 --E-su 200000 --Y-su 1500 --nu 0.3 \
-    --t-mm 1e-3,1.5e-3,2e-3 --E-ratio 2 --pressures 1,5,20 --out "$out/sweep"
+    --t-mm 1e-3,1.5e-3,2e-3 --E-ratio 1.5,2,3 --pressures 1,5,20 --out "$out/sweep"
 echo "wrote $out/sweep/ (sweep.csv, sweep.json, sweep.png: mu_s against the thickness)"
