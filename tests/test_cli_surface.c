@@ -398,9 +398,9 @@ static void test_synth_bad_numbers(void **state)
     expect_fail(SY "--skewness 2 --kurtosis 4", "kurtosis = 4", "> skewness² + 1 = 5", NULL);
     expect_fail(SY "--kurtosis inf", "kurtosis = 'inf'", "finite", NULL);
     expect_fail(SY "--amplitude random", "amplitude = 'random'", "exact or rayleigh", NULL);
-    expect_fail(SY "--seed -1", "seed = -1", "[0, 4294967295]", NULL);
-    expect_fail(SY "--seed 1e3", "seed = '1e3'", "not an integer", NULL);
-    expect_fail(SY "--threads 2000", "threads = 2000", "[0, 1024]", NULL);
+    expect_fail(SY "--seed -1", "seed = '-1'", "[0, 4294967295]", NULL);
+    expect_fail(SY "--seed 1e3", "seed = '1e3'", "whole number", NULL);
+    expect_fail(SY "--threads 2000", "threads = '2000'", "[0, 1024]", NULL);
     expect_done();
 }
 
