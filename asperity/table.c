@@ -439,7 +439,16 @@ void tbl_count(const tbl_table *t, int *done, int *failed, int *pending)
 
 void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s)
 {
-    snprintf(t->command, sizeof t->command, "%s", command ? command : "");
+    const char *c = command ? command : "";
+    size_t n = strlen(c), cap = sizeof t->command;
+    if (n < cap) {
+        memcpy(t->command, c, n + 1);
+    } else { /* cut at a character's start (UTF-8), marked */
+        size_t k = cap - 4;
+        while (k > 0 && ((unsigned char)c[k] & 0xC0) == 0x80) k--;
+        memcpy(t->command, c, k);
+        memcpy(t->command + k, "...", 4);
+    }
     t->build_wall_s = build_wall_s;
 }
 

@@ -388,6 +388,17 @@ static void test_round_trip(void **state)
     p.state = TBL_PENDING;
     p.reason[0] = '\0';
     check_ok(tbl_point_set(t, i_pending, &p), "tbl_point_set pending");
+    /* a command too long for the file is cut at a character's start and
+     * marked: here a two-byte μ over bytes 507-508 goes whole */
+    char longc[600];
+    memset(longc, 'a', sizeof longc);
+    memcpy(longc + 507, "\xce\xbc", 2);
+    longc[sizeof longc - 1] = '\0';
+    tbl_set_provenance(t, longc, 0.0);
+    const char *pc = tbl_provenance(t, NULL);
+    assert_int_equal(strlen(pc), 510);
+    assert_string_equal(pc + 507, "...");
+    assert_memory_equal(pc, longc, 507);
     tbl_set_provenance(t, "stiction table build --E-over-Y-su 500 --placements 3 "
                           "--output round-trip.h5", 1234.5678);
 

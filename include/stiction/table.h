@@ -210,7 +210,8 @@ STC_API int tbl_curves_pending(const tbl_table *t, const unsigned char *only);
  * shard belongs to the build. */
 STC_API int tbl_same_build(const tbl_table *a, const tbl_table *b);
 
-/* Provenance written into the file (borrowed strings, copied). */
+/* Provenance written into the file (borrowed strings, copied; a command of
+ * 512 bytes or more is cut at a character's start and ends in "..."). */
 STC_API void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s);
 STC_API const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
 

@@ -257,14 +257,16 @@ static stc_status png_out(const char *tmp, const sweep_opts *o, const design *d,
             tmp, by_E ? "E_{co} / E_{su}" : "coating thickness t [μm]", name,
             by_E ? "" : "; one line per Eco/Esu and pressure");
     int nl = by_E ? 1 : nE, nx = by_E ? nE : o->nt;
-    static const int pts[5] = {7, 5, 9, 11, 13}; /* filled circle, square, triangles, diamond */
+    /* markers: filled circle, square, triangles, diamond, then their open forms;
+     * with the five dash types, ten pressures drawn apart */
+    static const int pts[10] = {7, 5, 9, 11, 13, 6, 4, 8, 10, 12};
     for (int l = 0; l < nl; l++)
         for (int i = 0; i < o->np; i++) {
             if (by_E) fprintf(g, "%s'-' using 1:2:3 with yerrorlines lw 2 title '%g MPa'",
                               l + i ? ", " : "", o->pressures[i]);
             else fprintf(g, "%s'-' using 1:2:3 with yerrorlines lw 2 lc %d dt %d pt %d title "
                          "'E_{co}/E_{su} %g, %g MPa'", l + i ? ", " : "", l % 8 + 1, i % 5 + 1,
-                         pts[i % 5], d[l].E_ratio, o->pressures[i]);
+                         pts[i % 10], d[l].E_ratio, o->pressures[i]);
         }
     fputc('\n', g);
     for (int l = 0; l < nl; l++)

@@ -482,7 +482,7 @@ static int member_counts(const tbl_table *t, int count[ASP_PLACEMENTS_MAX + 1])
  * copy repeats its source's), relative to their mu_s: how many, their
  * median, how many reach ERR_NOISY (a one-member point's err_single of
  * 10 % counts, to rounding), and the largest (imax its point, -1 with
- * none). */
+ * none).  Returns -1, *e unset, when out of memory. */
 #define ERR_NOISY 0.10
 typedef struct err_summary {
     int n, noisy, imax;
@@ -495,11 +495,12 @@ static int cmp_dbl(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void err_summarise(const tbl_table *t, err_summary *e)
+static int err_summarise(const tbl_table *t, err_summary *e)
 {
     *e = (err_summary){.imax = -1, .median = NAN, .max = NAN};
-    double *r = malloc((size_t)tbl_points(t) * sizeof *r);
-    for (int i = 0; r && i < tbl_points(t); i++) {
+    double *r = malloc((size_t)(tbl_points(t) + 1) * sizeof *r);
+    if (!r) return -1;
+    for (int i = 0; i < tbl_points(t); i++) {
         const tbl_point *p = tbl_point_get(t, i);
         if (p->state != TBL_DONE || p->copied || !(p->mu_s > 0.0) || !isfinite(p->mu_s_err))
             continue;
@@ -513,6 +514,7 @@ static void err_summarise(const tbl_table *t, err_summary *e)
         e->median = e->n % 2 ? r[e->n / 2] : 0.5 * (r[e->n / 2 - 1] + r[e->n / 2]);
     }
     free(r);
+    return 0;
 }
 
 static void info_json(const tbl_table *t, const char *path, const refine_plan *rp)
@@ -578,24 +580,27 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_num(&j, "build_wall_s", wall);
     cj_num(&j, "cpu_s_per_point", nrun ? cpu / nrun : NAN);
     err_summary es;
-    err_summarise(t, &es);
-    cj_obj(&j, "mu_s_err_rel"); /* the done points' error estimates over their mu_s */
-    cj_int(&j, "points", es.n);
-    cj_num(&j, "median", es.median);
-    cj_num(&j, "noisy_from", ERR_NOISY);
-    cj_int(&j, "noisy", es.noisy);
-    cj_num(&j, "largest", es.max);
-    if (es.imax >= 0) {
-        double w, tR, E;
-        tbl_coords(t, es.imax, &w, &tR, &E);
-        cj_obj(&j, "largest_at");
-        cj_num(&j, "delta_over_omega_c", w);
-        cj_num(&j, "t_over_R", tR);
-        cj_num(&j, "E_ratio", E);
-        cj_int(&j, "members", tbl_point_get(t, es.imax)->members);
+    if (err_summarise(t, &es) != 0) {
+        cj_num(&j, "mu_s_err_rel", NAN); /* null: not summarised (out of memory) */
+    } else {
+        cj_obj(&j, "mu_s_err_rel"); /* the done points' error estimates over their mu_s */
+        cj_int(&j, "points", es.n);
+        cj_num(&j, "median", es.median);
+        cj_num(&j, "noisy_from", ERR_NOISY);
+        cj_int(&j, "noisy", es.noisy);
+        cj_num(&j, "largest", es.max);
+        if (es.imax >= 0) {
+            double w, tR, E;
+            tbl_coords(t, es.imax, &w, &tR, &E);
+            cj_obj(&j, "largest_at");
+            cj_num(&j, "delta_over_omega_c", w);
+            cj_num(&j, "t_over_R", tR);
+            cj_num(&j, "E_ratio", E);
+            cj_int(&j, "members", tbl_point_get(t, es.imax)->members);
+            cj_end_obj(&j);
+        }
         cj_end_obj(&j);
     }
-    cj_end_obj(&j);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK) {
         cj_num(&j, "loo_rms_rel", fi.loo_rms);
@@ -733,8 +738,9 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
     printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point computed\n", cmd,
            wall, nrun ? cpu / nrun : 0.0);
     err_summary es;
-    err_summarise(t, &es);
-    if (es.n > 0) {
+    if (err_summarise(t, &es) != 0) {
+        printf("  mu_s error estimates: not summarised (out of memory)\n");
+    } else if (es.n > 0) {
         double w, tR, E;
         tbl_coords(t, es.imax, &w, &tR, &E);
         int m = tbl_point_get(t, es.imax)->members;
