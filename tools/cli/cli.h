@@ -106,6 +106,24 @@ typedef struct cli_out {
 } cli_out;
 FILE *cli_out_open(cli_out *o, const char *dir, const char *name);
 int cli_out_close(cli_out *o);
+/* Rename each tmp[k] (k < n; NULL: none) to path[k], in order, all or
+ * none: when a rename fails, the files placed before it are removed, and so
+ * are the temporaries not placed.  Returns -1 when every one is placed, else
+ * the k that failed, errno its reason. */
+int cli_place_all(int n, const char *const *tmp, const char *const *path);
+/* gnuplot, its script written to p->g, drawing into `file`, which must exist
+ * (gnuplot, unable to open its output, would write the image to stdout).
+ * Its messages reach stderr; SIGPIPE is ignored until cli_plot_close, so a
+ * gnuplot that dies early cannot end the caller before its temporaries are
+ * removed.  cli_plot_open returns -1 when gnuplot cannot run (nothing to
+ * close); cli_plot_close returns 0 when the file holds an image, else -1,
+ * with gnuplot's exit status in *status. */
+typedef struct cli_plot {
+    FILE *g;
+    void (*sigpipe)(int);
+} cli_plot;
+int cli_plot_open(cli_plot *p);
+int cli_plot_close(cli_plot *p, const char *file, int *status);
 /* Make sure the output directory `dir` exists (created if missing; then
  * *made = 1 if made is not NULL, so a failed run can remove it) and can be
  * written, before any work is done: returns CLI_EXIT_OK, or prints

@@ -3,11 +3,9 @@
  * or separation.  Writes CSV + JSON + a gnuplot PNG of μs and A/An. */
 #include <errno.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -448,14 +446,9 @@ static int write_png(out_file *f, const char *csv, const context *c)
     }
     fclose(t);
     f->made = 1;
-    /* gnuplot's messages reach stderr; a gnuplot that dies early must not
-     * kill us with SIGPIPE before the temporaries are removed */
-    void (*old)(int) = signal(SIGPIPE, SIG_IGN);
-    FILE *g = popen("gnuplot >/dev/null", "w");
-    if (!g) {
-        signal(SIGPIPE, old);
-        return out_error(f, "cannot run gnuplot");
-    }
+    cli_plot pl;
+    if (cli_plot_open(&pl) != 0) return out_error(f, "cannot run gnuplot");
+    FILE *g = pl.g;
     char title[2048];
     png_title(title, sizeof title, c);
     int mu = c->range.has_friction;
@@ -479,10 +472,8 @@ static int write_png(out_file *f, const char *csv, const context *c)
                    "title 'μ_s', ", csv);
     fprintf(g, "'%s' every ::1 using 2:4 %s with linespoints lw 2 pt 5 lc rgb '#0050a0' "
                "title 'A/A_n%s'\n", csv, mu ? "axes x1y2" : "", mu ? " (right axis)" : "");
-    int rc = pclose(g);
-    signal(SIGPIPE, old);
-    struct stat sb;
-    if (rc != 0 || stat(f->tmp, &sb) != 0 || sb.st_size == 0) {
+    int rc;
+    if (cli_plot_close(&pl, f->tmp, &rc) != 0) {
         char why[128];
         snprintf(why, sizeof why, "gnuplot failed (status %d)", rc);
         return out_error(f, why);
@@ -520,20 +511,20 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
         if (rc == CLI_EXIT_OK) rc = write_png(&fp, src, c);
     }
     if (fs.made) remove(fs.tmp);
-    int placed[3] = {0, 0, 0};
-    for (int k = 0; k < 3; k++) {
-        out_file *f = all[k];
-        if (!f->made) continue;
-        if (rc == CLI_EXIT_OK && rename(f->tmp, f->path) != 0) {
-            char why[4400];
-            snprintf(why, sizeof why, "cannot rename %s into place (%s)", f->tmp, strerror(errno));
-            rc = out_error(f, why);
-        } else if (rc == CLI_EXIT_OK) placed[k] = 1;
-        if (rc != CLI_EXIT_OK) remove(f->tmp);
+    const char *tmp[3], *dst[3];
+    for (int k = 0; k < 3; k++) tmp[k] = all[k]->made ? all[k]->tmp : NULL, dst[k] = all[k]->path;
+    if (rc != CLI_EXIT_OK) {
+        for (int k = 0; k < 3; k++)
+            if (tmp[k]) remove(tmp[k]);
+        return rc;
     }
     /* no partial output: the files placed before a failed rename go too */
-    for (int k = 0; rc != CLI_EXIT_OK && k < 3; k++)
-        if (placed[k]) remove(all[k]->path);
+    int bad = cli_place_all(3, tmp, dst);
+    if (bad >= 0) {
+        char why[4400];
+        snprintf(why, sizeof why, "cannot rename %s into place (%s)", tmp[bad], strerror(errno));
+        rc = out_error(all[bad], why);
+    }
     return rc;
 }
 

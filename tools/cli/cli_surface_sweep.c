@@ -7,9 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -243,12 +241,10 @@ static stc_status png_out(const char *tmp, const sweep_opts *o, const design *d,
     snprintf(name, sizeof name, "%s", t ? t + 1 : o->table);
     for (char *q = name; *q; q++) /* a quote would end gnuplot's string */
         if (*q == '\'' || *q == '"' || *q == '\\') *q = '_';
-    void (*old)(int) = signal(SIGPIPE, SIG_IGN); /* a gnuplot that dies early */
-    FILE *g = popen("gnuplot >/dev/null", "w");
-    if (!g) {
-        signal(SIGPIPE, old);
+    cli_plot pl;
+    if (cli_plot_open(&pl) != 0)
         return stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': cannot run gnuplot", o->out);
-    }
+    FILE *g = pl.g;
     fprintf(g, "set terminal pngcairo enhanced size 1000,650 font ',10'\nset encoding utf8\n"
                "set output '%s'\nset grid\nset key outside right\n"
                "set xlabel '%s'\nset ylabel 'static friction coefficient μ_s = ΣQ_{max} / ΣP'\n"
@@ -278,10 +274,8 @@ static stc_status png_out(const char *tmp, const sweep_opts *o, const design *d,
             }
             fputs("e\n", g);
         }
-    int rc = pclose(g);
-    signal(SIGPIPE, old);
-    struct stat sb;
-    if (rc != 0 || stat(tmp, &sb) != 0 || sb.st_size == 0)
+    int rc;
+    if (cli_plot_close(&pl, tmp, &rc) != 0)
         return stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': gnuplot failed (status %d)",
                          o->out, rc);
     return STC_OK;
@@ -315,18 +309,18 @@ static stc_status write_files(const sweep_opts *o, const design *d, int nd, int 
                           o->out);
         else if (k == 2) s = png_out(tmp[k], o, d, nE);
     }
-    int placed = 0;
-    while (s == STC_OK && placed < 3) {
-        if (rename(tmp[placed], path[placed]) != 0)
-            s = stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': cannot rename %s (%s)",
-                          o->out, tmp[placed], strerror(errno));
-        else placed++;
+    const char *tp[3], *pp[3];
+    for (int k = 0; k < 3; k++) tp[k] = made[k] ? tmp[k] : NULL, pp[k] = path[k];
+    if (s != STC_OK) {
+        for (int k = 0; k < 3; k++)
+            if (tp[k]) remove(tp[k]);
+        return s;
     }
-    if (s != STC_OK) { /* no partial output: what was placed before the failure goes too */
-        for (int k = 0; k < placed; k++) remove(path[k]);
-        for (int k = placed; k < 3; k++)
-            if (made[k]) remove(tmp[k]);
-    }
+    /* no partial output: what was placed before a failed rename goes too */
+    int bad = cli_place_all(3, tp, pp);
+    if (bad >= 0)
+        s = stc_error(STC_EIO, __FILE__, __LINE__, "out = '%s': cannot rename %s (%s)", o->out,
+                      tmp[bad], strerror(errno));
     return s;
 }
 

@@ -1,6 +1,7 @@
 /* Option parsing shared by every subcommand: INI config, then argv. */
 #include <ctype.h>
 #include <errno.h>
+#include <signal.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -227,6 +228,35 @@ int cli_out_close(cli_out *o)
     int bad = ferror(o->f);
     if (fclose(o->f) != 0 || bad || rename(o->tmp, o->path) != 0) return remove(o->tmp), -1;
     return 0;
+}
+
+int cli_place_all(int n, const char *const *tmp, const char *const *path)
+{
+    int k = 0;
+    while (k < n && (!tmp[k] || rename(tmp[k], path[k]) == 0)) k++;
+    if (k == n) return -1;
+    int err = errno;
+    for (int i = 0; i < n; i++)
+        if (tmp[i]) remove(i < k ? path[i] : tmp[i]);
+    errno = err;
+    return k;
+}
+
+int cli_plot_open(cli_plot *p)
+{
+    p->sigpipe = signal(SIGPIPE, SIG_IGN);
+    p->g = popen("gnuplot >/dev/null", "w");
+    if (!p->g) signal(SIGPIPE, p->sigpipe);
+    return p->g ? 0 : -1;
+}
+
+int cli_plot_close(cli_plot *p, const char *file, int *status)
+{
+    *status = pclose(p->g);
+    p->g = NULL;
+    signal(SIGPIPE, p->sigpipe);
+    struct stat sb;
+    return *status == 0 && stat(file, &sb) == 0 && sb.st_size > 0 ? 0 : -1;
 }
 
 void cli_command_line(char *buf, size_t n, const char *cmd, int argc, char **argv)
