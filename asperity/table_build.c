@@ -236,7 +236,9 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
             tbl_curve_set(t, c, &g->c[c], g->P + (size_t)c * g->n[0],
                           g->A + (size_t)c * g->n[0]) == STC_OK)
             (*taken_curves)++;
-    if (isfinite(old->build_wall_s)) t->build_wall_s += old->build_wall_s;
+    /* the file's build time, not added to t's: a t read from that same file
+     * (a fill onto it) holds it already */
+    t->build_wall_s = isfinite(old->build_wall_s) ? old->build_wall_s : 0.0;
     tbl_destroy(&old);
     tbl_gp_destroy(&t->gp);
     return STC_OK;

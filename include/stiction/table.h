@@ -287,7 +287,9 @@ typedef struct tbl_build_summary {
  * lower, the same err_floor): its points are taken, and those that t's refinement
  * would give more members are computed again from their first member, so the
  * table written is the one a build with t's refinement from the start writes
- * (summary: reopened).  A point whose source is another point
+ * (summary: reopened).  The build time written is an existing `path`'s plus
+ * this run's (t's own replaced by the file's, so a t read from `path` and
+ * built onto it counts the earlier builds once).  A point whose source is another point
  * (tbl_point_source) is in no shard: it is filled from its source when the
  * table is written (here and by tbl_merge; summary: copied).  Returns STC_OK when every point of the
  * share is done or failed (failed points are counted in the summary).

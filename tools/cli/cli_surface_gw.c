@@ -186,9 +186,9 @@ stc_status cli_table_fill(const char *cmd, const cli_table_fill_job *job, int nd
         cli_table_progress pc = {isatty(2), 0, t};
         bo.progress = cli_table_progress_line;
         bo.ctx = &pc;
-        /* this build's command, and its wall time from 0: tbl_build adds the
-         * file's (t read from it holds that too, and would count it twice) */
-        tbl_set_provenance(t, job->command, 0.0);
+        double w; /* the file's: tbl_build writes it plus this run's */
+        tbl_provenance(t, &w);
+        tbl_set_provenance(t, job->command, w); /* this build's command */
         fprintf(stderr, "stiction %s: filling %s: %d points and %d normal curves to compute\n",
                 cmd, job->table, pending, tbl_curves_pending(t, need));
         s = tbl_build(t, job->table, &bo, &sum);
