@@ -96,6 +96,14 @@ double cli_now_s(void);
 /* "stiction <cmd> argv..." into buf[n] (truncated): a table's provenance. */
 void cli_command_line(char *buf, size_t n, const char *cmd, int argc, char **argv);
 
+/* A share of the load from summits outside the table's or model's range
+ * above this is warned about (and marked in sweeps): those values are partly
+ * extrapolated. */
+#define CLI_OUTSIDE_WARN 0.05
+/* A fraction as a percentage rounded up to 0.1, for "up to X %" (a share
+ * just over a threshold never prints as the threshold itself). */
+double cli_percent_up(double fraction);
+
 /* An output file written under a temporary name and renamed on success, so
  * a failed run leaves no partial file: cli_out_open(&o, dir, name) opens
  * dir/name.tmp (NULL on failure); cli_out_close(&o) closes it and renames it

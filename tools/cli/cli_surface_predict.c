@@ -528,22 +528,18 @@ static int write_outputs(const predict_opts *o, const context *c, const srf_gw_p
     return rc;
 }
 
-/* A share of the load above this from summits outside the model's range is
- * worth a warning (the numbers are then partly extrapolated). */
-#define OUTSIDE_WARN 0.05
-
 static void warn_outside(const char *cmd, const context *c, const srf_gw_point *pts, int n)
 {
     double worst = 0.0;
     int k = 0;
     for (int i = 0; i < n; i++)
         if (pts[i].load_fraction_outside > worst) worst = pts[i].load_fraction_outside, k = i;
-    if (worst > OUTSIDE_WARN)
+    if (worst > CLI_OUTSIDE_WARN)
         fprintf(stderr, "stiction %s: warning: up to %.1f %% of the load (at P/An = %.4g MPa) "
                 "comes from summits outside the model's range (delta/omega_c in [%g, %g], "
-                "t/R in [%g, %g]): those points are partly extrapolated\n", cmd, 100 * worst,
-                pts[k].pressure_MPa, c->range.w_lo, c->range.w_hi, c->range.tR_lo,
-                c->range.tR_hi);
+                "t/R in [%g, %g]): those points are partly extrapolated\n", cmd,
+                cli_percent_up(worst), pts[k].pressure_MPa, c->range.w_lo, c->range.w_hi,
+                c->range.tR_lo, c->range.tR_hi);
 }
 
 static void report_timing(const srf_gw *g, int n, double setup, double points)

@@ -186,9 +186,6 @@ static void csv_out(FILE *f, const sweep_opts *o, const design *d, int nd)
         }
 }
 
-/* A share of the load beyond the table's range above this is marked. */
-#define OUTSIDE_MARK 0.05
-
 static void text_out(const sweep_opts *o, const design *d, int nd, const srf_gw_info *gi)
 {
     char who[64];
@@ -212,7 +209,7 @@ static void text_out(const sweep_opts *o, const design *d, int nd, const srf_gw_
             for (int i = 0; i < o->np; i++) {
                 const srf_gw_point *q = &d[k].pt[i];
                 char c[48];
-                int out = q->load_fraction_outside > OUTSIDE_MARK;
+                int out = q->load_fraction_outside > CLI_OUTSIDE_WARN;
                 marked |= out;
                 if (block) snprintf(c, sizeof c, "%.4e", q->area_fraction);
                 else snprintf(c, sizeof c, "%.3f +- %.3f", q->mu_s, d[k].mu_err[i]);
@@ -223,7 +220,7 @@ static void text_out(const sweep_opts *o, const design *d, int nd, const srf_gw_
         }
         if (marked && block)
             printf("  (*: more than %.0f %% of the load from summits outside the table's range)"
-                   "\n", 100 * OUTSIDE_MARK);
+                   "\n", 100 * CLI_OUTSIDE_WARN);
     }
     printf("  (mu_s = sum Qmax / sum P, P the preload; Yco: the table's family holds the "
            "coating's E/Y)\n");
@@ -409,10 +406,10 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
     double worst = 0.0;
     for (int k = 0; k < nd; k++)
         for (int i = 0; i < o.np; i++) worst = fmax(worst, d[k].pt[i].load_fraction_outside);
-    if (worst > OUTSIDE_MARK)
+    if (worst > CLI_OUTSIDE_WARN)
         fprintf(stderr, "stiction %s: warning: up to %.1f %% of the load comes from summits "
                 "outside the table's range (marked *): those values are partly extrapolated\n",
-                cmd->name, 100 * worst);
+                cmd->name, cli_percent_up(worst));
 out:
     if (rc != CLI_EXIT_OK && o.out_made) rmdir(o.out);
     for (int k = 0; d && k < nd; k++) free(d[k].pt), free(d[k].mu_err), free(d[k].mu_pi);

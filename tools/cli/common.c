@@ -230,6 +230,13 @@ int cli_out_close(cli_out *o)
     return 0;
 }
 
+double cli_percent_up(double fraction)
+{
+    /* 1e-9 keeps a share that is a whole tenth (5.0 %) from rounding up
+     * through its binary representation */
+    return ceil(1000.0 * fraction - 1e-9) / 10.0;
+}
+
 int cli_place_all(int n, const char *const *tmp, const char *const *path)
 {
     int k = 0;
