@@ -378,6 +378,13 @@ static void test_query_t_mm(void **state)
                    "--E-ratio 1.5", 2, "--t-mm conflicts with --t-over-R", NULL);
     expect_refusal("table query ref.h5 --delta 1 --E-ratio 1.5", 2,
                    "t-over-R (or --t-mm with --R): missing", NULL);
+    /* the ranges of stiction asperity; inside them, a point off the table is flagged */
+    expect_refusal("table query ref.h5 --delta 1 --t-over-R 1 --E-ratio 1.5", 2,
+                   "t-over-R = 1: must be in (0, 1)", NULL);
+    expect_refusal("table query ref.h5 --delta 1 --t-mm 6 --R 5 --E-ratio 1.5", 2,
+                   "must be in (0, 1)", NULL);
+    expect_refusal("table query ref.h5 --delta 1 --t-over-R 0.01 --E-ratio 0", 2,
+                   "E-ratio = 0: must be > 0", NULL);
     assert_int_equal(run("table query --help", 1, out, sizeof out), 0);
     assert_non_null(strstr(out, "t/R = t-mm / R"));
 }

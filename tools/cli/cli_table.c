@@ -27,6 +27,15 @@ static stc_status set_num(const char *key, const char *value, double lo, double 
     return stc_check_range(key, *out, lo, 1, hi, 1);
 }
 
+/* A number in the open interval (lo, hi) (hi infinite: > lo). */
+static stc_status set_open(const char *key, const char *value, double lo, double hi,
+                           double *out)
+{
+    stc_status s = stc_parse_double(key, value, out);
+    if (s) return s;
+    return stc_check_range(key, *out, lo, 0, hi, 0);
+}
+
 /* Every positional argument before the first option (input files). */
 static int peel_files(int *argc, char ***argv, const char **files, int cap)
 {
@@ -418,10 +427,11 @@ static stc_status query_set(void *ctx, const char *key, const char *value)
         q->w = NULL;
         return cli_parse_list(key, value, &q->w, &q->nw);
     }
-    if (!strcmp(key, "t-over-R")) return set_num(key, value, 1e-9, 0.999, &q->tR);
+    /* the ranges of stiction asperity: a query outside the table is flagged */
+    if (!strcmp(key, "t-over-R")) return set_open(key, value, 0.0, 1.0, &q->tR);
     if (!strcmp(key, "t-mm")) return set_num(key, value, 1e-12, 1e6, &q->t_mm);
     if (!strcmp(key, "R")) return set_num(key, value, 1e-9, 1e6, &q->R);
-    if (!strcmp(key, "E-ratio")) return set_num(key, value, 1e-3, 1e3, &q->E);
+    if (!strcmp(key, "E-ratio")) return set_open(key, value, 0.0, HUGE_VAL, &q->E);
     if (!strcmp(key, "out")) return cli_set_string(key, value, &q->out);
     if (!strcmp(key, "placements-max"))
         return cli_parse_int(key, value, 2, ASP_PLACEMENTS_MAX, &q->plan_k);
@@ -893,7 +903,7 @@ static stc_status query_t_over_R(query_args *q)
         return stc_error(STC_EINVAL, __FILE__, __LINE__, "R = %g given without t-mm: R is the "
                          "radius --t-mm MM refers to (a table is normalised by R)", q->R);
     if (q->t_mm > 0) {
-        stc_status s = stc_check_range("t-mm / R", q->t_mm / q->R, 1e-9, 1, 0.999, 1);
+        stc_status s = stc_check_range("t-mm / R", q->t_mm / q->R, 0.0, 0, 1.0, 0);
         if (s) return s;
         q->tR = q->t_mm / q->R;
     }
