@@ -458,6 +458,35 @@ const char *tbl_provenance(const tbl_table *t, double *build_wall_s)
     return t->command;
 }
 
+const char *tbl_history(const tbl_table *t)
+{
+    return t->history;
+}
+
+void tbl_history_carry(tbl_table *t, const char *history, const char *command)
+{
+    char buf[sizeof t->history + sizeof t->command + 1];
+    size_t cap = sizeof t->history, n = 0;
+    if (history && *history) n = (size_t)snprintf(buf, sizeof buf, "%s", history);
+    buf[n] = '\0';
+    if (command && *command && strcmp(command, t->command) != 0) {
+        const char *last = strrchr(buf, '\n');
+        if (strcmp(last ? last + 1 : buf, command) != 0) /* not twice in a row */
+            n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%s", n ? "\n" : "", command);
+    }
+    const char *s = buf;
+    if (n < cap) {
+        memcpy(t->history, buf, n + 1);
+        return;
+    }
+    while (strlen(s) + 4 >= cap) { /* whole lines out, oldest first */
+        const char *nl = strchr(s, '\n');
+        if (!nl) break;
+        s = nl + 1;
+    }
+    snprintf(t->history, cap, "...\n%s", s);
+}
+
 /* ---- identity of a build ------------------------------------------------------- */
 
 static unsigned long long fnv(unsigned long long h, const void *p, size_t n)
@@ -636,6 +665,7 @@ stc_status tbl_merge(tbl_table *const *parts, int n, tbl_table **out)
     }
     tbl_fill_copies(m); /* a copy whose source another shard computed */
     tbl_set_provenance(m, a->command, wall);
+    tbl_history_carry(m, a->history, NULL);
     return STC_OK;
 }
 

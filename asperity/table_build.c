@@ -239,6 +239,7 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
     /* the file's build time, not added to t's: a t read from that same file
      * (a fill onto it) holds it already */
     t->build_wall_s = isfinite(old->build_wall_s) ? old->build_wall_s : 0.0;
+    tbl_history_carry(t, old->history, old->command);
     tbl_destroy(&old);
     tbl_gp_destroy(&t->gp);
     return STC_OK;

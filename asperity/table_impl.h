@@ -38,6 +38,7 @@ struct tbl_table {
     double *ax[3];     /* [n[k]] */
     tbl_point *pt;     /* [n[2]][n[1]][n[0]] */
     char command[512]; /* provenance: how it was built */
+    char history[2048]; /* the commands that built it before, oldest first, one a line */
     double build_wall_s;
     tbl_gp *gp;        /* μs surrogate, NULL until tbl_fit */
     tbl_fit_info fit;
@@ -49,6 +50,12 @@ struct tbl_table {
     double fit_par[TBL_GP_MAXPAR];
     tbl_normal nrm;
 };
+
+/* t's history from the file it is built onto: that file's history, then
+ * the file's command when it is not t's own (a fill onto a build, a build
+ * onto a fill); the oldest lines give way to a first line "..." when it
+ * would not fit. */
+void tbl_history_carry(tbl_table *t, const char *history, const char *command);
 
 /* ---- the normal grid (table_normal.c) ---- */
 

@@ -99,7 +99,7 @@ static int write_root(hid_t f, const tbl_table *t)
            stc_h5_put_i(f, "format_version", TBL_FORMAT_VERSION) |
            stc_h5_put_s(f, "stiction_version", STC_VERSION) | stc_h5_put_s(f, "created", when) |
            stc_h5_put_s(f, "blas", k.summary) |
-           stc_h5_put_s(f, "command", t->command) |
+           stc_h5_put_s(f, "command", t->command) | stc_h5_put_s(f, "history", t->history) |
            stc_h5_put_d(f, "build_wall_s", t->build_wall_s) |
            stc_h5_put_s(f, "units", "responses normalised by omega_c, P_c, A_c of the "
                                     "substrate (Kogut & Etsion 2002)") |
@@ -630,13 +630,15 @@ stc_status tbl_read(const char *path, tbl_table **out)
         H5E_BEGIN_TRY { st = read_normal(f, path, ver, *out); } H5E_END_TRY;
         if (st) goto done;
     }
-    char cmd[512] = "";
+    char cmd[512] = "", hist[sizeof(*out)->history] = "";
     double wall = NAN;
     H5E_BEGIN_TRY {
         stc_h5_get_s(f, "command", cmd, sizeof cmd);
         stc_h5_get_d(f, "build_wall_s", &wall);
+        stc_h5_get_s(f, "history", hist, sizeof hist); /* absent before it was kept */
     } H5E_END_TRY;
     tbl_set_provenance(*out, cmd, wall);
+    tbl_history_carry(*out, hist, NULL);
     read_fit(f, *out);
     int done_pts;
     tbl_count(*out, &done_pts, NULL, NULL);

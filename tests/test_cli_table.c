@@ -472,6 +472,12 @@ static void test_fill(void **state)
     printf("  build wall time %.2f s + this fill's %.1f s -> %.2f s\n", w1, ws, w2);
     assert_true(w1 > 1.0 && fabs(w2 - (w1 + ws)) < 0.2);
     assert_non_null(strstr(out, "\"command\": \"stiction surface sweep --table fill.h5"));
+    /* and the commands before it, oldest first: the build and the predict */
+    const char *hist = strstr(out, "\"history\": [");
+    assert_non_null(hist);
+    const char *hb = strstr(hist, "\"stiction table build --deltas 0.5,1,2,4,8 "),
+               *hp = strstr(hist, "\"stiction surface predict --table fill.h5 ");
+    assert_true(hb && hp && hb < hp && hp < strchr(hist, ']'));
     assert_int_equal(run(SWEEP_RUN " --json", 1, a, sizeof a), 0);
     assert_int_equal(run(FILL_RUN " --json", 1, b, sizeof b), 0);
     assert_json(a);

@@ -336,6 +336,64 @@ static void check_family_equal(const tbl_table *a, const tbl_table *b)
     assert_true(tbl_same_build(a, b));
 }
 
+/* The commands that built a table before its own: a build onto a file with
+ * another command (a fill onto a build, a build onto a fill) keeps the
+ * file's, oldest first and not twice in a row; when they would not fit, the
+ * oldest give way to a first line "..."; the file holds them. */
+static void build_as(const char *path, const char *command, const unsigned char *none)
+{
+    tbl_table *r = NULL;
+    tbl_build_opts o;
+    tbl_build_opts_default(&o);
+    o.only = none; /* nothing to compute: the file is written again */
+    o.jobs = 1;
+    check_ok(tbl_read(path, &r), "tbl_read");
+    tbl_set_provenance(r, command, 0.0);
+    check_ok(tbl_build(r, path, &o, NULL), "tbl_build");
+    tbl_destroy(&r);
+}
+
+static void test_history(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "history", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/history.h5", dir);
+    tbl_table *t = hertz_table(0.01, 0.02, 7), *r = NULL;
+    unsigned char *none = calloc((size_t)tbl_points(t), 1);
+    assert_non_null(none);
+    tbl_set_provenance(t, "first", 1.0);
+    check_ok(tbl_write(t, path), "tbl_write");
+    build_as(path, "second", none);
+    build_as(path, "second", none); /* resumed: the same command */
+    build_as(path, "third", none);
+    check_ok(tbl_read(path, &r), "tbl_read");
+    assert_string_equal(tbl_provenance(r, NULL), "third");
+    assert_string_equal(tbl_history(r), "first\nsecond");
+    tbl_destroy(&r);
+    /* eight commands of 299 bytes: the file's 2048 bytes hold six */
+    char c[8][300];
+    for (int k = 0; k < 8; k++) {
+        memset(c[k], 'a' + k, sizeof c[k] - 1);
+        c[k][sizeof c[k] - 1] = '\0';
+        build_as(path, c[k], none);
+    }
+    check_ok(tbl_read(path, &r), "tbl_read");
+    const char *h = tbl_history(r);
+    int lines = 1;
+    for (const char *q = h; *q; q++) lines += *q == '\n';
+    printf("  history after 11 builds: %zu bytes, %d lines (the first '...')\n", strlen(h), lines);
+    assert_true(strlen(h) < 2048);
+    assert_memory_equal(h, "...\n", 4);
+    const char *last = strrchr(h, '\n') + 1; /* the newest line: the command before c[7] */
+    assert_string_equal(last, c[6]);
+    for (const char *l = h + 4; l < last; l += 300) /* whole lines, in order */
+        assert_true(l[299] == '\n' && l[0] == last[0] - (char)((last - l) / 300));
+    assert_string_equal(tbl_provenance(r, NULL), c[7]);
+    tbl_destroy(&r);
+    tbl_destroy(&t);
+    free(none);
+}
+
 /* Everything a file holds comes back bitwise.  A point that is not done
  * has no numbers: the file stores its doubles as NaN (its state, reason,
  * counts and timings are kept), so that a reader cannot take them for an
@@ -1742,6 +1800,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hertz_through_file), cmocka_unit_test(test_round_trip),
+        cmocka_unit_test(test_history),
         cmocka_unit_test(test_interpolation),      cmocka_unit_test(test_mu_smoothing),
         cmocka_unit_test(test_refusals),           cmocka_unit_test(test_merge),
         cmocka_unit_test(test_partial),    cmocka_unit_test(test_interp_t_over_R),

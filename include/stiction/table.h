@@ -214,6 +214,12 @@ STC_API int tbl_same_build(const tbl_table *a, const tbl_table *b);
  * 512 bytes or more is cut at a character's start and ends in "..."). */
 STC_API void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s);
 STC_API const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
+/* The commands that built the table before its own (tbl_provenance), oldest
+ * first, one a line; "" when one command built it all.  A build onto a file
+ * (tbl_build: a resumed or refined build, a fill) adds the file's command
+ * when it differs from the table's; a first line "..." says the oldest ones
+ * were dropped. */
+STC_API const char *tbl_history(const tbl_table *t);
 
 /* ---- files (docs/table-format.md) ------------------------------------------ */
 

@@ -587,6 +587,15 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     double cpu = run_cost(t, 0, &nrun, &ncopied);
     cj_int(&j, "copied", ncopied);
     cj_str(&j, "command", tbl_provenance(t, &wall));
+    cj_arr(&j, "history"); /* the commands that built it before, oldest first */
+    for (const char *h = tbl_history(t); *h;) {
+        size_t n = strcspn(h, "\n");
+        char line[512];
+        snprintf(line, sizeof line, "%.*s", (int)n, h);
+        cj_str(&j, NULL, line);
+        h += n + (h[n] == '\n');
+    }
+    cj_end_arr(&j);
     cj_num(&j, "build_wall_s", wall);
     cj_num(&j, "cpu_s_per_point", nrun ? cpu / nrun : NAN);
     err_summary es;
@@ -745,8 +754,18 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
     if (ncopied > 0)
         printf("  one material: %d points (Eco/Esu = 1, t/R beyond the first) hold the first "
                "t/R's run at their delta\n", ncopied);
-    printf("  built by: %s\n  build wall time %.1f s, %.1f CPU s per point computed\n", cmd,
-           wall, nrun ? cpu / nrun : 0.0);
+    printf("  built by: %s\n", cmd);
+    const char *h = tbl_history(t);
+    if (*h) { /* one line each, indented */
+        printf("  before that, oldest first:\n");
+        while (*h) {
+            size_t n = strcspn(h, "\n");
+            printf("    %.*s\n", (int)n, h);
+            h += n + (h[n] == '\n');
+        }
+    }
+    printf("  build wall time %.1f s, %.1f CPU s per point computed\n", wall,
+           nrun ? cpu / nrun : 0.0);
     err_summary es;
     if (err_summarise(t, &es) != 0) {
         printf("  mu_s error estimates: not summarised (out of memory)\n");
