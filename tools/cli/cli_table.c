@@ -96,8 +96,8 @@ static const cli_opt build_opts[] = {
     {"mesh-level", "N", "3D mesh level of every point, 0..3 (default 0; each level costs 5-10x "
                         "the one below)"},
     {"placements", "K", "node placements averaged per point, 1..8 (default 2): a point's mu_s "
-                        "comes with the members' spread as its error estimate (thesis table: "
-                        "1.5-18 %, median 3.5 %), at K times the CPU time (20-250 CPU s a point "
+                        "comes with the members' spread as its error estimate (thesis grid at "
+                        "K = 2: 1.5-18 %, median 3.5 %), at K times the CPU time (20-250 CPU s a point "
                         "at K = 2)"},
     {"placements-max", "K", "refine: a point whose members' standard error exceeds --refine-err "
                             "of its mu_s gets twice the placements, halfway between, and again, "
