@@ -471,9 +471,9 @@ def surface(cli, table, rep):
                               cmp(m[4.0], s[4.0], m[1.0], s[1.0]),
                               cmp(m[2.0], s[2.0], m[1.0], s[1.0]), frac))
     rep.out("")
-    rep.out("Eco/Esu = 2 against the uncoated sphere: bands apart at %d of %d loads (at the "
-               "others the coating changes mu_s by less than the two bands together).\n"
-               % (apart21, total))
+    rep.out("Eco/Esu = 2 against the uncoated sphere: bands apart at %d of %d loads%s.\n"
+            % (apart21, total, "" if apart21 == total else " (at the others the coating "
+               "changes mu_s by less than the two bands together)"))
     return [
         ("check", "stiffer coating gives a higher surface mu_s (Eco/Esu 4 > 2 > 1)",
          "the single-asperity trend (thesis Fig. 4.21; the table's own points)", "every load",
