@@ -470,9 +470,13 @@ void tbl_history_carry(tbl_table *t, const char *history, const char *command)
     if (history && *history) n = (size_t)snprintf(buf, sizeof buf, "%s", history);
     buf[n] = '\0';
     if (command && *command && strcmp(command, t->command) != 0) {
+        char one[sizeof t->command]; /* one line: an argument's line breaks as spaces */
+        snprintf(one, sizeof one, "%s", command);
+        for (char *c = one; *c; c++)
+            if (*c == '\n' || *c == '\r') *c = ' ';
         const char *last = strrchr(buf, '\n');
-        if (strcmp(last ? last + 1 : buf, command) != 0) /* not twice in a row */
-            n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%s", n ? "\n" : "", command);
+        if (strcmp(last ? last + 1 : buf, one) != 0) /* not twice in a row */
+            n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%s", n ? "\n" : "", one);
     }
     const char *s = buf;
     if (n < cap) {

@@ -390,6 +390,13 @@ static void test_history(void **state)
         assert_true(l[299] == '\n' && l[0] == last[0] - (char)((last - l) / 300));
     assert_string_equal(tbl_provenance(r, NULL), c[7]);
     tbl_destroy(&r);
+    /* a command with a line break (a quoted argument) is one line of it */
+    build_as(path, "stiction table build --note 'two\nlines'", none);
+    build_as(path, "last", none);
+    check_ok(tbl_read(path, &r), "tbl_read");
+    h = tbl_history(r);
+    assert_string_equal(strrchr(h, '\n') + 1, "stiction table build --note 'two lines'");
+    tbl_destroy(&r);
     tbl_destroy(&t);
     free(none);
 }

@@ -215,7 +215,8 @@ STC_API int tbl_same_build(const tbl_table *a, const tbl_table *b);
 STC_API void tbl_set_provenance(tbl_table *t, const char *command, double build_wall_s);
 STC_API const char *tbl_provenance(const tbl_table *t, double *build_wall_s);
 /* The commands that built the table before its own (tbl_provenance), oldest
- * first, one a line; "" when one command built it all.  A build onto a file
+ * first, one a line (a line break within one kept as a space); "" when one
+ * command built it all.  A build onto a file
  * (tbl_build: a resumed or refined build, a fill) adds the file's command
  * when it differs from the table's; a first line "..." says the oldest ones
  * were dropped. */
