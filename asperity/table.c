@@ -467,7 +467,10 @@ void tbl_history_carry(tbl_table *t, const char *history, const char *command)
 {
     char buf[sizeof t->history + sizeof t->command + 1];
     size_t cap = sizeof t->history, n = 0;
-    if (history && *history) n = (size_t)snprintf(buf, sizeof buf, "%s", history);
+    if (history && *history) { /* a file's fits t's; a longer one is cut, then trimmed */
+        n = strnlen(history, sizeof buf - 1);
+        memcpy(buf, history, n);
+    }
     buf[n] = '\0';
     if (command && *command && strcmp(command, t->command) != 0) {
         char one[sizeof t->command]; /* one line: an argument's line breaks as spaces */

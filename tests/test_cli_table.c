@@ -385,6 +385,8 @@ static void test_query_t_mm(void **state)
                    "must be in (0, 1)", NULL);
     expect_refusal("table query ref.h5 --delta 1 --t-over-R 0.01 --E-ratio 0", 2,
                    "E-ratio = 0: must be > 0", NULL);
+    expect_refusal("table query ref.h5 --delta 1 --t-over-R 0.9995 --E-ratio 2000", 0,
+                   "t/R outside (clamped); E-ratio outside (clamped)", NULL);
     assert_int_equal(run("table query --help", 1, out, sizeof out), 0);
     assert_non_null(strstr(out, "t/R = t-mm / R"));
 }
@@ -478,6 +480,8 @@ static void test_fill(void **state)
     const char *hb = strstr(hist, "\"stiction table build --deltas 0.5,1,2,4,8 "),
                *hp = strstr(hist, "\"stiction surface predict --table fill.h5 ");
     assert_true(hb && hp && hb < hp && hp < strchr(hist, ']'));
+    const char *more = strstr(hp + 1, "\"stiction ");
+    assert_true(!more || more > strchr(hp, ']')); /* those two only */
     assert_int_equal(run(SWEEP_RUN " --json", 1, a, sizeof a), 0);
     assert_int_equal(run(FILL_RUN " --json", 1, b, sizeof b), 0);
     assert_json(a);

@@ -96,13 +96,15 @@ def run(cmd, check=True):
 
 
 def fe_point(cli, config, work, k, pt, sub="heldout", extra=()):
-    """One fresh FE point, as the table computes its points; resumable."""
+    """One fresh FE point, as the table computes its points, at the placements
+    the caller gives (--placements-max 0: the family's configuration may refine
+    its own points, these are held to a fixed count); resumable."""
     d, t, e = pt
     path = os.path.join(work, sub, "p%02d.h5" % k)
     t0 = time.time()
     p = run([cli, "table", "build", "--config", config, "--deltas", repr(d),
              "--t-over-R", repr(t), "--E-ratio", repr(e), "--out", path, "--jobs", "1",
-             "--quiet"] + list(extra), check=False)
+             "--quiet", "--placements-max", "0"] + list(extra), check=False)
     if p.returncode != 0:
         return {"error": p.stderr.strip()}
     rows = list(csv.DictReader(io.StringIO(run([cli, "table", "info", path,
@@ -238,7 +240,7 @@ def refined(cli, table, rep):
     rep.out("Reference: the same point on the 3D mesh one level finer (twice the elements "
             "across the contact) with K evenly spaced node placements: `stiction table build "
             "--config examples/thesis-table.ini --deltas D --t-over-R T --E-ratio E --mesh-level 1 "
-            "--placements 4`, stored in data/fe/table-refined.csv (%d of its %d points; "
+            "--placements 4 --placements-max 0`, stored in data/fe/table-refined.csv (%d of its %d points; "
             "`tools/validate-tables.py ... --refine N` computes the others, about one CPU hour "
             "each), or the same ensemble member by member for the shear held set "
             "(data/fe/references.csv, tools/references.py; the coated cases are nodes of this "
@@ -344,7 +346,8 @@ def held_out(cli, table, config, work, jobs, fresh, rep):
     rep.out("## Held-out points: fresh FE runs between the grid nodes\n")
     K = HELD_OUT_PLACEMENTS
     rep.out("Each point is a one-point table of the same family and numerics (`stiction "
-            "table build --config %s --deltas D --t-over-R T --E-ratio E`; 'x2'), and the "
+            "table build --config %s --deltas D --t-over-R T --E-ratio E --placements-max 0`, "
+            "two placements without the table's refinement; 'x2'), and the "
             "same with %d node placements ('x%d', `--placements %d`), compared with `stiction "
             "table query %s`. The table is held to the x%d point: a two-placement point "
             "carries the placement noise the table's surrogate smooths out. sigma_t: the "

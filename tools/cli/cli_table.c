@@ -97,7 +97,7 @@ static const cli_opt build_opts[] = {
                         "the one below)"},
     {"placements", "K", "node placements averaged per point, 1..8 (default 2): a point's mu_s "
                         "comes with the members' spread as its error estimate (thesis grid at "
-                        "K = 2: 1.5-18 %, median 3.5 %), at K times the CPU time (20-250 CPU s a point "
+                        "K = 2: 1.5-14 %, median 3.6 %), at K times the CPU time (20-250 CPU s a point "
                         "at K = 2)"},
     {"placements-max", "K", "refine: a point whose members' standard error exceeds --refine-err "
                             "of its mu_s gets twice the placements, halfway between, and again, "
