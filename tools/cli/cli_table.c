@@ -527,6 +527,16 @@ static int err_summarise(const tbl_table *t, err_summary *e)
     return 0;
 }
 
+/* The next command of a table's history (tbl_history: one a line) into
+ * line[n]; returns where the one after it starts, NULL at the end. */
+static const char *history_line(const char *h, char *line, size_t n)
+{
+    if (!*h) return NULL;
+    size_t l = strcspn(h, "\n");
+    snprintf(line, n, "%.*s", (int)l, h);
+    return h + l + (h[l] == '\n');
+}
+
 static void info_json(const tbl_table *t, const char *path, const refine_plan *rp)
 {
     cli_json j;
@@ -588,13 +598,9 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
     cj_int(&j, "copied", ncopied);
     cj_str(&j, "command", tbl_provenance(t, &wall));
     cj_arr(&j, "history"); /* the commands that built it before, oldest first */
-    for (const char *h = tbl_history(t); *h;) {
-        size_t n = strcspn(h, "\n");
-        char line[512];
-        snprintf(line, sizeof line, "%.*s", (int)n, h);
+    char line[512];
+    for (const char *h = tbl_history(t); (h = history_line(h, line, sizeof line));)
         cj_str(&j, NULL, line);
-        h += n + (h[n] == '\n');
-    }
     cj_end_arr(&j);
     cj_num(&j, "build_wall_s", wall);
     cj_num(&j, "cpu_s_per_point", nrun ? cpu / nrun : NAN);
@@ -756,14 +762,9 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
                "t/R's run at their delta\n", ncopied);
     printf("  built by: %s\n", cmd);
     const char *h = tbl_history(t);
-    if (*h) { /* one line each, indented */
-        printf("  before that, oldest first:\n");
-        while (*h) {
-            size_t n = strcspn(h, "\n");
-            printf("    %.*s\n", (int)n, h);
-            h += n + (h[n] == '\n');
-        }
-    }
+    if (*h) printf("  before that, oldest first:\n");
+    char line[512];
+    while ((h = history_line(h, line, sizeof line))) printf("    %s\n", line);
     printf("  build wall time %.1f s, %.1f CPU s per point computed\n", wall,
            nrun ? cpu / nrun : 0.0);
     err_summary es;
