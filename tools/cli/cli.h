@@ -99,7 +99,12 @@ void cli_command_line(char *buf, size_t n, const char *cmd, int argc, char **arg
 /* A share of the load from summits outside the table's or model's range
  * above this is warned about (and marked in sweeps): those values are partly
  * extrapolated. */
-#define CLI_OUTSIDE_WARN 0.05
+#define CLI_OUTSIDE_WARN_PERCENT 5
+#define CLI_OUTSIDE_WARN (CLI_OUTSIDE_WARN_PERCENT / 100.0)
+/* The threshold as help text: "5 %". */
+#define CLI_OUTSIDE_WARN_TEXT CLI_XSTR(CLI_OUTSIDE_WARN_PERCENT) " %"
+#define CLI_XSTR(x) CLI_STR(x)
+#define CLI_STR(x) #x
 /* A fraction as a percentage rounded up to 0.1, for "up to X %" (a share
  * just over a threshold never prints as the threshold itself). */
 double cli_percent_up(double fraction);

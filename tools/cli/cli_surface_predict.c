@@ -562,7 +562,7 @@ static const char *USAGE =
     "properties (the coating then enters only through t/R).  The coating is --t-mm MM thick\n"
     "on every summit, each summit with its own radius and so its own t/R (--t-over-R is\n"
     "refused).  The share of the load from summits outside the model's range is\n"
-    "printed (\"outside\"; JSON: in_range) and warned about on stderr above 5 %.";
+    "printed (\"outside\"; JSON: in_range) and warned about on stderr above " CLI_OUTSIDE_WARN_TEXT ".";
 
 int cli_surface_predict(const cli_cmd *cmd, int argc, char **argv)
 {

@@ -330,7 +330,7 @@ static const char *USAGE =
     "friction table.  Each design is what `surface predict --table FILE --t-mm T\n"
     "--E-ratio E --Y-co Yco` gives with Yco = E Esu / (E/Y)_co: along Eco/Esu the coating's\n"
     "E/Y is the table's family's, so a stiffer coating is proportionally harder.  A value\n"
-    "with more than 5 % of its load from summits outside the table's range is marked *.";
+    "with more than " CLI_OUTSIDE_WARN_TEXT " of its load from summits outside the table's range is marked *.";
 
 int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
 {
