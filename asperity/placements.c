@@ -199,6 +199,10 @@ stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o
 
 stc_status asp_placements_refine_check(int k, int k_max, double rel_err)
 {
+    STC_CHECK(k_max == 0 || 2 * k <= ASP_PLACEMENTS_MAX, STC_EINVAL,
+              "placements-max = %d: must be 0 (no refinement) with placements = %d, which "
+              "leaves no room to refine (twice it exceeds %d, ASP_PLACEMENTS_MAX)", k_max, k,
+              ASP_PLACEMENTS_MAX);
     STC_CHECK(k_max == 0 || (k_max >= 2 * k && k_max <= ASP_PLACEMENTS_MAX), STC_EINVAL,
               "placements-max = %d: must be 0 (no refinement) or in [%d, %d] (twice "
               "placements = %d, ASP_PLACEMENTS_MAX)", k_max, 2 * k, ASP_PLACEMENTS_MAX, k);

@@ -536,6 +536,9 @@ static void test_refined_build(void **state)
     char out[8192];
     expect_refusal("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 --placements 2 "
                    "--placements-max 3 --out bad.h5", 2, "placements-max = 3", "[4, 8]");
+    expect_refusal("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 --placements 8 "
+                   "--placements-max 4 --out bad.h5", 2, "placements = 8",
+                   "leaves no room to refine");
     expect_refusal("table build --deltas 0.5 --t-over-R 0.01 --E-ratio 1 --placements-max 2 "
                    "--refine-err 0.9 --placements 1 --out bad.h5", 2, "refine-err", NULL);
     assert_false(exists(P("bad.h5")));
