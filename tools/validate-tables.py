@@ -23,7 +23,13 @@
    table's ten points) and the table is held to that one: mu_s within two standard errors (table and point combined)
    for 90 % of the points is a check; within 3 % and two standard errors for
    90 % of the points a target, and within 3 % at every point another.
-2. Surface checks: Greenwood-Williamson sums over a Gaussian summit
+2. The bundled example's table (data/tables/tin-on-steel.h5, TiN on hardened
+   steel): fresh FE points between its nodes with eight placements, stored in
+   data/fe/tin-heldout.csv, against its query: within two standard errors
+   (table and point combined) for at least 90 % of them (a target: the
+   points carry the family's placement noise); the differences are listed
+   with the points' own spread.
+3. Surface checks: Greenwood-Williamson sums over a Gaussian summit
    population from the table at Eco/Esu = 1 (uncoated: one material), 2 and 4:
    a stiffer coating gives a higher surface mu_s (the single-asperity trend of
    the thesis's Fig. 4.21), and coated and uncoated differ by more than the
@@ -56,6 +62,8 @@ REFINED_CSV = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "da
                            "table-refined.csv")
 HELD_CSV = os.path.join(os.path.dirname(REFINED_CSV), "references.csv")
 HELDOUT_CSV = os.path.join(os.path.dirname(REFINED_CSV), "table-heldout.csv")
+TIN_TABLE = "data/tables/tin-on-steel.h5"
+TIN_HELDOUT_CSV = os.path.join(os.path.dirname(REFINED_CSV), "tin-heldout.csv")
 POINT_COLS = ("delta_over_omega_c", "t_over_R", "E_ratio")
 HELDOUT_COLS = ["delta_over_omega_c", "t_over_R", "E_ratio", "placements", "config", "state",
                 "mu_s", "mu_s_err", "mu_s_min", "mu_s_max", "P_over_P_c", "A_over_A_c",
@@ -428,6 +436,47 @@ def held_out(cli, table, config, work, jobs, fresh, rep):
     return checks
 
 
+def tin_heldout(cli, rep):
+    """The bundled example's table against its stored held-out FE points."""
+    if not os.path.exists(TIN_TABLE) or not os.path.exists(TIN_HELDOUT_CSV):
+        return []
+    with open(TIN_HELDOUT_CSV) as f:
+        rows = [r for r in csv.DictReader(f) if r["state"] == "done"]
+    rep.out("## The bundled example's table: held-out points\n")
+    rep.out("%s (TiN on hardened steel, `make demo`'s table) against fresh FE points between "
+            "its nodes, each a one-point table of its family with %s node placements "
+            "(`stiction table build --config %s --deltas D --t-over-R T --E-ratio E "
+            "--placements 8 --placements-max 0 --normal-level -1`), stored in "
+            "data/fe/tin-heldout.csv (%s). "
+            "members: the lowest and highest of the point's placements; z: the difference "
+            "over the table's and the point's standard errors in quadrature.\n"
+            % (TIN_TABLE, "/".join(sorted({r["placements"] for r in rows})),
+               ", ".join(sorted({r["config"] for r in rows})),
+               ", ".join(sorted({r["version"] for r in rows}))))
+    rep.out("| delta/wc | t/R | Eco/Esu | mu_s FE +- | members | mu_s table +- | diff | z |")
+    rep.out("|---|---|---|---|---|---|---|---|")
+    n = within2 = 0
+    worst = 0.0
+    for r in rows:
+        pt = point_key(r)
+        q = query(cli, TIN_TABLE, pt)
+        m, s = float(r["mu_s"]), float(r["mu_s_err"])
+        mt, st = q["mu_s"], q["mu_s_err"]
+        z = abs(mt - m) / math.hypot(st, s)
+        n += 1
+        within2 += z <= 2
+        worst = max(worst, z)
+        rep.out("| %g | %g | %g | %.4f +- %.4f | %.3f-%.3f | %.4f +- %.4f | %+.2f %% | %.2f |"
+                % (pt + (m, s, float(r["mu_s_min"]), float(r["mu_s_max"]), mt, st,
+                         100 * (mt - m) / m, z)))
+    rep.out("")
+    # a target, not a check: these references carry the family's own placement noise
+    # (one point's members spread by 146 %), they are not verified to the band's width
+    return [("target", "TiN table: held-out mu_s within two standard errors (table and point "
+             "combined)", ">= 90 %% of points (%d, data/fe/tin-heldout.csv)" % n,
+             "%d of %d (largest z %.2f)" % (within2, n, worst), within2 >= 0.9 * n)]
+
+
 def surface(cli, table, rep):
     """GW sums over Gaussian populations at Eco/Esu 1, 2, 4 and each t/R."""
     # R = 0.1 mm; sigma_s about 4 and 10 omega_c_su of that radius (E/Y = 1000,
@@ -519,6 +568,7 @@ def main():
     checks = surface(a.cli, a.table, rep)
     checks += held_out(a.cli, a.table, a.config, a.work, a.jobs, a.fresh, rep)
     checks += refined(a.cli, a.table, rep)
+    checks += tin_heldout(a.cli, rep)
     rep.out("## Verdicts\n")
     # ("check", name, reference, tolerance, measured, passed) and
     # ("target", name, goal, measured, met)
