@@ -359,6 +359,13 @@ double asp_slide_next(const asp_slide *d)
             double span = 0.5 * (prev + d->ux[last - 1] - d->ux[last - 2]);
             if (c > 0.0) du = fmin(du, bend_target(d, last) / c * span);
             du = fmax(du, 0.25 * prev);
+            /* A secant that rose is not Q bending but a node entering or
+             * sticking: a jump of its force over the increment, which grows
+             * as the increment shrinks, so the bracket would chase it down
+             * to nothing (docs/design.md §4.4).  Not below the first
+             * increment then. */
+            if (p->criterion == ASP_SLIDE_STIFFNESS && KT(d, last) > KT(d, last - 1))
+                du = fmax(du, p->first_frac * d->ux_e);
         }
         if (p->criterion == ASP_SLIDE_SHEAR) du = shear_limit(d, last, du);
     }

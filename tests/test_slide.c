@@ -2,8 +2,9 @@
  * (asperity/slide.c) on synthetic curves with known answers:
  * Cattaneo–Mindlin Q(ux) of a Hertz contact (shear and BKE stiffness
  * criteria), an asymptotic (tanh) curve, a knee onto an exact plateau, a
- * softening curve, no inception at all; and asp_find_delta on Hertz and on
- * a power law with a kink. */
+ * softening curve, no inception at all, a Mindlin curve whose secants jump
+ * by a fixed share whatever the increment; and asp_find_delta on Hertz and
+ * on a power law with a kink. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -29,15 +30,30 @@ static asp_slide_setup setup(void)
 typedef struct curve {
     int kind;       /* 0 Mindlin, 1 tanh, 2 knee+plateau, 3 softening, 4 linear,
                        5 knee+plateau with a stuck core (plastic plateau),
-                       6 knee, then still rising at 0.2 of the first slope */
+                       6 knee, then still rising at 0.2 of the first slope,
+                       7 Mindlin along a path whose secant is the tangent times
+                         1 + noise, 1 - noise, ... from the second increment on */
     double Qm, us;  /* force scale (N), displacement scale (mm) */
+    double noise;   /* kind 7 */
+    double ux_prev, Q_prev; /* kind 7: the path so far */
+    int n;
 } curve;
 
-static void eval(const curve *c, double ux, double *Q, double *P, double *frac)
+static void eval(curve *c, double ux, double *Q, double *P, double *frac)
 {
     double x = ux / c->us;
     *P = P0 * (1.0 - 0.02 * fmin(x, 1.0)); /* P changes under shear */
     switch (c->kind) {
+    case 7: { /* as a node entering or sticking moves a ramp's secant by its
+               * force over the increment, whatever the increment's size */
+        double xm = 0.5 * (ux + c->ux_prev) / c->us;
+        double kt = 1.5 * c->Qm / c->us * sqrt(fmax(1.0 - fmin(xm, 1.0), 0.0));
+        double f = c->n == 0 ? 1.0 : (c->n % 2 ? 1.0 + c->noise : 1.0 - c->noise);
+        *Q = c->Q_prev + kt * f * (ux - c->ux_prev);
+        *frac = 1.0 - pow(fmax(1.0 - *Q / c->Qm, 0.0), 2.0 / 3.0);
+        c->ux_prev = ux, c->Q_prev = *Q, c->n++;
+        break;
+    }
     case 0: /* Cattaneo–Mindlin (Johnson 1985 §7.2): Q = μP[1 - (1 - ux/ux_s)^{3/2}],
              * stick radius c = a (1 - Q/μP)^{1/3} */
         *Q = c->Qm * (1.0 - pow(1.0 - fmin(x, 1.0), 1.5));
@@ -75,7 +91,7 @@ typedef struct run_out {
     double KT1_over_KT0, ux_last, du_last, du_prev;
 } run_out;
 
-static run_out run(const curve *c, const asp_slide_params *par, double Qtrue)
+static run_out run(curve *c, const asp_slide_params *par, double Qtrue)
 {
     asp_slide_setup su = setup();
     asp_slide *d = NULL;
@@ -107,7 +123,7 @@ static run_out run(const curve *c, const asp_slide_params *par, double Qtrue)
 static curve mindlin(void)
 {
     asp_slide_setup su = setup();
-    curve c = {0, su.tau_c * M_PI * A * A, 1.5 * asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 0, .Qm = su.tau_c * M_PI * A * A, .us = 1.5 * asp_slide_ux_elastic(&su)};
     return c;
 }
 
@@ -163,11 +179,34 @@ static void test_mindlin_stiffness(void **state)
     }
 }
 
+/* BKE on a ramp whose secants scatter by ±30 % whatever the increment (the
+ * Mindlin tangent times 1.3, 0.7, 1.3, ...): the bracket's increments must not
+ * chase that scatter down to nothing, so inception comes where a low secant
+ * first reaches α, x = 1 - (α / 0.7)², in a few dozen increments. */
+static void test_noisy_stiffness(void **state)
+{
+    (void)state;
+    curve c = mindlin();
+    c.kind = 7, c.noise = 0.3;
+    asp_slide_params p;
+    asp_slide_params_default(&p);
+    p.criterion = ASP_SLIDE_STIFFNESS;
+    run_out o = run(&c, &p, c.Qm);
+    double xs = 1.0 - pow(p.alpha / (1.0 - c.noise), 2.0);
+    printf("noisy secants, stiffness alpha = %.1f: %s\n  ux/ux_s = %.4f (a low secant reaches "
+           "alpha from %.4f), KT_i/KT_1 = %.3f, %d increments, last %.4f\n", p.alpha,
+           o.r.reason, o.r.ux / c.us, xs, o.r.KT_ratio, o.n, o.du_last / c.us);
+    assert_int_equal(o.r.state, ASP_SLIDE_INCEPTION);
+    assert_true(o.r.KT_ratio <= p.alpha);
+    assert_true(o.r.ux / c.us >= xs - 1e-9 && o.r.ux / c.us <= 1.0 + 0.1);
+    assert_true(o.n <= 60);
+}
+
 static void test_asymptotic(void **state)
 {
     (void)state;
     asp_slide_setup su = setup();
-    curve c = {1, 0.8 * su.tau_c * M_PI * A * A, asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 1, .Qm = 0.8 * su.tau_c * M_PI * A * A, .us = asp_slide_ux_elastic(&su)};
     run_out o = run(&c, NULL, c.Qm);
     printf("tanh: %s\n  Qmax/Qm = %.5f, ux/u0 = %.3f, %d increments (1%% after %d)\n",
            o.r.reason, o.r.Q_max / c.Qm, o.r.ux / c.us, o.n, o.first_within_1pc);
@@ -181,7 +220,8 @@ static void test_plateau(void **state)
 {
     (void)state;
     asp_slide_setup su = setup();
-    curve c = {2, 0.7 * su.tau_c * M_PI * A * A, 2.0 * asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 2, .Qm = 0.7 * su.tau_c * M_PI * A * A,
+               .us = 2.0 * asp_slide_ux_elastic(&su)};
     run_out o = run(&c, NULL, c.Qm);
     printf("knee + plateau: %s\n  Qmax/Qm = %.6f, ux/u_knee = %.4f, last ux/u_knee = %.4f, "
            "%d increments (1%% after %d)\n",
@@ -197,7 +237,8 @@ static void test_plastic_plateau(void **state)
 {
     (void)state;
     asp_slide_setup su = setup();
-    curve c = {5, 0.7 * su.tau_c * M_PI * A * A, 2.0 * asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 5, .Qm = 0.7 * su.tau_c * M_PI * A * A,
+               .us = 2.0 * asp_slide_ux_elastic(&su)};
     run_out o = run(&c, NULL, c.Qm);
     printf("plastic plateau: %s\n  Qmax/Qm = %.6f, ux/u_knee = %.4f, last ux/u_knee = %.4f, "
            "%d increments\n", o.r.reason, o.r.Q_max / c.Qm, o.r.ux / c.us, o.ux_last / c.us, o.n);
@@ -217,7 +258,8 @@ static void test_rising_after(void **state)
     asp_slide_params p;
     asp_slide_params_default(&p);
     p.full_tol = 0.5;
-    curve c = {2, 0.7 * su.tau_c * M_PI * A * A, 2.0 * asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 2, .Qm = 0.7 * su.tau_c * M_PI * A * A,
+               .us = 2.0 * asp_slide_ux_elastic(&su)};
     run_out f = run(&c, &p, c.Qm);
     c.kind = 6;
     run_out r = run(&c, &p, c.Qm);
@@ -284,7 +326,8 @@ static void test_softening(void **state)
 {
     (void)state;
     asp_slide_setup su = setup();
-    curve c = {3, 0.5 * su.tau_c * M_PI * A * A, 2.0 * asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 3, .Qm = 0.5 * su.tau_c * M_PI * A * A,
+               .us = 2.0 * asp_slide_ux_elastic(&su)};
     run_out o = run(&c, NULL, c.Qm);
     printf("softening: %s\n  Qmax/Qm = %.5f at ux/u_peak = %.3f, %d increments\n", o.r.reason,
            o.r.Q_max / c.Qm, o.r.ux / c.us, o.n);
@@ -297,7 +340,7 @@ static void test_gives_up(void **state)
 {
     (void)state;
     asp_slide_setup su = setup();
-    curve c = {4, su.tau_c * M_PI * A * A, asp_slide_ux_elastic(&su)};
+    curve c = {.kind = 4, .Qm = su.tau_c * M_PI * A * A, .us = asp_slide_ux_elastic(&su)};
     run_out o = run(&c, NULL, c.Qm);
     printf("linear: %s after %d increments\n", o.r.reason, o.n);
     assert_int_equal(o.r.state, ASP_SLIDE_GAVE_UP);
@@ -431,6 +474,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mindlin_shear),     cmocka_unit_test(test_mindlin_stiffness),
+        cmocka_unit_test(test_noisy_stiffness),
         cmocka_unit_test(test_asymptotic),        cmocka_unit_test(test_plateau),
         cmocka_unit_test(test_plastic_plateau),   cmocka_unit_test(test_mechanism),
         cmocka_unit_test(test_softening),
