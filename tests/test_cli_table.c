@@ -283,6 +283,8 @@ static void test_shards_merge(void **state)
     printf("  shards 0/2 + 1/2 merged equal the serial build\n");
 }
 
+/* A refusal (exit code != 0) naming n1 and n2, or with code 0 an answer
+ * flagged on stderr (a value outside the table's range). */
 static void expect_refusal(const char *args, int code, const char *n1, const char *n2)
 {
     char out[8192];

@@ -443,19 +443,19 @@ def tin_heldout(cli, rep):
     with open(TIN_HELDOUT_CSV) as f:
         rows = [r for r in csv.DictReader(f) if r["state"] == "done"]
     rep.out("## The bundled example's table: held-out points\n")
+    K = "/".join(sorted({r["placements"] for r in rows}))
     rep.out("%s (TiN on hardened steel, `make demo`'s table) against fresh FE points between "
             "its nodes, each a one-point table of its family with %s node placements "
             "(`stiction table build --config %s --deltas D --t-over-R T --E-ratio E "
-            "--placements 8 --placements-max 0 --normal-level -1`), stored in "
+            "--placements %s --placements-max 0 --normal-level -1`), stored in "
             "data/fe/tin-heldout.csv (%s). "
             "members: the lowest and highest of the point's placements; z: the difference "
             "over the table's and the point's standard errors in quadrature.\n"
-            % (TIN_TABLE, "/".join(sorted({r["placements"] for r in rows})),
-               ", ".join(sorted({r["config"] for r in rows})),
+            % (TIN_TABLE, K, ", ".join(sorted({r["config"] for r in rows})), K,
                ", ".join(sorted({r["version"] for r in rows}))))
     rep.out("| delta/wc | t/R | Eco/Esu | mu_s FE +- | members | mu_s table +- | diff | z |")
     rep.out("|---|---|---|---|---|---|---|---|")
-    n = within2 = 0
+    n, within2 = len(rows), 0
     worst = 0.0
     for r in rows:
         pt = point_key(r)
@@ -463,7 +463,6 @@ def tin_heldout(cli, rep):
         m, s = float(r["mu_s"]), float(r["mu_s_err"])
         mt, st = q["mu_s"], q["mu_s_err"]
         z = abs(mt - m) / math.hypot(st, s)
-        n += 1
         within2 += z <= 2
         worst = max(worst, z)
         rep.out("| %g | %g | %g | %.4f +- %.4f | %.3f-%.3f | %.4f +- %.4f | %+.2f %% | %.2f |"
