@@ -33,6 +33,7 @@ import math
 import sys
 from collections import defaultdict
 
+from ramp_read import at_fraction, at_stiffness, at_ux
 from references import MEMBERS_CSV, RAMPS_CSV, held_set
 from wsp_case import write_csv
 
@@ -53,52 +54,6 @@ def load_members(path):
     with open(path) as f:
         return {(r["case"], int(r["mesh_level"]), int(r["member"])): float(r["mu_s"])
                 for r in csv.DictReader(f)}
-
-
-def first_crossing(pts, col, x):
-    """(i, s): the first ramp point i whose column col reaches x and the
-    fraction s of the way from point i - 1 where it crosses (linear); None if
-    it never does."""
-    for i in range(1, len(pts)):
-        v0, v1 = pts[i - 1][col], pts[i][col]
-        if v1 >= x:
-            return i, (x - v0) / (v1 - v0) if v1 > v0 else 1.0
-    return None
-
-
-def between(pts, i, s, col):
-    return pts[i - 1][col] + s * (pts[i][col] - pts[i - 1][col])
-
-
-def at_fraction(pts, x):
-    """Q_max up to the first crossing of the limit fraction through x, over P
-    there; None if the ramp never reaches x."""
-    c = first_crossing(pts, 3, x)
-    if c is None:
-        return None
-    i, s = c
-    return max(max(p[1] for p in pts[:i]), between(pts, i, s, 1)) / between(pts, i, s, 2)
-
-
-def at_stiffness(pts, a):
-    """Q/P where the secant stiffness first falls to a times the first's."""
-    if len(pts) < 3 or pts[1][0] <= pts[0][0]:
-        return None
-    kt1 = (pts[1][1] - pts[0][1]) / (pts[1][0] - pts[0][0])
-    for i in range(2, len(pts)):
-        kt = (pts[i][1] - pts[i - 1][1]) / (pts[i][0] - pts[i - 1][0])
-        if kt <= a * kt1:
-            return pts[i][1] / pts[i][2]
-    return None
-
-
-def at_ux(pts, u):
-    """Q/P at ux = u, interpolated; None beyond the ramp."""
-    c = first_crossing(pts, 0, u)
-    if c is None:
-        return None
-    i, s = c
-    return between(pts, i, s, 1) / between(pts, i, s, 2)
 
 
 def stats(v):

@@ -18,7 +18,8 @@ from vreport import SUMMARY
 PARTS = [("install", "Installed library"), ("asperity", "Asperity FE solver"),
          ("surface", "Surface layer"), ("shear", "Combined loading (WSP sphere)"),
          ("references", "One shear run against the converged references"),
-         ("growth", "Junction growth (half-space)"), ("stress", "Numerical stability"),
+         ("growth", "Junction growth (half-space)"),
+         ("smoothness", "Smoothness along the interference"), ("stress", "Numerical stability"),
          ("tables", "FE friction tables")]
 
 
