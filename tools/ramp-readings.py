@@ -4,7 +4,7 @@ offline from its ramp under candidate inception criteria, and how each
 reading agrees between the two mesh levels (docs/design.md section 4.4).
 
 ramp-readings.py [--ramps CSV] [--members CSV] [--thresholds 0.95,0.98,0.99]
-                 [--kt 0.05] [--csv OUT]
+                 [--kt 0.05] [--csv OUT] [--single DIR]
 
 The ramps are the rows of data/fe/reference-ramps.csv (one per accepted
 ramp point of a member: ux, Q, P, the fraction of the contact area at its
@@ -26,14 +26,23 @@ Per case and reading the table gives the level-0 mean, the level-1 mean,
 their difference (%), and the level-1 members' standard deviation (%): the
 question is which reading converges with the mesh.  --csv writes every
 member's readings.
+
+--single DIR reads fresh single runs of the held cases instead, each in
+DIR/CASE/ (the output of `stiction asperity ARGS --shear --json` as run.json
+and the --out directory's shear.csv; ARGS the case's arguments in
+tools/references.py plus any numerical option, e.g. --edge-refine 2), and
+gives per case and reading the run's difference from the level-1 members'
+mean read the same way, and how many cases fall within 2 %.
 """
 import argparse
 import csv
+import json
 import math
+import os
 import sys
 from collections import defaultdict
 
-from ramp_read import at_fraction, at_stiffness, at_ux
+from ramp_read import at_fraction, at_stiffness, at_ux, load_shear_csv
 from references import MEMBERS_CSV, RAMPS_CSV, held_set
 from wsp_case import write_csv
 
@@ -72,6 +81,7 @@ def main():
     ap.add_argument("--thresholds", default="0.95,0.98,0.99")
     ap.add_argument("--kt", type=float, default=0.05)
     ap.add_argument("--csv", help="write every member's readings here too")
+    ap.add_argument("--single", help="compare the single runs in this directory instead")
     a = ap.parse_args()
     try:
         xs = [float(t) for t in a.thresholds.split(",")]
@@ -84,6 +94,8 @@ def main():
         sys.exit("ramp-readings.py: --kt %g: must be in (0, 1)" % a.kt)
     ramps = load_ramps(a.ramps)
     members = load_members(a.members)
+    if a.single:
+        return single(a.single, ramps, members, xs, a.kt)
     cases = [c[0] for c in held_set() if any(k[0] == c[0] for k in ramps)]
     order = {c: n for n, c in enumerate(cases)}
     names = ["as run"] + ["f>=%g" % x for x in xs] + ["KT %g" % a.kt, "at ux"]
@@ -126,5 +138,44 @@ def main():
         print("| " + label + " | " + " | ".join(cells) + " |")
 
 
+def single(path, ramps, members, xs, kt):
+    """Fresh single runs (path/CASE/run.json, shear.csv) against the level-1
+    members' mean under each reading; cases whose level-1 members are not
+    all kept, or that have no run, are left out."""
+    names = ["as run"] + ["f>=%g" % x for x in xs] + ["KT %g" % kt]
+    within = [[0, 0] for _ in names]
+    print("Each cell: the single run's difference from the level-1 members' mean read the "
+          "same way (%); (n/K) where only n of K members reach the reading.\n")
+    print("| case | " + " | ".join(names) + " |")
+    print("|---" * (len(names) + 1) + "|")
+    for c in [h[0] for h in held_set()]:
+        lev1 = sorted(j for (cc, lev, j) in ramps if cc == c and lev == 1)
+        run = os.path.join(path, c, "run.json")
+        if not os.path.exists(run) or not lev1 or \
+                any((c, 1, j) not in members for j in lev1) or \
+                sum(1 for k in members if k[0] == c and k[1] == 1) != len(lev1):
+            continue
+        with open(run) as f:
+            mu = json.load(f)["mu_s"]
+        pts = load_shear_csv(os.path.join(path, c, "shear.csv"))
+        mine = [mu] + [at_fraction(pts, x) for x in xs] + [at_stiffness(pts, kt)]
+        refs = [[members[(c, 1, j)]] + [at_fraction(ramps[(c, 1, j)], x) for x in xs] +
+                [at_stiffness(ramps[(c, 1, j)], kt)] for j in lev1]
+        cells = []
+        for k in range(len(names)):
+            m, _, n = stats([r[k] for r in refs])
+            if m is None or mine[k] is None:
+                cells.append("—")
+                continue
+            d = 100.0 * (mine[k] / m - 1.0)
+            cells.append("%+.2f" % d + (" (%d/%d)" % (n, len(refs)) if n < len(refs) else ""))
+            if n == len(refs):
+                within[k][0] += abs(d) <= 2.0
+                within[k][1] += 1
+        print("| " + c + " | " + " | ".join(cells) + " |")
+    print("| within 2 % | " + " | ".join("%d of %d" % tuple(w) for w in within) + " |")
+    return 0
+
+
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
