@@ -68,7 +68,7 @@ def version(cli):
 def one_run(cli, work, k, w):
     """The run at omega w with --edge-refine k: (json or None, ramp, wall s,
     taken from an earlier call, failure reason)."""
-    d = os.path.join(work, "e%d" % k, "%.6g" % w)
+    d = os.path.join(work, "e%d" % k, "%.10g" % w)  # the delta run, every digit
     res = os.path.join(d, "result.json")
     if os.path.exists(res):
         with open(res) as f:
