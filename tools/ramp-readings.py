@@ -42,7 +42,7 @@ import os
 import sys
 from collections import defaultdict
 
-from ramp_read import at_fraction, at_stiffness, at_ux, load_shear_csv
+from ramp_read import at_ux, load_shear_csv, readings
 from references import MEMBERS_CSV, RAMPS_CSV, held_set
 from wsp_case import write_csv
 
@@ -108,8 +108,7 @@ def main():
     rows = []
     for (c, lev, j), pts in sorted(ramps.items(), key=lambda kv: (order.get(kv[0][0], -1),
                                                                    kv[0][1], kv[0][2])):
-        r = [members.get((c, lev, j))] + [at_fraction(pts, x) for x in xs] + \
-            [at_stiffness(pts, a.kt), at_ux(pts, ucommon[c])]
+        r = readings(pts, members.get((c, lev, j)), xs, [a.kt]) + [at_ux(pts, ucommon[c])]
         read.setdefault((c, lev), []).append(r)
         rows.append(dict(zip(cols, [c, lev, j] + ["" if v is None else "%.6f" % v
                                                   for v in r])))
@@ -158,9 +157,8 @@ def single(path, ramps, members, xs, kt):
         with open(run) as f:
             mu = json.load(f)["mu_s"]
         pts = load_shear_csv(os.path.join(path, c, "shear.csv"))
-        mine = [mu] + [at_fraction(pts, x) for x in xs] + [at_stiffness(pts, kt)]
-        refs = [[members[(c, 1, j)]] + [at_fraction(ramps[(c, 1, j)], x) for x in xs] +
-                [at_stiffness(ramps[(c, 1, j)], kt)] for j in lev1]
+        mine = readings(pts, mu, xs, [kt])
+        refs = [readings(ramps[(c, 1, j)], members[(c, 1, j)], xs, [kt]) for j in lev1]
         cells = []
         for k in range(len(names)):
             m, _, n = stats([r[k] for r in refs])

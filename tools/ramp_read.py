@@ -49,6 +49,14 @@ def at_stiffness(pts, a):
     return None
 
 
+def readings(pts, as_run, fractions, stiffness):
+    """One ramp's mu_s under each rule: [as_run (the run's own), Q/P at the first
+    crossing of each limit fraction, where the secant falls to each stiffness
+    ratio]; None where the ramp does not reach a rule."""
+    return [as_run] + [at_fraction(pts, x) for x in fractions] + \
+        [at_stiffness(pts, a) for a in stiffness]
+
+
 def at_ux(pts, u):
     """Q/P at ux = u, interpolated; None beyond the ramp."""
     c = first_crossing(pts, 0, u)

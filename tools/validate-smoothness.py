@@ -38,7 +38,7 @@ import sys
 import time
 from concurrent.futures import ThreadPoolExecutor, as_completed
 
-from ramp_read import at_fraction, at_stiffness, load_shear_csv
+from ramp_read import load_shear_csv, readings
 from vreport import Report
 from wsp_case import WSP, write_csv, wsp_mu
 
@@ -61,6 +61,11 @@ def omegas(spec):
 
 
 def version(cli):
+    """The whole of `stiction --version`: program, commit and BLAS kernels.
+    Not refdata.binary_version (program and commit only): other kernels move
+    the last bits, and those move a band run past 20 omega_c by up to 2 %
+    (docs/design.md section 4.5), so kept runs are reused under the same
+    kernels only."""
     p = subprocess.run([cli, "--version"], capture_output=True, text=True)
     return p.stdout.strip()
 
@@ -158,7 +163,7 @@ def main():
             "Q_still_rising", "ux_slide_over_omega_c", "a0_over_a_max", "wall_s", "reason"]
     cols += ["read_" + r.replace(" ", "_").replace(">=", "ge").replace("<=", "le")
              for r in READINGS[1:]]
-    rows, read = [], {}
+    rows, read, wig = [], {}, {}  # wig[k]: as run, at every point (None at the ends)
     for k in ks:
         per = []
         for w in ws:
@@ -166,10 +171,9 @@ def main():
             if j is None:
                 per.append([None] * len(READINGS))
                 continue
-            per.append([j["mu_s"]] + [at_fraction(pts, x) for x in FRACTIONS] +
-                       [at_stiffness(pts, s) for s in STIFFNESS])
+            per.append(readings(pts, j["mu_s"], FRACTIONS, STIFFNESS))
         read[k] = per
-        wig = [None] + wiggles([p[0] for p in per]) + [None]
+        wig[k] = [None] + wiggles([p[0] for p in per]) + [None]
         for i, w in enumerate(ws):
             j, pts, wall, why = runs[(k, w)]
             r = {"edge_refine": k, "omega_over_omega_c": "%.6g" % w, "wsp_fit": "%.5f" % wsp_mu(w),
@@ -179,8 +183,8 @@ def main():
                           "Q_still_rising": int(bool(j.get("Q_still_rising"))),
                           "ux_slide_over_omega_c": "%.4f" % j["ux_at_slide_over_omega_c"],
                           "a0_over_a_max": "%.4f" % (j["a_mm"] / j["a_max_mm"])})
-                if wig[i] is not None:
-                    r["wiggle_pct"] = "%+.2f" % wig[i]
+                if wig[k][i] is not None:
+                    r["wiggle_pct"] = "%+.2f" % wig[k][i]
                 for name, v in zip(cols[-len(READINGS) + 1:], per[i][1:]):
                     r[name] = "" if v is None else "%.6f" % v
             rows.append(r)
@@ -206,8 +210,7 @@ def main():
         line = "| %.4g | %.4f |" % (w, wsp_mu(w))
         for k in ks:
             j, pts, wall, why = runs[(k, w)]
-            wg = wiggles([p[0] for p in read[k]])
-            wi = wg[i - 1] if 0 < i < len(ws) - 1 else None
+            wi = wig[k][i]
             if j is None:
                 line += " failed | | | | |"
                 continue
@@ -241,7 +244,7 @@ def main():
     rep.check("every run converges", "solver outcome", "converged",
               "%d of %d" % (len(jobs) - fails, len(jobs)), fails == 0)
     if 0 in ks:
-        s = summary(wiggles([p[0] for p in read[0]]))
+        s = summary(wig[0])
         if s:
             rep.target("single default run: mu_s along delta without point-to-point wiggle",
                        "every inner point within %g %%" % GOAL,
