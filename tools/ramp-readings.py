@@ -22,7 +22,8 @@ data/fe/reference-members.csv.  For each member:
            last ux at level 0 and level 1, so every ramp of the case reaches it.
 
 A member whose ramp never reaches a reading has none; the count shows it.
-Per case and reading the table gives the level-0 mean, the level-1 mean,
+Per case and reading the table gives the level-0 mean, the level-1 mean
+(each over the level's largest evenly spaced set of members, 4, 8, 16, ...),
 their difference (%), and the level-1 members' standard deviation (%): the
 question is which reading converges with the mesh.  --csv writes every
 member's readings.
@@ -43,7 +44,7 @@ import sys
 from collections import defaultdict
 
 from ramp_read import at_ux, load_shear_csv, readings
-from references import MEMBERS_CSV, RAMPS_CSV, held_set
+from references import MEMBERS_CSV, RAMPS_CSV, complete, held_set
 from wsp_case import write_csv
 
 
@@ -114,8 +115,13 @@ def main():
                                                   for v in r])))
     if a.csv:
         write_csv(a.csv, cols, rows)
+    # each level's mean over its largest evenly spaced set of members (4, 8, 16, ...),
+    # as references.csv takes it: the members past it sample the phase unevenly
+    for key, v in read.items():
+        read[key] = v[:complete(len(v)) or len(v)]
     print("Each cell: level-0 mean / level-1 mean, their difference (%), and the level-1 "
-          "members' standard deviation (%); (n/K) where only n of K members reach the reading.")
+          "members' standard deviation (%); (n/K) where only n of the K level-1 members reach the "
+          "reading.")
     print("'at ux' reads every member at the case's common ux (in um).\n")
     print("| case | " + " | ".join(names) + " |")
     print("|---" * (len(names) + 1) + "|")
@@ -129,9 +135,11 @@ def main():
                 continue
             d = 100.0 * (s[0][0] / s[1][0] - 1.0)
             cell = "%.4f / %.4f, %+.1f, %.1f" % (s[0][0], s[1][0], d, 100.0 * s[1][1] / s[1][0])
-            n = max(len(read.get((c, lev), [])) for lev in (0, 1))
-            if min(s[0][2], s[1][2]) < n:
-                cell += " (%d/%d)" % (min(s[0][2], s[1][2]), n)
+            used = [len(read[(c, lev)]) for lev in (0, 1)]
+            if s[1][2] < used[1]:
+                cell += " (%d/%d)" % (s[1][2], used[1])
+            elif s[0][2] < used[0]:
+                cell += " (level 0: %d/%d)" % (s[0][2], used[0])
             cells.append(cell)
         label = c + (" (%.3g um)" % (1e3 * ucommon[c]))
         print("| " + label + " | " + " | ".join(cells) + " |")
