@@ -60,6 +60,13 @@ def load_ramps(path):
     return ramps
 
 
+def evenly_spaced(v):
+    """The first K of a level's members in member order, K the largest evenly
+    spaced set (4, 8, 16, ...; all of them below 4), as references.csv takes
+    them: the members past it sample the node phase unevenly."""
+    return v[:complete(len(v)) or len(v)]
+
+
 def load_members(path):
     with open(path) as f:
         return {(r["case"], int(r["mesh_level"]), int(r["member"])): float(r["mu_s"])
@@ -115,10 +122,8 @@ def main():
                                                   for v in r])))
     if a.csv:
         write_csv(a.csv, cols, rows)
-    # each level's mean over its largest evenly spaced set of members (4, 8, 16, ...),
-    # as references.csv takes it: the members past it sample the phase unevenly
-    for key, v in read.items():
-        read[key] = v[:complete(len(v)) or len(v)]
+    for key, v in read.items():  # appended in member order
+        read[key] = evenly_spaced(v)
     print("Each cell: level-0 mean / level-1 mean, their difference (%), and the level-1 "
           "members' standard deviation (%); (n/K) where only n of the K level-1 members reach the "
           "reading.")
@@ -156,11 +161,10 @@ def single(path, ramps, members, xs, kt):
     print("| case | " + " | ".join(names) + " |")
     print("|---" * (len(names) + 1) + "|")
     for c in [h[0] for h in held_set()]:
-        lev1 = sorted(j for (cc, lev, j) in ramps if cc == c and lev == 1)
+        stored = sorted(j for (cc, lev, j) in members if cc == c and lev == 1)
+        lev1 = evenly_spaced(stored)
         run = os.path.join(path, c, "run.json")
-        if not os.path.exists(run) or not lev1 or \
-                any((c, 1, j) not in members for j in lev1) or \
-                sum(1 for k in members if k[0] == c and k[1] == 1) != len(lev1):
+        if not os.path.exists(run) or not lev1 or any((c, 1, j) not in ramps for j in stored):
             continue
         with open(run) as f:
             mu = json.load(f)["mu_s"]
