@@ -40,8 +40,9 @@ first 4, 8, 16, ... members): the members' mean, their standard error of
 the mean, extremes, mean P/Pc, and the CPU time.  Member 0 at level 0 is
 the default single run.  A member whose row and ramp are both stored in
 data/fe counts as done (a stored member without its ramp runs again, to keep
-it, unless --no-ramp-reruns); a member j > 0 is placed from its member 0's
-run in WORKDIR, or else from member 0's stored row.
+it, unless --no-ramp-reruns; if its results then equal its stored row, the
+row stays, with the run time and build it names); a member j > 0 is placed
+from its member 0's run in WORKDIR, or else from member 0's stored row.
 """
 import argparse
 import csv
@@ -281,6 +282,10 @@ def collect(work, cases, levels):
                            "Q_still_rising": int(bool(r.get("Q_still_rising"))),
                            "wall_s": "%.0f" % r.get("run_wall_s", r["wall_s"]),
                            "version": r["version"]}
+                    same = key in old and all(str(row[k]) == old[key][k] for k in mcols
+                                              if k not in ("wall_s", "version"))
+                    if same:  # a stored member run again (for its ramp): its row stays
+                        row = old[key]
                 elif key in old:  # stored, its run not in this WORKDIR
                     row = old[key]
                 else:

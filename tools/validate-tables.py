@@ -293,10 +293,15 @@ def refined(cli, table, rep):
     # spread: both ends of t/R and of delta (0.5; 30 or more), Eco/Esu 2 and 4
     spread = ({0.005, 0.05} <= {t for _, t, _ in pts} and {2.0, 4.0} <= {e for _, _, e in pts}
               and any(d <= 0.5 for d, _, _ in pts) and any(d >= 30 for d, _, _ in pts))
+    span = lambda v: "%g-%g" % (min(v), max(v)) if v else "none"
+    grid = [float(k[0]) for k in points]
     checks.append(("target", "table point mu_s within 2 % of one full refinement",
                    "at least 6 points: both ends of t/R and delta, Eco/Esu 2 and 4",
-                   "%d of %d within (largest %.2f %%); the references %s the grid's ends"
-                   % (within, n, 100 * worst, "span" if spread else "do not yet span"),
+                   "%d of %d within (largest %.2f %%); the references span t/R %s, "
+                   "delta %s of the grid's %s, Eco/Esu %s"
+                   % (within, n, 100 * worst, span([t for _, t, _ in pts]),
+                      span([d for d, _, _ in pts]), span(grid),
+                      span([e for _, _, e in pts])),
                    within == n and n >= 6 and spread))
     if n:
         checks.append(("target", "table query at a node within 2 % of one full refinement, "
