@@ -293,7 +293,8 @@ def refined(cli, table, rep):
     # spread: both ends of t/R and of delta (0.5; 30 or more), Eco/Esu 2 and 4
     spread = ({0.005, 0.05} <= {t for _, t, _ in pts} and {2.0, 4.0} <= {e for _, _, e in pts}
               and any(d <= 0.5 for d, _, _ in pts) and any(d >= 30 for d, _, _ in pts))
-    span = lambda v: "%g-%g" % (min(v), max(v)) if v else "none"
+    def span(v):
+        return "%g-%g" % (min(v), max(v)) if v else "none"
     grid = [float(k[0]) for k in points]
     checks.append(("target", "table point mu_s within 2 % of one full refinement",
                    "at least 6 points: both ends of t/R and delta, Eco/Esu 2 and 4",
