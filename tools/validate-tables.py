@@ -36,7 +36,7 @@
    error band.
 
 Usage: validate-tables.py CLI WORKDIR REPORT.md [--table FILE] [--config INI]
-       [--jobs N] [--refine N] [--fresh]
+       [--jobs N] [--refine N [--refine-at D,T,E ...]] [--fresh]
 The held-out runs are kept in WORKDIR/heldout/ and WORKDIR/heldout8/ (each a
 resumable table build), so an interrupted validation goes on where it stopped,
 and each finished one is stored in data/fe/table-heldout.csv with the version
@@ -212,11 +212,12 @@ def stored_refined(held=True):
     return have
 
 
-def refine(cli, config, work, jobs, count):
+def refine(cli, config, work, jobs, count, only=()):
     """Compute up to count missing references (about a CPU hour each), cheapest
-    first, and add them to REFINED_CSV."""
+    first (of only, when given), and add them to REFINED_CSV."""
     have = stored_refined(held=False)
-    todo = [(k, pt) for k, pt in enumerate(REFINED) if pt not in have][:count]
+    todo = [(k, pt) for k, pt in enumerate(REFINED)
+            if pt not in have and (not only or pt in only)][:count]
     os.makedirs(os.path.join(work, "refined"), exist_ok=True)
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
         fe = list(ex.map(lambda kp: fe_point(cli, config, work, kp[0], kp[1], "refined",
@@ -553,6 +554,9 @@ def main():
                     help="first compute up to N missing refined references (about one CPU "
                          "hour each, cheapest first) into WORKDIR/refined/ and add them to "
                          "data/fe/table-refined.csv")
+    ap.add_argument("--refine-at", action="append", default=[], metavar="D,T,E",
+                    help="with --refine: only this point of the list (delta/omega_c_su, t/R, "
+                         "Eco/Esu); repeatable")
     ap.add_argument("--fresh", action="store_true",
                     help="run the held-out FE points again instead of reading the stored "
                          "ones (data/fe/table-heldout.csv), and store the new runs there")
@@ -560,8 +564,18 @@ def main():
     if not os.path.exists(a.table):
         sys.exit("%s: no such table (make tables builds it)" % a.table)
     info = json.loads(run([a.cli, "table", "info", a.table, "--json"]).stdout)
+    only = []
+    for spec in a.refine_at:
+        try:
+            pt = tuple(float(v) for v in spec.split(","))
+        except ValueError:
+            pt = ()
+        if pt not in REFINED:
+            sys.exit("--refine-at %s: not a point of the refined list (%s)"
+                     % (spec, "; ".join("%g,%g,%g" % p for p in REFINED)))
+        only.append(pt)
     if a.refine > 0:
-        refine(a.cli, a.config, a.work, a.jobs, a.refine)
+        refine(a.cli, a.config, a.work, a.jobs, a.refine, only)
     rep = Report("FE friction table %s: validation" % a.table,
                  "tools/validate-tables.py (`stiction table`, `surface predict --json` runs)")
     rep.out("Table: %d points, %d done, %d failed; built in %.0f s wall, %.1f CPU s per point; "
