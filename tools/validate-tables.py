@@ -4,7 +4,7 @@
 0. Point accuracy: table points (both ends of t/R and delta, Eco/Esu 2 and 4)
    against the same point one mesh level finer with four node placements (a
    one-point table, --mesh-level 1 --placements 4), stored in
-   data/fe/table-refined.csv (about one CPU hour each; --refine N computes up to
+   data/fe/table-refined.csv (0.4-1.9 CPU hours each; --refine N computes up to
    N missing ones and adds them there): the stored error estimate at least as
    large as the difference (a check), the stored mu_s within 2 % (a target).
 
@@ -213,7 +213,7 @@ def stored_refined(held=True):
 
 
 def refine(cli, config, work, jobs, count, only=()):
-    """Compute up to count missing references (about a CPU hour each), cheapest
+    """Compute up to count missing references (0.4-1.9 CPU hours each), cheapest
     first (of only, when given), and add them to REFINED_CSV."""
     have = stored_refined(held=False)
     todo = [(k, pt) for k, pt in enumerate(REFINED)
@@ -250,7 +250,7 @@ def refined(cli, table, rep):
             "across the contact) with K evenly spaced node placements: `stiction table build "
             "--config examples/thesis-table.ini --deltas D --t-over-R T --E-ratio E --mesh-level 1 "
             "--placements 4 --placements-max 0`, stored in data/fe/table-refined.csv (%d of its %d points; "
-            "`tools/validate-tables.py ... --refine N` computes the others, about one CPU hour "
+            "`tools/validate-tables.py ... --refine N` computes the others, 0.4-1.9 CPU hours "
             "each), or the same ensemble member by member for the shear held set "
             "(data/fe/references.csv, tools/references.py; the coated cases are nodes of this "
             "grid, with 4 or more members).\n" % (sum(pt in have for pt in REFINED), len(REFINED)))
@@ -551,8 +551,8 @@ def main():
     ap.add_argument("--config", default="examples/thesis-table.ini")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--refine", type=int, default=0, metavar="N",
-                    help="first compute up to N missing refined references (about one CPU "
-                         "hour each, cheapest first) into WORKDIR/refined/ and add them to "
+                    help="first compute up to N missing refined references (0.4-1.9 CPU "
+                         "hours each, cheapest first) into WORKDIR/refined/ and add them to "
                          "data/fe/table-refined.csv")
     ap.add_argument("--refine-at", action="append", default=[], metavar="D,T,E",
                     help="with --refine: only this point of the list (delta/omega_c_su, t/R, "
