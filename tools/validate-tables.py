@@ -561,9 +561,6 @@ def main():
                     help="run the held-out FE points again instead of reading the stored "
                          "ones (data/fe/table-heldout.csv), and store the new runs there")
     a = ap.parse_args()
-    if not os.path.exists(a.table):
-        sys.exit("%s: no such table (make tables builds it)" % a.table)
-    info = json.loads(run([a.cli, "table", "info", a.table, "--json"]).stdout)
     only = []
     for spec in a.refine_at:
         try:
@@ -574,6 +571,9 @@ def main():
             sys.exit("--refine-at %s: not a point of the refined list (%s)"
                      % (spec, "; ".join("%g,%g,%g" % p for p in REFINED)))
         only.append(pt)
+    if not os.path.exists(a.table):
+        sys.exit("%s: no such table (make tables builds it)" % a.table)
+    info = json.loads(run([a.cli, "table", "info", a.table, "--json"]).stdout)
     if a.refine > 0:
         refine(a.cli, a.config, a.work, a.jobs, a.refine, only)
     rep = Report("FE friction table %s: validation" % a.table,
