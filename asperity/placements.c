@@ -60,7 +60,9 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
 
 /* Load and shear members j0, j0 + dj, ... < k of out concurrently, one
  * thread each, at most o->threads (0: all cores) at a time; sv[j] already
- * holds a loaded solver where it is not NULL (member 0 of a new ensemble). */
+ * holds a loaded solver where it is not NULL (member 0 of a new ensemble).
+ * Adds to out->cpu_s the CPU time of the team's threads other than the
+ * caller's (the caller counts its own). */
 static void run_members(const stc_params *p, const asp_options *o, const asp_shear_options *so,
                         asp_placement_result *out, asp_solver **sv, int j0, int dj)
 {
@@ -76,11 +78,17 @@ static void run_members(const stc_params *p, const asp_options *o, const asp_she
 #pragma omp parallel num_threads(nt)
     {
         omp_set_max_active_levels(0);
+        double c0 = asp_thread_cpu();
 #pragma omp for schedule(dynamic, 1)
         for (int i = 0; i < n; i++) {
             int j = j0 + i * dj;
             if (!sv[j]) member_load(p, o, out->delta_mesh, out->delta, 0.0, &out->m[j], &sv[j]);
             member_shear(so, &out->m[j], &sv[j]);
+        }
+        if (omp_get_thread_num() != 0) {
+            double c = asp_thread_cpu() - c0;
+#pragma omp atomic update
+            out->cpu_s += c;
         }
     }
     asp_blas_serial_leave();
@@ -129,7 +137,7 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
               "placements: the tangential step needs the 3D model");
     STC_CHECK((delta > 0.0) != (P > 0.0), STC_EINVAL,
               "placements: delta = %g mm, P = %g N: give one of them (> 0)", delta, P);
-    double t0 = omp_get_wtime();
+    double t0 = omp_get_wtime(), c0 = asp_thread_cpu();
     /* an edge band: placed once for all members (under load control by
      * member 0's preload, which finds it on the way) */
     asp_options eo = *o;
@@ -149,6 +157,7 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     }
     if (m[0].status != STC_OK) {
         asp_solver_destroy(&sv[0]);
+        out->cpu_s = asp_thread_cpu() - c0;
         return STC_FAIL(m[0].status, "placements: member 0 (elements per contact %g): %s",
                         m[0].elements_per_contact, m[0].message);
     }
@@ -166,6 +175,7 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     for (int j = 1; j < k; j++)
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
     run_members(p, o, so, out, sv, 0, 1);
+    out->cpu_s += asp_thread_cpu() - c0;
     return summarize(out, t0);
 }
 
@@ -181,7 +191,7 @@ stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o
               out->n_ok, k);
     STC_CHECK(o && o->geom == ASP_GEOM_3D, STC_EINVAL,
               "placements: the tangential step needs the 3D model");
-    double t0 = omp_get_wtime();
+    double t0 = omp_get_wtime(), c0 = asp_thread_cpu();
     asp_options eo = *o;
     eo.edge_a0 = out->edge_a0;
     /* members in phase order: the old ones at the even places, the new
@@ -194,6 +204,7 @@ stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o
     }
     asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
     run_members(p, &eo, so, out, sv, 1, 2);
+    out->cpu_s += asp_thread_cpu() - c0;
     return summarize(out, t0);
 }
 

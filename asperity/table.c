@@ -133,13 +133,6 @@ void tbl_point_params(const tbl_family *f, double t_over_R, double E_ratio, stc_
     p->nu_co_set = 1;
 }
 
-double tbl_cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
 double tbl_wall_now(void)
 {
     struct timespec ts;
@@ -174,8 +167,10 @@ static void fill_done(const stc_critical *c, const asp_placement_result *e,
     snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, e->m[0].res.reason);
 }
 
-stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
-                             double t_over_R, double E_ratio, tbl_point *out)
+/* tbl_point_compute with the members of the point's ensemble on up to
+ * `threads` threads at once (one each; the same numbers as on one). */
+static stc_status point_compute(const tbl_family *f, const tbl_numerics *num, double w,
+                                double t_over_R, double E_ratio, int threads, tbl_point *out)
 {
     STC_CHECK(f && num && out, STC_EINVAL, "tbl_point_compute: NULL argument");
     STC_CALL(tbl_family_validate(f));
@@ -198,7 +193,7 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     o.contact = f->contact;
     o.mesh_level = num->mesh_level;
     o.elements_per_contact = num->elements_per_contact;
-    o.threads = 1;
+    o.threads = threads > 1 ? threads : 1;
     asp_shear_options so;
     asp_shear_options_default(&so);
     so.criterion = f->criterion;
@@ -209,7 +204,7 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
     memset(out, 0, sizeof *out);
     asp_placement_result *e = malloc(sizeof *e);
     STC_CHECK(e, STC_ENOMEM, "tbl_point_compute: out of memory");
-    double t0 = tbl_wall_now(), c0 = tbl_cpu_now();
+    double t0 = tbl_wall_now(), c0 = asp_thread_cpu();
     stc_status st = asp_shear_placements_adaptive(&p, &o, &so, delta, 0.0, num->placements,
                                                   num->placements_max, num->refine_err, e);
     if (st == STC_OK) {
@@ -220,45 +215,57 @@ stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, doubl
         snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, stc_errmsg());
     }
     out->wall_s = tbl_wall_now() - t0;
-    out->cpu_s = tbl_cpu_now() - c0;
+    /* the ensemble's threads, all of them (at least this one's, where it
+     * failed before it counted them) */
+    out->cpu_s = fmax(e->cpu_s, asp_thread_cpu() - c0);
     free(e);
     stc_error_clear();
     return STC_OK;
 }
 
-/* tbl_point_compute's arguments, for asp_run_serial. */
+stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
+                             double t_over_R, double E_ratio, tbl_point *out)
+{
+    return point_compute(f, num, w, t_over_R, E_ratio, 1, out);
+}
+
+/* point_compute's arguments, for asp_run_team. */
 typedef struct {
     const tbl_table *t;
     double w, tR, E;
+    int threads;
     tbl_point *p;
 } point_job;
 
 static stc_status point_run(void *ctx)
 {
     const point_job *j = ctx;
-    return tbl_point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->p);
+    return point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->threads, j->p);
 }
 
 /* One point on the calling thread alone, whichever path runs it (the
  * serial threads, rank 0's compute threads, the other ranks): the
- * solver's own regions on one thread (tbl_point_compute sets threads 1),
- * CHOLMOD's OpenMP regions serial in a region of this call's own
- * (threads.h; inside a team of one thread they would be the first active
- * level, and creating a nested team that often made a point 3x slower,
- * 1.33 -> 4.0 s, same numbers), OpenBLAS on one thread (threads.c), so
- * that the table's numbers do not depend on jobs, shards or ranks. */
-stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p)
+ * solver's own regions on one thread (threads 1), CHOLMOD's OpenMP
+ * regions serial in a region of this call's own (threads.h; inside a team
+ * of one thread they would be the first active level, and creating a
+ * nested team that often made a point 3x slower, 1.33 -> 4.0 s, same
+ * numbers), OpenBLAS on one thread (threads.c), so that the table's
+ * numbers do not depend on jobs, shards or ranks.  threads > 1 (fewer
+ * points than threads): the point's members on that many threads, one
+ * each, with the same numbers (placements.c). */
+stc_status tbl_build_compute(const tbl_table *t, int i, int threads, tbl_point *p)
 {
     double w, tR, E;
     tbl_coords(t, i, &w, &tR, &E);
-    point_job j = {t, w, tR, E, p};
-    return asp_run_serial(point_run, &j);
+    point_job j = {t, w, tR, E, threads, p};
+    return asp_run_team(point_run, &j, threads);
 }
 
-stc_status tbl_build_item(const tbl_table *t, int item, tbl_point *p, tbl_curve *cv, double *P,
-                          double *A)
+stc_status tbl_build_item(const tbl_table *t, int item, int threads, tbl_point *p, tbl_curve *cv,
+                          double *P, double *A)
 {
-    return item >= 0 ? tbl_build_compute(t, item, p) : tbl_build_curve(t, -item - 1, cv, P, A);
+    return item >= 0 ? tbl_build_compute(t, item, threads, p)
+                     : tbl_build_curve(t, -item - 1, cv, P, A);
 }
 
 /* ---- the handle ----------------------------------------------------------------- */

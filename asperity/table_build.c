@@ -310,26 +310,31 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
     omp_unset_lock(&b->lock);
 }
 
-/* Item k of a todo list: a point i >= 0, or the curve c coded as -(c + 1). */
-static stc_status run_item(tbl_build_state *b, int item, double *P, double *A)
+/* Item k of a todo list: a point i >= 0 (its members on up to `threads`
+ * threads), or the curve c coded as -(c + 1). */
+static stc_status run_item(tbl_build_state *b, int item, int threads, double *P, double *A)
 {
     tbl_point p;
     tbl_curve cv;
-    STC_CALL(tbl_build_item(b->t, item, &p, &cv, P, A));
+    STC_CALL(tbl_build_item(b->t, item, threads, &p, &cv, P, A));
     if (item >= 0) build_finish(b, item, &p);
     else finish_curve(b, -item - 1, &cv, P, A);
     return STC_OK;
 }
 
 /* The serial path: the items (curves first, then points) on this process's
- * threads, one per item. */
+ * threads, one per item; fewer points than threads: a point's members
+ * share them (the same numbers; a curve takes seconds beside them). */
 static stc_status run_items(tbl_build_state *b, const int *todo, int n)
 {
-    int jobs = b->o->jobs > 0 ? b->o->jobs : omp_get_num_procs();
-    if (jobs > n) jobs = n > 0 ? n : 1;
+    int want = b->o->jobs > 0 ? b->o->jobs : omp_get_num_procs();
+    int jobs = want > n ? (n > 0 ? n : 1) : want;
+    int points = 0;
+    for (int k = 0; k < n; k++) points += todo[k] >= 0;
+    int per = points > 0 && points < want ? want / points : 1; /* threads of a point */
     int nw = tbl_curves(b->t) > 0 ? b->t->nrm.n[0] : 1;
     /* one thread per item, its OpenMP regions and OpenBLAS on it
-     * (tbl_build_compute, tbl_build_curve) */
+     * (tbl_build_compute, tbl_build_curve), or per for a point's members */
     stc_status bad = STC_OK;
     char why[512] = "";
 #pragma omp parallel num_threads(jobs)
@@ -341,7 +346,7 @@ static stc_status run_items(tbl_build_state *b, const int *todo, int n)
 #pragma omp atomic read
             stop = b->stop;
             if (stop) continue;
-            stc_status s = P && A ? run_item(b, todo[k], P, A)
+            stc_status s = P && A ? run_item(b, todo[k], per, P, A)
                                   : STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
             if (s != STC_OK) {
                 omp_set_lock(&b->lock);

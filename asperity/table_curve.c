@@ -123,12 +123,12 @@ stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, do
 
     memset(out, 0, sizeof *out);
     for (int k = 0; k < n_w; k++) P_Pc[k] = A_Ac[k] = NAN;
-    double t0 = tbl_wall_now(), c0 = tbl_cpu_now();
+    double t0 = tbl_wall_now(), c0 = asp_thread_cpu();
     run_curve(&p, &o, &c, w, n_w, P_Pc, A_Ac, out);
     if (out->state != TBL_DONE)
         for (int k = 0; k < n_w; k++) P_Pc[k] = A_Ac[k] = NAN;
     out->wall_s = tbl_wall_now() - t0;
-    out->cpu_s = tbl_cpu_now() - c0;
+    out->cpu_s = asp_thread_cpu() - c0;
     stc_error_clear();
     return STC_OK;
 }

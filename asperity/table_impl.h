@@ -76,9 +76,8 @@ void tbl_normal_needed(const tbl_table *t, const unsigned char *only, unsigned c
  * [n_w of the normal grid]. */
 stc_status tbl_build_curve(const tbl_table *t, int c, tbl_curve *out, double *P, double *A);
 
-/* The calling thread's CPU time and the monotonic wall clock, s (a point's
- * and a curve's costs). */
-double tbl_cpu_now(void);
+/* The monotonic wall clock, s (a point's and a curve's costs; their CPU
+ * time: asp_thread_cpu, threads.h). */
 double tbl_wall_now(void);
 
 /* Eco/Esu = E_ratio makes the coating the substrate in family f: E_ratio 1
@@ -149,12 +148,13 @@ typedef struct tbl_build_state {
 } tbl_build_state;
 
 /* Point i of t computed on the calling thread alone: tbl_point_compute at
- * the point's coordinates (table.c). */
-stc_status tbl_build_compute(const tbl_table *t, int i, tbl_point *p);
+ * the point's coordinates (table.c); threads > 1: its members on up to that
+ * many threads, with the same numbers. */
+stc_status tbl_build_compute(const tbl_table *t, int i, int threads, tbl_point *p);
 /* Item `item` of a build's todo list on the calling thread: point item
  * (>= 0) into *p, or curve -(item + 1) into *cv, P and A (tbl_build_curve). */
-stc_status tbl_build_item(const tbl_table *t, int item, tbl_point *p, tbl_curve *cv, double *P,
-                          double *A);
+stc_status tbl_build_item(const tbl_table *t, int item, int threads, tbl_point *p, tbl_curve *cv,
+                          double *P, double *A);
 
 /* ---- distributed builds: the MPI farm (table_mpi.c) ---- */
 

@@ -15,6 +15,7 @@
  * alternatives point to openblas-pthread) has only the global count. */
 #include <omp.h>
 #include <pthread.h>
+#include <time.h>
 
 #include "threads.h"
 
@@ -46,9 +47,31 @@ void asp_blas_serial_leave(void)
 
 stc_status asp_run_serial(stc_status (*fn)(void *ctx), void *ctx)
 {
+    return asp_run_team(fn, ctx, 1);
+}
+
+stc_status asp_run_team(stc_status (*fn)(void *ctx), void *ctx, int threads)
+{
     stc_status st;
     asp_blas_serial_enter();
-    ASP_OMP_SERIAL(st = fn(ctx));
+    if (threads > 1) {
+        /* one more active level than the caller's for fn's own team, in
+         * fn's implicit task alone (as ASP_OMP_SERIAL's setting) */
+#pragma omp parallel num_threads(1)
+        {
+            omp_set_max_active_levels(omp_get_active_level() + 1);
+            st = fn(ctx);
+        }
+    } else {
+        ASP_OMP_SERIAL(st = fn(ctx));
+    }
     asp_blas_serial_leave();
     return st;
+}
+
+double asp_thread_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }

@@ -1,6 +1,7 @@
 /* The library's control of the threads of the libraries it calls (not
  * installed): OpenBLAS's thread count, the one process-wide setting the
- * library changes, in one place (threads.c). */
+ * library changes, in one place (threads.c); the nesting of OpenMP regions
+ * for work that runs beside other work of its kind; a thread's CPU clock. */
 #ifndef STICTION_THREADS_H
 #define STICTION_THREADS_H
 
@@ -36,5 +37,15 @@ void asp_blas_serial_leave(void);
  * beside other work of its kind (a table's points and curves), whose
  * numbers then do not depend on how many run at once. */
 stc_status asp_run_serial(stc_status (*fn)(void *ctx), void *ctx);
+
+/* The same with one team of the library's own for fn: its next OpenMP
+ * region may run on up to `threads` threads (the members of an ensemble,
+ * which run their libraries serially themselves, placements.c); threads 1
+ * is asp_run_serial.  The numbers are the same either way (a member's do
+ * not depend on how many run beside it). */
+stc_status asp_run_team(stc_status (*fn)(void *ctx), void *ctx, int threads);
+
+/* The calling thread's CPU time, s. */
+double asp_thread_cpu(void);
 
 #endif

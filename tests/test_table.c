@@ -1809,6 +1809,46 @@ static void test_caller_settings(void **state)
     tbl_destroy(&t);
 }
 
+/* Fewer points than jobs: a point's members share the threads, with the
+ * numbers of the build that runs them one after another (bitwise; only the
+ * timings differ, and the CPU time counts every member's thread); the
+ * caller's max-active-levels and OpenBLAS's count are kept. */
+static void test_point_threads(void **state)
+{
+    char dir[128], pa[192], pb[192];
+    scratch_sub(state, "point-threads", dir, sizeof dir);
+    snprintf(pa, sizeof pa, "%s/one-thread.h5", dir);
+    snprintf(pb, sizeof pb, "%s/two-threads.h5", dir);
+    tbl_family f;
+    tbl_numerics num;
+    coarse_numerics(&f, &num);
+    num.placements = 2;
+    const double w = 0.5, tr = 0.01, er = 2.0;
+    tbl_table *a = NULL, *b = NULL;
+    check_ok(tbl_create(&f, &num, &w, 1, &tr, 1, &er, 1, &a), "tbl_create");
+    check_ok(tbl_create(&f, &num, &w, 1, &tr, 1, &er, 1, &b), "tbl_create");
+    tbl_build_opts o;
+    tbl_build_opts_default(&o);
+    o.jobs = 1;
+    check_ok(tbl_build(a, pa, &o, NULL), "tbl_build, one job");
+    int levels = omp_get_max_active_levels(), blas = openblas_get_num_threads();
+    o.jobs = 2;
+    check_ok(tbl_build(b, pb, &o, NULL), "tbl_build, two jobs");
+    tbl_point p = *tbl_point_get(a, 0), q = *tbl_point_get(b, 0);
+    printf("one point, 2 members: mu_s %.6f on one thread (%.2f CPU s, %.2f s wall), %.6f on "
+           "two (%.2f CPU s, %.2f s wall)\n", p.mu_s, p.cpu_s, p.wall_s, q.mu_s, q.cpu_s,
+           q.wall_s);
+    assert_int_equal(p.state, TBL_DONE);
+    assert_int_equal(p.members, 2);
+    assert_true(q.cpu_s > 0.0 && q.wall_s > 0.0);
+    p.cpu_s = q.cpu_s, p.wall_s = q.wall_s;
+    if (point_diff(&p, &q)) fail_msg("two threads: %s differs", point_diff(&p, &q));
+    assert_int_equal(omp_get_max_active_levels(), levels);
+    assert_int_equal(openblas_get_num_threads(), blas);
+    tbl_destroy(&a);
+    tbl_destroy(&b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1821,7 +1861,8 @@ int main(void)
         cmocka_unit_test(test_bundled_table_quadrature), cmocka_unit_test(test_retry_failed),
         cmocka_unit_test(test_point_refine), cmocka_unit_test(test_refinable),
         cmocka_unit_test(test_normal_grid), cmocka_unit_test(test_one_material),
-        cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_fit_reused),
+        cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_point_threads),
+        cmocka_unit_test(test_fit_reused),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

@@ -506,6 +506,7 @@ typedef struct asp_placement_result {
     double delta_mesh;       /* the interference their meshes are sized for, mm */
     double edge_a0;          /* the edge band's contact radius, mm (asp_options.edge_a0) */
     double wall_s;           /* summed over the refinements */
+    double cpu_s;            /* CPU s of all its threads, summed over the refinements */
     asp_placement_member m[ASP_PLACEMENTS_MAX];
 } asp_placement_result;
 

@@ -253,7 +253,9 @@ typedef struct tbl_progress {
 typedef int (*tbl_progress_fn)(void *ctx, const tbl_progress *p);
 
 typedef struct tbl_build_opts {
-    int jobs;           /* points computed at once, one thread each; 0 = one per core */
+    int jobs;           /* points computed at once, one thread each; 0 = one per core;
+                           fewer points than jobs: a point's members share the threads
+                           (the same numbers) */
     int shard, shards;  /* compute only points with index % shards == shard; default 0, 1 */
     const unsigned char *only; /* nullable: [tbl_points] compute only the points i with
                                   only[i] != 0 (the rest stay as they are); default NULL */

@@ -109,6 +109,7 @@ static const cli_opt build_opts[] = {
     CLI_HEADING("Common options"),
     {"out", "FILE", "the table file (resumes from FILE.journal and FILE if they exist)"},
     {"jobs", "N", "points computed at once, one thread each (default: one per core); "
+                  "fewer points than N: a point's placements share the N threads; "
                   "under mpirun -n N > 1: points rank 0 computes besides handing them out "
                   "(default 1; the other ranks compute one at a time)"},
     {"shard", "I/N", "compute only points with index % N == I (job arrays; join with "
