@@ -103,15 +103,16 @@ def run(cmd, check=True):
     return p
 
 
-def fe_point(cli, config, work, k, pt, sub="heldout", extra=()):
+def fe_point(cli, config, work, k, pt, sub="heldout", extra=(), threads=1):
     """One fresh FE point, as the table computes its points, at the placements
     the caller gives (--placements-max 0: the family's configuration may refine
-    its own points, these are held to a fixed count); resumable."""
+    its own points, these are held to a fixed count), its members on up to
+    threads threads; resumable."""
     d, t, e = pt
     path = os.path.join(work, sub, "p%02d.h5" % k)
     t0 = time.time()
     p = run([cli, "table", "build", "--config", config, "--deltas", repr(d),
-             "--t-over-R", repr(t), "--E-ratio", repr(e), "--out", path, "--jobs", "1",
+             "--t-over-R", repr(t), "--E-ratio", repr(e), "--out", path, "--jobs", str(threads),
              "--quiet", "--placements-max", "0"] + list(extra), check=False)
     if p.returncode != 0:
         return {"error": p.stderr.strip()}
@@ -219,9 +220,12 @@ def refine(cli, config, work, jobs, count, only=()):
     todo = [(k, pt) for k, pt in enumerate(REFINED)
             if pt not in have and (not only or pt in only)][:count]
     os.makedirs(os.path.join(work, "refined"), exist_ok=True)
+    # fewer points than jobs: a point's four members share the threads
+    threads = max(1, jobs // max(1, len(todo)))
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
         fe = list(ex.map(lambda kp: fe_point(cli, config, work, kp[0], kp[1], "refined",
-                                             ("--mesh-level", "1", "--placements", "4")), todo))
+                                             ("--mesh-level", "1", "--placements", "4"),
+                                             threads), todo))
     cols = ["delta_over_omega_c", "t_over_R", "E_ratio", "mu_s", "mu_s_err", "mu_s_min",
             "mu_s_max", "P_over_P_c", "A_over_A_c", "members", "cpu_s", "wall_s"]
     rows = [have[pt] for pt in REFINED if pt in have]
