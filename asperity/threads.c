@@ -54,16 +54,13 @@ stc_status asp_run_team(stc_status (*fn)(void *ctx), void *ctx, int threads)
 {
     stc_status st;
     asp_blas_serial_enter();
-    if (threads > 1) {
-        /* one more active level than the caller's for fn's own team, in
-         * fn's implicit task alone (as ASP_OMP_SERIAL's setting) */
+    /* ASP_OMP_SERIAL's region, whose setting (in fn's implicit task alone)
+     * leaves fn no active level, or one more than the caller's for fn's
+     * own team */
 #pragma omp parallel num_threads(1)
-        {
-            omp_set_max_active_levels(omp_get_active_level() + 1);
-            st = fn(ctx);
-        }
-    } else {
-        ASP_OMP_SERIAL(st = fn(ctx));
+    {
+        omp_set_max_active_levels(threads > 1 ? omp_get_active_level() + 1 : 0);
+        st = fn(ctx);
     }
     asp_blas_serial_leave();
     return st;

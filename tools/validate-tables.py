@@ -244,9 +244,10 @@ def refine(cli, config, work, jobs, count, only=()):
     os.replace(REFINED_CSV + ".tmp", REFINED_CSV)
 
 
-def refined(cli, table, rep):
+def refined(cli, table, info, rep):
     """Table points against the stored references (data/fe/table-refined.csv,
-    and the thesis-family points of data/fe/references.csv)."""
+    and the thesis-family points of data/fe/references.csv); info: the table's
+    `table info --json`."""
     have = stored_refined()
     pts = sorted(have)
     rep.out("## Point accuracy: table points against one full refinement\n")
@@ -267,7 +268,7 @@ def refined(cli, table, rep):
     n = within = covered = qwithin = qcovered = 0
     worst = qworst = 0.0
     points = table_points(cli, table)
-    floor = json.loads(run([cli, "table", "info", table, "--json"]).stdout)["numerics"]["err_floor"]
+    floor = info["numerics"]["err_floor"]
     zs = []  # the differences over both sides' standard errors, the table's without its floor
     for pt in pts:
         f = have[pt]
@@ -604,7 +605,7 @@ def main():
                                             100 * info["loo_cover2"]))
     checks = surface(a.cli, a.table, rep)
     checks += held_out(a.cli, a.table, a.config, a.work, a.jobs, a.fresh, rep)
-    checks += refined(a.cli, a.table, rep)
+    checks += refined(a.cli, a.table, info, rep)
     checks += tin_heldout(a.cli, rep)
     rep.out("## Verdicts\n")
     # ("check", name, reference, tolerance, measured, passed) and
