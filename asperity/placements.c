@@ -11,7 +11,9 @@
  * the members sample the node-entry sawtooth at k evenly spaced phases of one
  * period, and their mean is the stratified average over it.  Member 0's
  * normal step gives a0; the other members then run concurrently with it, one
- * thread each. */
+ * thread each.  A store (asp_shear_placements_stored) keeps each finished
+ * member and hands it back to a later run of the same ensemble, which then
+ * does not run it. */
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -46,7 +48,11 @@ static void member_shear(const asp_shear_options *so, asp_placement_member *m,
 {
     if (m->status == STC_OK) {
         m->status = asp_solver_shear(*sv, so, NULL, NULL, &m->res);
-        if (m->status != STC_OK) snprintf(m->message, sizeof m->message, "%s", m->res.reason);
+        if (m->status != STC_OK) { /* two fields of *m: a bounded copy */
+            size_t n = strnlen(m->res.reason, sizeof m->message - 1);
+            memcpy(m->message, m->res.reason, n);
+            m->message[n] = '\0';
+        }
     }
     asp_solver_destroy(sv);
 }
@@ -58,17 +64,19 @@ stc_status asp_shear_placements(const stc_params *p, const asp_options *o,
     return asp_shear_placements_preload(p, o, so, delta, 0.0, k, out);
 }
 
-/* Load and shear members j0, j0 + dj, ... < k of out concurrently, one
- * thread each, at most o->threads (0: all cores) at a time; sv[j] already
- * holds a loaded solver where it is not NULL (member 0 of a new ensemble).
- * Adds to out->cpu_s the CPU time of the team's threads other than the
- * caller's (the caller counts its own). */
+/* Load and shear the members todo[n] of out concurrently, one thread each,
+ * at most o->threads (0: all cores) at a time; sv[j] already holds a loaded
+ * solver where it is not NULL (member 0 of a new ensemble).  Each member's
+ * CPU time is added to its cpu_s, and it goes to store (nullable) when
+ * done.  Adds to out->cpu_s the CPU time of the team's threads other than
+ * the caller's (the caller counts its own). */
 static void run_members(const stc_params *p, const asp_options *o, const asp_shear_options *so,
-                        asp_placement_result *out, asp_solver **sv, int j0, int dj)
+                        const asp_placement_store *store, asp_placement_result *out,
+                        asp_solver **sv, const int *todo, int n)
 {
-    int n = (out->k - j0 + dj - 1) / dj;
     int nt = o->threads > 0 ? o->threads : omp_get_max_threads();
     if (nt > n) nt = n;
+    if (nt < 1) return;
     /* one BLAS thread per member (threads.c), also when it runs alone, so
      * that a member's numbers do not depend on how many run beside it (a
      * refined ensemble is the one made at once, to the bit); CHOLMOD's
@@ -81,9 +89,12 @@ static void run_members(const stc_params *p, const asp_options *o, const asp_she
         double c0 = asp_thread_cpu();
 #pragma omp for schedule(dynamic, 1)
         for (int i = 0; i < n; i++) {
-            int j = j0 + i * dj;
+            int j = todo[i];
+            double cm = asp_thread_cpu();
             if (!sv[j]) member_load(p, o, out->delta_mesh, out->delta, 0.0, &out->m[j], &sv[j]);
             member_shear(so, &out->m[j], &sv[j]);
+            out->m[j].cpu_s += asp_thread_cpu() - cm;
+            if (store && store->put) store->put(store->ctx, out, j);
         }
         if (omp_get_thread_num() != 0) {
             double c = asp_thread_cpu() - c0;
@@ -92,6 +103,33 @@ static void run_members(const stc_params *p, const asp_options *o, const asp_she
         }
     }
     asp_blas_serial_leave();
+}
+
+/* Member j of out (its elements_per_contact set) from store, if an earlier
+ * run finished it; 1 if taken.  For member 0 (ensemble_start) the
+ * geometry is taken too; for the others it must be the ensemble's own. */
+static int member_take(const asp_placement_store *store, asp_placement_result *out, int j)
+{
+    if (!store || !store->get) return 0;
+    asp_placement_result *g = malloc(sizeof *g);
+    asp_placement_member *m = malloc(sizeof *m);
+    int got = g && m && store->get(store->ctx, j * (ASP_PLACEMENTS_MAX / out->k), g, m);
+    if (got && j > 0) /* a member of another ensemble: computed, not taken */
+        got = m->elements_per_contact == out->m[j].elements_per_contact &&
+              g->period == out->period && g->delta == out->delta &&
+              g->delta_mesh == out->delta_mesh && g->edge_a0 == out->edge_a0 &&
+              g->edge_refine == out->edge_refine;
+    if (got) {
+        out->m[j] = *m;
+        out->cpu_s += m->cpu_s; /* what it cost, when it ran */
+        if (j == 0) {
+            out->period = g->period, out->edge_refine = g->edge_refine;
+            out->delta = g->delta, out->delta_mesh = g->delta_mesh, out->edge_a0 = g->edge_a0;
+        }
+    }
+    free(g);
+    free(m);
+    return got;
 }
 
 /* The means, extremes and error of out's k members, and its status. */
@@ -126,9 +164,10 @@ static stc_status summarize(asp_placement_result *out, double t0)
     return STC_OK;
 }
 
-stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *o,
-                                        const asp_shear_options *so, double delta, double P,
-                                        int k, asp_placement_result *out)
+/* asp_shear_placements_preload with the members kept in store (nullable). */
+static stc_status ensemble_start(const stc_params *p, const asp_options *o,
+                                 const asp_shear_options *so, double delta, double P, int k,
+                                 const asp_placement_store *store, asp_placement_result *out)
 {
     memset(out, 0, sizeof *out);
     STC_CHECK(k >= 1 && k <= ASP_PLACEMENTS_MAX, STC_EINVAL,
@@ -146,41 +185,59 @@ stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *
     asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
     asp_placement_member *m = out->m;
     out->k = k;
-    m[0].elements_per_contact = o->elements_per_contact; /* 0: the level's */
-    asp_blas_serial_enter(); /* member 0's normal step on one BLAS thread as the rest */
-    member_load(p, o, delta, delta, P, &m[0], &sv[0]);
-    asp_blas_serial_leave();
-    asp_info in;
-    if (sv[0]) { /* the mesh resolves the level into elements per contact */
-        asp_solver_info(sv[0], &in);
-        m[0].elements_per_contact = in.elements_per_contact;
+    int todo[ASP_PLACEMENTS_MAX], n = 0;
+    if (member_take(store, out, 0)) { /* finished before: its geometry too */
+        eo.edge_a0 = out->edge_a0;
+    } else {
+        m[0].elements_per_contact = o->elements_per_contact; /* 0: the level's */
+        asp_blas_serial_enter(); /* member 0's normal step on one BLAS thread as the rest */
+        member_load(p, o, delta, delta, P, &m[0], &sv[0]);
+        asp_blas_serial_leave();
+        m[0].cpu_s = asp_thread_cpu() - c0;
+        asp_info in;
+        if (sv[0]) { /* the mesh resolves the level into elements per contact */
+            asp_solver_info(sv[0], &in);
+            m[0].elements_per_contact = in.elements_per_contact;
+        }
+        if (m[0].status != STC_OK) {
+            asp_solver_destroy(&sv[0]);
+            out->cpu_s = asp_thread_cpu() - c0;
+            return STC_FAIL(m[0].status, "placements: member 0 (elements per contact %g): %s",
+                            m[0].elements_per_contact, m[0].message);
+        }
+        /* under load control the others run at member 0's interference, on
+         * meshes sized as its own (for the same delta_max), so the phases stay
+         * evenly spaced; their loads differ from P by their meshes' */
+        out->delta_mesh = delta > 0.0 ? delta : sv[0]->delta_max;
+        out->delta = P > 0.0 ? m[0].pt.delta : delta;
+        out->edge_a0 = eo.edge_a0 = sv[0]->opt.edge_a0;
+        /* the shift that moves the surface nodes at the edge by one spacing: the
+         * coarse one, or the band's, 2^K times finer (a coarse shift moves the
+         * band's nodes by whole spacings: every member at one phase) */
+        out->period = in.a_max / m[0].pt.a / (1 << in.edge_refine);
+        out->edge_refine = in.edge_refine;
+        todo[n++] = 0;
     }
-    if (m[0].status != STC_OK) {
-        asp_solver_destroy(&sv[0]);
-        out->cpu_s = asp_thread_cpu() - c0;
-        return STC_FAIL(m[0].status, "placements: member 0 (elements per contact %g): %s",
-                        m[0].elements_per_contact, m[0].message);
-    }
-    /* under load control the others run at member 0's interference, on
-     * meshes sized as its own (for the same delta_max), so the phases stay
-     * evenly spaced; their loads differ from P by their meshes' */
-    out->delta_mesh = delta > 0.0 ? delta : sv[0]->delta_max;
-    out->delta = P > 0.0 ? m[0].pt.delta : delta;
-    out->edge_a0 = eo.edge_a0 = sv[0]->opt.edge_a0;
-    /* the shift that moves the surface nodes at the edge by one spacing: the
-     * coarse one, or the band's, 2^K times finer (a coarse shift moves the
-     * band's nodes by whole spacings: every member at one phase) */
-    out->period = in.a_max / m[0].pt.a / (1 << in.edge_refine);
-    out->edge_refine = in.edge_refine;
-    for (int j = 1; j < k; j++)
+    for (int j = 1; j < k; j++) {
         m[j].elements_per_contact = m[0].elements_per_contact + j * out->period / k;
-    run_members(p, o, so, out, sv, 0, 1);
+        if (!member_take(store, out, j)) todo[n++] = j;
+    }
+    run_members(p, o, so, store, out, sv, todo, n);
     out->cpu_s += asp_thread_cpu() - c0;
     return summarize(out, t0);
 }
 
-stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o,
-                                       const asp_shear_options *so, asp_placement_result *out)
+stc_status asp_shear_placements_preload(const stc_params *p, const asp_options *o,
+                                        const asp_shear_options *so, double delta, double P,
+                                        int k, asp_placement_result *out)
+{
+    return ensemble_start(p, o, so, delta, P, k, NULL, out);
+}
+
+/* asp_shear_placements_refine with the members kept in store (nullable). */
+static stc_status ensemble_refine(const stc_params *p, const asp_options *o,
+                                  const asp_shear_options *so, const asp_placement_store *store,
+                                  asp_placement_result *out)
 {
     int k = out->k;
     STC_CHECK(k >= 1 && 2 * k <= ASP_PLACEMENTS_MAX, STC_EINVAL,
@@ -198,14 +255,22 @@ stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o
      * ones half a step after each */
     for (int j = k - 1; j >= 0; j--) out->m[2 * j] = out->m[j];
     out->k = 2 * k;
+    int todo[ASP_PLACEMENTS_MAX], n = 0;
     for (int j = 1; j < 2 * k; j += 2) {
         memset(&out->m[j], 0, sizeof out->m[j]);
         out->m[j].elements_per_contact = out->m[0].elements_per_contact + j * out->period / (2 * k);
+        if (!member_take(store, out, j)) todo[n++] = j;
     }
     asp_solver *sv[ASP_PLACEMENTS_MAX] = {NULL};
-    run_members(p, &eo, so, out, sv, 1, 2);
+    run_members(p, &eo, so, store, out, sv, todo, n);
     out->cpu_s += asp_thread_cpu() - c0;
     return summarize(out, t0);
+}
+
+stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o,
+                                       const asp_shear_options *so, asp_placement_result *out)
+{
+    return ensemble_refine(p, o, so, NULL, out);
 }
 
 stc_status asp_placements_refine_check(int k, int k_max, double rel_err)
@@ -222,20 +287,29 @@ stc_status asp_placements_refine_check(int k, int k_max, double rel_err)
     return STC_OK;
 }
 
+stc_status asp_shear_placements_stored(const stc_params *p, const asp_options *o,
+                                       const asp_shear_options *so, double delta, double P,
+                                       int k, int k_max, double rel_err,
+                                       const asp_placement_store *store,
+                                       asp_placement_result *out)
+{
+    memset(out, 0, sizeof *out);
+    STC_CALL(asp_placements_refine_check(k, k_max, rel_err));
+    STC_CALL(ensemble_start(p, o, so, delta, P, k, store, out));
+    /* the members' standard error without the floor; one member: its own */
+    while (2 * out->k <= k_max &&
+           asp_placement_mu_s_err(out, out->m[0].res.mu_s_err / out->m[0].res.mu_s, 0.0) >
+               rel_err * out->mu_s)
+        STC_CALL(ensemble_refine(p, o, so, store, out));
+    return STC_OK;
+}
+
 stc_status asp_shear_placements_adaptive(const stc_params *p, const asp_options *o,
                                          const asp_shear_options *so, double delta, double P,
                                          int k, int k_max, double rel_err,
                                          asp_placement_result *out)
 {
-    memset(out, 0, sizeof *out);
-    STC_CALL(asp_placements_refine_check(k, k_max, rel_err));
-    STC_CALL(asp_shear_placements_preload(p, o, so, delta, P, k, out));
-    /* the members' standard error without the floor; one member: its own */
-    while (2 * out->k <= k_max &&
-           asp_placement_mu_s_err(out, out->m[0].res.mu_s_err / out->m[0].res.mu_s, 0.0) >
-               rel_err * out->mu_s)
-        STC_CALL(asp_shear_placements_refine(p, o, so, out));
-    return STC_OK;
+    return asp_shear_placements_stored(p, o, so, delta, P, k, k_max, rel_err, NULL, out);
 }
 
 double asp_mu_s_err_single(double foot_rows, int edge_refine, double delta_over_omega)

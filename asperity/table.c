@@ -168,9 +168,11 @@ static void fill_done(const stc_critical *c, const asp_placement_result *e,
 }
 
 /* tbl_point_compute with the members of the point's ensemble on up to
- * `threads` threads at once (one each; the same numbers as on one). */
+ * `threads` threads at once (one each; the same numbers as on one), kept in
+ * and taken from store (nullable). */
 static stc_status point_compute(const tbl_family *f, const tbl_numerics *num, double w,
-                                double t_over_R, double E_ratio, int threads, tbl_point *out)
+                                double t_over_R, double E_ratio, int threads,
+                                const asp_placement_store *store, tbl_point *out)
 {
     STC_CHECK(f && num && out, STC_EINVAL, "tbl_point_compute: NULL argument");
     STC_CALL(tbl_family_validate(f));
@@ -205,8 +207,8 @@ static stc_status point_compute(const tbl_family *f, const tbl_numerics *num, do
     asp_placement_result *e = malloc(sizeof *e);
     STC_CHECK(e, STC_ENOMEM, "tbl_point_compute: out of memory");
     double t0 = tbl_wall_now(), c0 = asp_thread_cpu();
-    stc_status st = asp_shear_placements_adaptive(&p, &o, &so, delta, 0.0, num->placements,
-                                                  num->placements_max, num->refine_err, e);
+    stc_status st = asp_shear_placements_stored(&p, &o, &so, delta, 0.0, num->placements,
+                                                num->placements_max, num->refine_err, store, e);
     if (st == STC_OK) {
         fill_done(&c, e, num, out);
     } else {
@@ -226,7 +228,7 @@ static stc_status point_compute(const tbl_family *f, const tbl_numerics *num, do
 stc_status tbl_point_compute(const tbl_family *f, const tbl_numerics *num, double w,
                              double t_over_R, double E_ratio, tbl_point *out)
 {
-    return point_compute(f, num, w, t_over_R, E_ratio, 1, out);
+    return point_compute(f, num, w, t_over_R, E_ratio, 1, NULL, out);
 }
 
 /* point_compute's arguments, for asp_run_team. */
@@ -234,13 +236,14 @@ typedef struct {
     const tbl_table *t;
     double w, tR, E;
     int threads;
+    const asp_placement_store *store;
     tbl_point *p;
 } point_job;
 
 static stc_status point_run(void *ctx)
 {
     const point_job *j = ctx;
-    return point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->threads, j->p);
+    return point_compute(&j->t->fam, &j->t->num, j->w, j->tR, j->E, j->threads, j->store, j->p);
 }
 
 /* One point on the calling thread alone, whichever path runs it (the
@@ -253,18 +256,20 @@ static stc_status point_run(void *ctx)
  * numbers do not depend on jobs, shards or ranks.  threads > 1 (fewer
  * points than threads): the point's members on that many threads, one
  * each, with the same numbers (placements.c). */
-stc_status tbl_build_compute(const tbl_table *t, int i, int threads, tbl_point *p)
+stc_status tbl_build_compute(const tbl_table *t, int i, int threads,
+                             const asp_placement_store *store, tbl_point *p)
 {
     double w, tR, E;
     tbl_coords(t, i, &w, &tR, &E);
-    point_job j = {t, w, tR, E, threads, p};
+    point_job j = {t, w, tR, E, threads, store, p};
     return asp_run_team(point_run, &j, threads);
 }
 
-stc_status tbl_build_item(const tbl_table *t, int item, int threads, tbl_point *p, tbl_curve *cv,
+stc_status tbl_build_item(const tbl_table *t, int item, int threads,
+                          const asp_placement_store *store, tbl_point *p, tbl_curve *cv,
                           double *P, double *A)
 {
-    return item >= 0 ? tbl_build_compute(t, item, threads, p)
+    return item >= 0 ? tbl_build_compute(t, item, threads, store, p)
                      : tbl_build_curve(t, -item - 1, cv, P, A);
 }
 
@@ -561,6 +566,7 @@ unsigned long long tbl_build_hash(const tbl_table *t)
     /* the journal and the MPI messages carry points and curves as bytes */
     unsigned long long h = fnv_i(definition_hash(t), TBL_FORMAT_VERSION);
     h = fnv_i(h, (int)sizeof(tbl_point));
+    h = fnv_i(h, (int)sizeof(asp_placement_member)); /* the journal's member records */
     return fnv_i(h, (int)sizeof(tbl_curve));
 }
 

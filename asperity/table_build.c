@@ -3,8 +3,10 @@
  * written atomically at the end (include/stiction/table.h, tbl_build).
  *
  * Journal: a header (8-byte magic, the build's hash) and then one record per
- * finished point or normal curve: magic, index, the point's (or the curve's
- * and its values') bytes, a checksum.  Each record
+ * finished point or normal curve, and per finished placement member of a
+ * point (so that a build killed during a long point keeps its finished
+ * members): magic, index, the point's (the curve's and its values', the
+ * member's) bytes, a checksum.  Each record
  * is written with one write() and flushed (fdatasync) before the next point
  * is reported, so a build killed at any moment leaves whole records plus at
  * most one torn one, which the checksum rejects; the file is cut back to its
@@ -34,6 +36,15 @@
 static const char JOURNAL_MAGIC[8] = {'S', 'T', 'C', 'T', 'B', 'L', 'J', '2'};
 #define POINT_MAGIC 0x50544254u /* "TBTP" */
 #define CURVE_MAGIC 0x43544254u /* "TBTC" */
+#define MEMBER_MAGIC 0x4d544254u /* "TBTM" */
+
+/* A member record's payload: the member of point `index` at phase slot
+ * `slot` (asp_placement_store) and its ensemble's geometry. */
+typedef struct tbl_member_rec {
+    int32_t index, slot, edge_refine, pad;
+    double period, delta, delta_mesh, edge_a0;
+    asp_placement_member m;
+} tbl_member_rec;
 
 /* A record: this head, the payload (a tbl_point, or a tbl_curve and the
  * curve's P[n_w] and A[n_w]), a checksum of everything before it. */
@@ -44,8 +55,9 @@ typedef struct {
 
 static size_t payload_size(const tbl_table *t, uint32_t magic)
 {
-    return magic == POINT_MAGIC ? sizeof(tbl_point)
-                                : sizeof(tbl_curve) + 2 * (size_t)t->nrm.n[0] * sizeof(double);
+    if (magic == POINT_MAGIC) return sizeof(tbl_point);
+    if (magic == MEMBER_MAGIC) return sizeof(tbl_member_rec);
+    return sizeof(tbl_curve) + 2 * (size_t)t->nrm.n[0] * sizeof(double);
 }
 
 static uint64_t fnv64(const unsigned char *b, size_t n)
@@ -81,14 +93,27 @@ static int write_all(int fd, const void *buf, size_t n)
     return 0;
 }
 
-/* Open the journal of t at jpath: take its whole records into t (pending
- * points and curves only), cut off a torn tail, or start a new journal.
- * *fd open for appending; *taken, *taken_curves the points and curves taken. */
-static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *taken,
+/* Keep member record r for its point (pending in b's table): b->mem. */
+static int keep_member(tbl_build_state *b, const tbl_member_rec *r)
+{
+    tbl_member_rec *m = realloc(b->mem, (size_t)(b->n_mem + 1) * sizeof *m);
+    if (!m) return -1;
+    b->mem = m;
+    b->mem[b->n_mem++] = *r;
+    return 0;
+}
+
+/* Open the journal of b's table at jpath: take its whole records into the
+ * table (pending points and curves only) and the members of its pending
+ * points into b->mem, cut off a torn tail, or start a new journal.  b->fd
+ * open for appending; *taken, *taken_curves the points and curves taken. */
+static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken,
                                int *taken_curves)
 {
+    tbl_table *t = b->t;
     uint64_t hash = tbl_build_hash(t);
     *taken = *taken_curves = 0;
+    int *fd = &b->fd;
     *fd = open(jpath, O_RDWR | O_CREAT, 0666);
     STC_CHECK(*fd >= 0, STC_EIO, "%s: cannot open the build journal: %s", jpath,
               strerror(errno));
@@ -100,18 +125,21 @@ static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *ta
             close(*fd);
             *fd = -1;
             return STC_FAIL(STC_EINVAL, "%s: the journal of another build (family, numerics or "
-                            "axes differ): remove it, or build with the options that made it",
-                            jpath);
+                            "axes differ, or another stiction binary): remove it, or build with "
+                            "the options and binary that made it", jpath);
         }
         off_t good = (off_t)(sizeof magic + sizeof h);
-        size_t cap = payload_size(t, CURVE_MAGIC) > sizeof(tbl_point) ? payload_size(t, CURVE_MAGIC)
-                                                                      : sizeof(tbl_point);
+        size_t cap = sizeof(tbl_point);
+        if (payload_size(t, CURVE_MAGIC) > cap) cap = payload_size(t, CURVE_MAGIC);
+        if (sizeof(tbl_member_rec) > cap) cap = sizeof(tbl_member_rec);
         unsigned char *buf = malloc(sizeof(record_head) + cap + sizeof(uint64_t));
         STC_CHECK(buf, STC_ENOMEM, "tbl_build: out of memory");
         for (;;) {
             record_head rh;
             if (read(*fd, &rh, sizeof rh) != (ssize_t)sizeof rh) break;
-            if (rh.magic != POINT_MAGIC && (rh.magic != CURVE_MAGIC || tbl_curves(t) == 0)) break;
+            if (rh.magic != POINT_MAGIC && rh.magic != MEMBER_MAGIC &&
+                (rh.magic != CURVE_MAGIC || tbl_curves(t) == 0))
+                break;
             size_t n = payload_size(t, rh.magic);
             memcpy(buf, &rh, sizeof rh);
             uint64_t sum;
@@ -119,13 +147,21 @@ static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *ta
                 read(*fd, &sum, sizeof sum) != (ssize_t)sizeof sum ||
                 sum != fnv64(buf, sizeof rh + n))
                 break;
+            if (rh.magic != CURVE_MAGIC && (rh.index < 0 || rh.index >= tbl_points(t))) break;
             if (rh.magic == POINT_MAGIC) {
-                if (rh.index < 0 || rh.index >= tbl_points(t)) break;
                 tbl_point p;
                 memcpy(&p, buf + sizeof rh, sizeof p);
                 if (t->pt[rh.index].state == TBL_PENDING && p.state != TBL_PENDING &&
                     tbl_point_set(t, rh.index, &p) == STC_OK)
                     (*taken)++;
+            } else if (rh.magic == MEMBER_MAGIC) {
+                tbl_member_rec r;
+                memcpy(&r, buf + sizeof rh, sizeof r);
+                if (r.index == rh.index && r.slot >= 0 && r.slot < ASP_PLACEMENTS_MAX &&
+                    keep_member(b, &r) != 0) {
+                    free(buf);
+                    return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
+                }
             } else {
                 if (rh.index < 0 || rh.index >= tbl_curves(t)) break;
                 tbl_curve c;
@@ -138,6 +174,12 @@ static stc_status journal_open(tbl_table *t, const char *jpath, int *fd, int *ta
             good += (off_t)(sizeof rh + n + sizeof sum);
         }
         free(buf);
+        /* members only of the points still pending (a failed point computed
+         * again, --retry-failed, runs its members again too) */
+        int kept = 0;
+        for (int r = 0; r < b->n_mem; r++)
+            if (t->pt[b->mem[r].index].state == TBL_PENDING) b->mem[kept++] = b->mem[r];
+        b->n_mem = kept;
         /* a torn last record (killed mid-write) is dropped and recomputed */
         STC_CHECK(ftruncate(*fd, good) == 0 && lseek(*fd, good, SEEK_SET) == good, STC_EIO,
                   "%s: cannot cut the journal back to its last whole record: %s", jpath,
@@ -197,6 +239,12 @@ static int journal_curve(int fd, const tbl_table *t, int c, const tbl_curve *cv,
     return r;
 }
 
+/* A member's record: r (its padding zeroed by the caller). */
+static int journal_member(int fd, const tbl_member_rec *r)
+{
+    return journal_append(fd, MEMBER_MAGIC, r->index, r, sizeof *r, NULL, 0);
+}
+
 /* Points and curves of an existing table at path (same build) join t.  A
  * file without a normal grid (format version 1, say) gives its points to a
  * build that has one, which then computes the curves.  A build that adds or
@@ -245,8 +293,10 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
     return STC_OK;
 }
 
-/* Report to the caller (holding the build's lock); nonzero: stop. */
-static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tbl_curve *cv)
+/* Report to the caller (holding the build's lock): point i (p), curve c
+ * (cv) or member j of point i's ensemble e; nonzero: stop. */
+static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tbl_curve *cv,
+                  const asp_placement_result *e, int j)
 {
     if (!b->o->progress) return 0;
     double el = wall_now() - b->t0, eta;
@@ -254,10 +304,14 @@ static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tb
         eta = b->curves_done < b->curves_total
                   ? el / b->curves_computed * (b->curves_total - b->curves_done)
                   : 0.0;
+    else if (e) /* no estimate before the first point */
+        eta = b->computed > 0 ? (el - b->curves_wall) / b->computed * (b->total - b->done) : NAN;
     else
         eta = b->done < b->total ? (el - b->curves_wall) / b->computed * (b->total - b->done)
                                  : 0.0;
     tbl_progress pr = {.index = i, .point = p, .curve = c, .c = cv,
+                       .member = e ? j : -1, .members = e ? e->k : 0,
+                       .m = e ? &e->m[j] : NULL,
                        .curves_done = b->curves_done, .curves_total = b->curves_total,
                        .done = b->done, .total = b->total, .resumed = b->resumed,
                        .failed = b->failed, .elapsed_s = el, .eta_s = eta};
@@ -276,7 +330,7 @@ static void build_finish(tbl_build_state *b, int i, const tbl_point *p)
             b->done++, b->computed++;
             b->failed += p->state == TBL_FAILED;
             b->cpu += p->cpu_s;
-            stop = report(b, i, p, -1, NULL);
+            stop = report(b, i, p, -1, NULL, NULL, 0);
         }
         if (stop) {
 #pragma omp atomic write
@@ -300,7 +354,7 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
             b->curves_done++, b->curves_computed++;
             b->curves_failed += cv->state == TBL_FAILED;
             b->curves_wall = wall_now() - b->t0;
-            stop = report(b, -1, NULL, c, tbl_curve_get(b->t, c));
+            stop = report(b, -1, NULL, c, tbl_curve_get(b->t, c), NULL, 0);
         }
         if (stop) {
 #pragma omp atomic write
@@ -310,13 +364,70 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
     omp_unset_lock(&b->lock);
 }
 
+/* asp_placement_store.put of point ctx->i: journal member j of e, then
+ * report it. */
+static void member_put(void *ctx, const asp_placement_result *e, int j)
+{
+    const tbl_member_ctx *mc = ctx;
+    tbl_build_state *b = mc->b;
+    tbl_member_rec *r = calloc(1, sizeof *r); /* no stray padding bytes in the checksum */
+    omp_set_lock(&b->lock);
+    {
+        int stop = 0;
+        if (r) {
+            r->index = mc->i, r->slot = j * (ASP_PLACEMENTS_MAX / e->k);
+            r->edge_refine = e->edge_refine;
+            r->period = e->period, r->delta = e->delta, r->delta_mesh = e->delta_mesh;
+            r->edge_a0 = e->edge_a0;
+            r->m = e->m[j];
+        }
+        if (!r || journal_member(b->fd, r) != 0) b->io_error = errno ? errno : EIO, stop = 1;
+        else if (b->o->report_members) stop = report(b, mc->i, NULL, -1, NULL, e, j);
+        if (stop) {
+#pragma omp atomic write
+            b->stop = 1;
+        }
+    }
+    omp_unset_lock(&b->lock);
+    free(r);
+}
+
+/* asp_placement_store.get of point ctx->i: a member an earlier run journaled. */
+static int member_get(void *ctx, int slot, asp_placement_result *geom, asp_placement_member *m)
+{
+    const tbl_member_ctx *mc = ctx;
+    tbl_build_state *b = mc->b;
+    int got = 0;
+    omp_set_lock(&b->lock);
+    for (int r = 0; r < b->n_mem && !got; r++) {
+        const tbl_member_rec *x = &b->mem[r];
+        if (x->index != mc->i || x->slot != slot) continue;
+        *m = x->m;
+        geom->period = x->period, geom->edge_refine = x->edge_refine;
+        geom->delta = x->delta, geom->delta_mesh = x->delta_mesh, geom->edge_a0 = x->edge_a0;
+        got = 1;
+    }
+    if (got) b->members_taken++;
+    omp_unset_lock(&b->lock);
+    return got;
+}
+
+void tbl_member_store(tbl_build_state *b, int i, tbl_member_ctx *ctx, asp_placement_store *s)
+{
+    ctx->b = b, ctx->i = i;
+    s->put = member_put, s->get = member_get, s->ctx = ctx;
+}
+
 /* Item k of a todo list: a point i >= 0 (its members on up to `threads`
  * threads), or the curve c coded as -(c + 1). */
 static stc_status run_item(tbl_build_state *b, int item, int threads, double *P, double *A)
 {
     tbl_point p;
     tbl_curve cv;
-    STC_CALL(tbl_build_item(b->t, item, threads, &p, &cv, P, A));
+    tbl_member_ctx mc;
+    asp_placement_store store;
+    tbl_member_store(b, item, &mc, &store);
+    STC_CALL(tbl_build_item(b->t, item, threads, &store, &p, &cv, P, A));
     if (item >= 0) build_finish(b, item, &p);
     else finish_curve(b, -item - 1, &cv, P, A);
     return STC_OK;
@@ -409,7 +520,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     stc_status st = take_existing(t, path, &from_file, &cf, &reopened);
     if (st == STC_OK && snprintf(jpath, sizeof jpath, "%s.journal", path) >= (int)sizeof jpath)
         st = STC_FAIL(STC_EINVAL, "%s: path too long", path);
-    if (st == STC_OK) st = journal_open(t, jpath, &b.fd, &from_journal, &cj);
+    if (st == STC_OK) st = journal_open(&b, jpath, &from_journal, &cj);
     int np = tbl_points(t), nc = tbl_curves(t), n = 0;
     if (st == STC_OK && (!(todo = malloc((size_t)(np + nc) * sizeof *todo)) ||
                          !(need = calloc((size_t)nc + 1, 1))))
@@ -419,6 +530,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         if (m->size > 1) tbl_mpi_release(m, st, stc_errmsg());
         if (b.fd >= 0) close(b.fd);
         free(todo);
+        free(b.mem);
         return st;
     }
     n = share(&b, o, todo, need);
@@ -434,6 +546,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     omp_destroy_lock(&b.lock);
     tbl_mpi_end(m); /* every rank is done: the other ranks need not wait for the file */
     free(todo);
+    free(b.mem);
     close(b.fd);
     if (sum) {
         sum->computed = b.computed;
@@ -441,6 +554,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         sum->reopened = reopened;
         sum->failed = b.failed;
         sum->share = b.total;
+        sum->members_taken = b.members_taken;
         sum->curves_computed = b.curves_computed;
         sum->curves_failed = b.curves_failed;
         sum->wall_s = wall_now() - b.t0;

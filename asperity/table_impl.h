@@ -145,15 +145,33 @@ typedef struct tbl_build_state {
     double t0, cpu;             /* start (monotonic s); CPU s of the computed points */
     omp_lock_t lock;            /* serialises finish and the first-failure
                                    record; initialised around the computing phase */
+    /* members of pending points that an earlier run of the build finished
+     * (the journal's member records, table_build.c) */
+    struct tbl_member_rec *mem;
+    int n_mem;
+    int members_taken;          /* of them, taken by this run's points */
 } tbl_build_state;
+
+/* The store of point i's members in b's journal (table_build.c), for
+ * tbl_build_compute: each finished member is journaled (synced) and
+ * reported, and those an earlier run journaled are taken.  *s refers to
+ * *ctx, which must outlive the point's computation. */
+typedef struct tbl_member_ctx {
+    tbl_build_state *b;
+    int i;
+} tbl_member_ctx;
+void tbl_member_store(tbl_build_state *b, int i, tbl_member_ctx *ctx, asp_placement_store *s);
 
 /* Point i of t computed on the calling thread alone: tbl_point_compute at
  * the point's coordinates (table.c); threads > 1: its members on up to that
- * many threads, with the same numbers. */
-stc_status tbl_build_compute(const tbl_table *t, int i, int threads, tbl_point *p);
+ * many threads, with the same numbers.  store (nullable): its members kept
+ * there and taken from there (asp_shear_placements_stored). */
+stc_status tbl_build_compute(const tbl_table *t, int i, int threads,
+                             const asp_placement_store *store, tbl_point *p);
 /* Item `item` of a build's todo list on the calling thread: point item
  * (>= 0) into *p, or curve -(item + 1) into *cv, P and A (tbl_build_curve). */
-stc_status tbl_build_item(const tbl_table *t, int item, int threads, tbl_point *p, tbl_curve *cv,
+stc_status tbl_build_item(const tbl_table *t, int item, int threads,
+                          const asp_placement_store *store, tbl_point *p, tbl_curve *cv,
                           double *P, double *A);
 
 /* ---- distributed builds: the MPI farm (table_mpi.c) ---- */

@@ -335,7 +335,10 @@ static void farm_compute(farm *f)
     while (farm_take(f, &item)) {
         tbl_point p;
         tbl_curve cv;
-        stc_status s = tbl_build_item(f->b->t, item, 1, &p, &cv, v, v + nw);
+        tbl_member_ctx mc; /* rank 0 journals its own points' members */
+        asp_placement_store store;
+        tbl_member_store(f->b, item, &mc, &store);
+        stc_status s = tbl_build_item(f->b->t, item, 1, &store, &p, &cv, v, v + nw);
         if (s != STC_OK) {
             char msg[WHY_MAX + 64];
             snprintf(msg, sizeof msg, "rank 0: %s", stc_errmsg());
@@ -430,7 +433,7 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
         u.index = d.item;
         int c = -d.item - 1;
         stc_status s = d.item < tbl_points(t)
-                           ? tbl_build_item(t, d.item, 1, &u.p, &u.c, v, v + nw)
+                           ? tbl_build_item(t, d.item, 1, NULL, &u.p, &u.c, v, v + nw)
                            : STC_FAIL(STC_EINVAL, "point %d: not in the table of %d points",
                                       (int)d.item, tbl_points(t));
         if (s != STC_OK) { /* told to rank 0 in the next message; kept as our status */

@@ -32,12 +32,11 @@ static const char *P(const char *name) { return cli_path(dir, name); }
 #define BUILD_AXES "--deltas 0.5,1 --t-over-R 0.01 --E-ratio 1,2"
 #define BUILD_NUM "--contact slip --elements-per-contact 3 --placements 1"
 
-/* argv of a build of the small table into `out`, extra args appended */
-static int build_argv(char **av, int cap, const char *out, const char *extra)
+/* argv of the CLI with the arguments args (split at blanks) */
+static int cli_argv(char **av, int cap, const char *args)
 {
     static char buf[2048];
-    snprintf(buf, sizeof buf, "table build " BUILD_AXES " " BUILD_NUM " --out %s %s", out,
-             extra ? extra : "");
+    snprintf(buf, sizeof buf, "%s", args);
     int n = 0;
     av[n++] = cli;
     for (char *t = strtok(buf, " "); t && n < cap - 1; t = strtok(NULL, " ")) av[n++] = t;
@@ -45,11 +44,12 @@ static int build_argv(char **av, int cap, const char *out, const char *extra)
     return n;
 }
 
-/* Start a build with stderr to errfile; returns its pid. */
-static pid_t start_build(const char *out, const char *extra, const char *errfile)
+/* Start the CLI with args in the scratch directory, stderr to errfile;
+ * returns its pid. */
+static pid_t start_cli(const char *args, const char *errfile)
 {
     char *av[64];
-    build_argv(av, 64, out, extra);
+    cli_argv(av, 64, args);
     fflush(stdout); /* the child must not write the parent's buffered lines again */
     pid_t pid = fork();
     assert_true(pid >= 0);
@@ -62,6 +62,15 @@ static pid_t start_build(const char *out, const char *extra, const char *errfile
         _exit(127);
     }
     return pid;
+}
+
+/* Start a build of the small table into `out`, extra args appended. */
+static pid_t start_build(const char *out, const char *extra, const char *errfile)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "table build " BUILD_AXES " " BUILD_NUM " --out %s %s", out,
+             extra ? extra : "");
+    return start_cli(args, errfile);
 }
 
 static int wait_rc(pid_t pid)
@@ -258,6 +267,72 @@ static void test_killed_build_resumes(void **state)
     assert_false(exists(P("k.h5.tmp")));
     assert_same_results(P("ref.h5"), P("k.h5"));
     printf("  resumed table equals the uninterrupted build (every point)\n");
+}
+
+/* The file at path holds the bytes of tag (a journal record's magic). */
+static int file_has(const char *path, const char *tag)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    static char buf[1 << 20];
+    size_t n = fread(buf, 1, sizeof buf, f), k = strlen(tag);
+    fclose(f);
+    for (size_t i = 0; i + k <= n; i++)
+        if (!memcmp(buf + i, tag, k)) return 1;
+    return 0;
+}
+
+/* One point of two placement members, no normal grid */
+#define MEMBER_BUILD "table build --deltas 0.5 --t-over-R 0.01 --E-ratio 2 " \
+                     "--contact slip --elements-per-contact 3 --placements 2 " \
+                     "--normal-level -1 --jobs 1 --out "
+
+/* A build killed during a point, after its first placement member was
+ * journaled ("TBTM") and before the point was ("TBTP"), keeps that member:
+ * the next run computes only the other one, and the point equals the
+ * uninterrupted build's. */
+static void test_killed_point_keeps_members(void **state)
+{
+    (void)state;
+    pid_t ref = start_cli(MEMBER_BUILD "mref.h5", P("mref.err"));
+    int attempt = 0, caught = 0;
+    for (; attempt < 3 && !caught; attempt++) {
+        unlink(P("mk.h5.journal"));
+        pid_t pid = start_cli(MEMBER_BUILD "mk.h5", P("mk.err"));
+        int st, gone = 0;
+        while (!(gone = waitpid(pid, &st, WNOHANG) == pid) &&
+               !file_has(P("mk.h5.journal"), "TBTM")) {
+            struct timespec poll = {0, 5000000};
+            nanosleep(&poll, NULL);
+        }
+        if (gone) fail_msg("the build ended before its first member was journaled");
+        kill(pid, SIGKILL);
+        wait_rc(pid);
+        assert_false(exists(P("mk.h5")));
+        /* the point itself journaled before the kill landed: try again */
+        caught = !file_has(P("mk.h5.journal"), "TBTP");
+    }
+    printf("  killed after the first member's record (attempt %d)\n", attempt);
+    assert_true(caught);
+    char out[4096];
+    assert_int_equal(run(MEMBER_BUILD "mk.h5", 1, out, sizeof out), 0);
+    printf("%s", out);
+    assert_non_null(strstr(out, "1 of 1 points of its share computed"));
+    assert_non_null(strstr(out, "placement members taken from the journal of an earlier run: 1"));
+    assert_false(exists(P("mk.h5.journal")));
+    assert_int_equal(wait_rc(ref), 0);
+    tbl_table *ta = NULL, *tb = NULL;
+    assert_int_equal(tbl_read(P("mref.h5"), &ta), STC_OK);
+    assert_int_equal(tbl_read(P("mk.h5"), &tb), STC_OK);
+    assert_int_equal(tbl_point_get(tb, 0)->members, 2);
+    double worst = same_points(ta, tb);
+    printf("  resumed point against the uninterrupted build: largest relative difference "
+           "%.2g; CPU s %.2f against %.2f\n", worst, tbl_point_get(tb, 0)->cpu_s,
+           tbl_point_get(ta, 0)->cpu_s);
+    assert_true(worst == 0.0);
+    assert_true(tbl_point_get(tb, 0)->cpu_s > 0.75 * tbl_point_get(ta, 0)->cpu_s);
+    tbl_destroy(&ta);
+    tbl_destroy(&tb);
 }
 
 /* Two shards built separately and merged equal the serial build; a shard
@@ -702,6 +777,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_killed_build_resumes),
+        cmocka_unit_test(test_killed_point_keeps_members),
         cmocka_unit_test(test_shards_merge),
         cmocka_unit_test(test_refine_in_place),
         cmocka_unit_test(test_bad_input),

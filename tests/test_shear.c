@@ -700,6 +700,18 @@ static void test_placements(void **state)
     free(e);
 }
 
+/* The options of a coarse ensemble on two threads at 0.5 ωc of the shared
+ * run's sphere (the identities checked with it do not depend on the mesh);
+ * returns that δ, mm. */
+static double coarse_ensemble(asp_options *o, asp_shear_options *so)
+{
+    asp_options_default(o);
+    o->geom = ASP_GEOM_3D, o->mesh_level = 0, o->elements_per_contact = 3.0, o->threads = 2;
+    asp_shear_options_default(so);
+    so->foot_rows = 0.0;
+    return 0.5 * R.c.omega_c;
+}
+
 /* An ensemble refined (asp_shear_placements_refine): one member, then the
  * member half a period on, equals the two-member ensemble made at once,
  * member by member and in its means, to the bit (each member runs alone on
@@ -713,12 +725,7 @@ static void test_placements_refine(void **state)
     asp_placement_result *a = malloc(sizeof *a), *b = malloc(sizeof *b);
     assert_non_null(a);
     assert_non_null(b);
-    asp_options_default(&o);
-    /* a coarse mesh: the identity does not depend on it */
-    o.geom = ASP_GEOM_3D, o.mesh_level = 0, o.elements_per_contact = 3.0, o.threads = 2;
-    asp_shear_options_default(&so);
-    so.foot_rows = 0.0;
-    double delta = 0.5 * R.c.omega_c;
+    double delta = coarse_ensemble(&o, &so);
     assert_int_equal(asp_shear_placements(&R.p, &o, &so, delta, 1, a), STC_OK);
     assert_int_equal(asp_shear_placements_refine(&R.p, &o, &so, a), STC_OK);
     assert_int_equal(asp_shear_placements(&R.p, &o, &so, delta, 2, b), STC_OK);
@@ -742,6 +749,105 @@ static void test_placements_refine(void **state)
     assert_non_null(strstr(stc_errmsg(), "1 of 2 members"));
     free(a);
     free(b);
+}
+
+/* An in-memory asp_placement_store: the members by slot, and how many
+ * were put. */
+typedef struct {
+    int have[ASP_PLACEMENTS_MAX], puts, slots_put[ASP_PLACEMENTS_MAX];
+    asp_placement_member m[ASP_PLACEMENTS_MAX];
+    asp_placement_result geom; /* the header fields only */
+} mem_store;
+
+static void mem_put(void *ctx, const asp_placement_result *e, int j)
+{
+    mem_store *s = ctx;
+#pragma omp critical(mem_store)
+    {
+        int slot = j * (ASP_PLACEMENTS_MAX / e->k);
+        s->have[slot] = 1;
+        s->m[slot] = e->m[j];
+        s->slots_put[s->puts++] = slot;
+        s->geom.period = e->period, s->geom.edge_refine = e->edge_refine;
+        s->geom.delta = e->delta, s->geom.delta_mesh = e->delta_mesh;
+        s->geom.edge_a0 = e->edge_a0;
+    }
+}
+
+static int mem_get(void *ctx, int slot, asp_placement_result *g, asp_placement_member *m)
+{
+    mem_store *s = ctx;
+    int got = 0;
+#pragma omp critical(mem_store)
+    if (s->have[slot]) {
+        *m = s->m[slot];
+        g->period = s->geom.period, g->edge_refine = s->geom.edge_refine;
+        g->delta = s->geom.delta, g->delta_mesh = s->geom.delta_mesh;
+        g->edge_a0 = s->geom.edge_a0;
+        got = 1;
+    }
+    return got;
+}
+
+static void assert_same_ensemble(const asp_placement_result *a, const asp_placement_result *b)
+{
+    assert_int_equal(a->k, b->k);
+    assert_int_equal(a->n_ok, b->n_ok);
+    for (int j = 0; j < a->k; j++) {
+        assert_true(a->m[j].elements_per_contact == b->m[j].elements_per_contact);
+        assert_true(a->m[j].res.mu_s == b->m[j].res.mu_s);
+        assert_true(a->m[j].pt.P == b->m[j].pt.P && a->m[j].pt.A == b->m[j].pt.A);
+    }
+    assert_true(a->mu_s == b->mu_s && a->mu_s_err == b->mu_s_err);
+    assert_true(a->P_slide == b->P_slide && a->Q_max == b->Q_max);
+    assert_true(a->period == b->period && a->delta == b->delta);
+}
+
+/* Members kept in a store (asp_shear_placements_stored): an adaptive
+ * ensemble refined from one member to two puts both (slots 0 and
+ * ASP_PLACEMENTS_MAX / 2); run again with both stored it runs none, with
+ * only the refined one stored it runs member 0 alone, and both times the
+ * result is the first run's to the bit, with the stored members' CPU time
+ * counted. */
+static void test_placements_stored(void **state)
+{
+    (void)state;
+    asp_options o;
+    asp_shear_options so;
+    asp_placement_result *a = malloc(sizeof *a), *b = malloc(sizeof *b);
+    mem_store *st = calloc(1, sizeof *st);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_non_null(st);
+    double delta = coarse_ensemble(&o, &so);
+    asp_placement_store store = {mem_put, mem_get, st};
+    assert_int_equal(asp_shear_placements_stored(&R.p, &o, &so, delta, 0.0, 1, 2, 0.001, &store,
+                                                 a), STC_OK);
+    printf("# stored: %d members put (slots %d, %d), mu_s %.6f, CPU %.2f s (members %.2f + "
+           "%.2f)\n", st->puts, st->slots_put[0], st->slots_put[1], a->mu_s, a->cpu_s,
+           a->m[0].cpu_s, a->m[1].cpu_s);
+    assert_int_equal(a->k, 2);
+    assert_int_equal(st->puts, 2);
+    assert_true(st->have[0] && st->have[ASP_PLACEMENTS_MAX / 2]);
+    assert_true(a->m[0].cpu_s > 0.0 && a->m[1].cpu_s > 0.0);
+    /* everything stored: nothing runs */
+    st->puts = 0;
+    assert_int_equal(asp_shear_placements_stored(&R.p, &o, &so, delta, 0.0, 1, 2, 0.001, &store,
+                                                 b), STC_OK);
+    assert_int_equal(st->puts, 0);
+    assert_same_ensemble(a, b);
+    printf("# all taken: CPU %.2f s counted\n", b->cpu_s);
+    assert_true(b->cpu_s >= a->m[0].cpu_s + a->m[1].cpu_s);
+    /* the refined member stored alone: member 0 runs, its normal step too */
+    st->have[0] = 0, st->puts = 0;
+    assert_int_equal(asp_shear_placements_stored(&R.p, &o, &so, delta, 0.0, 1, 2, 0.001, &store,
+                                                 b), STC_OK);
+    assert_int_equal(st->puts, 1);
+    assert_int_equal(st->slots_put[0], 0);
+    assert_same_ensemble(a, b);
+    free(a);
+    free(b);
+    free(st);
 }
 
 /* A thin coating much stronger in shear than its substrate (t/R 0.001,
@@ -811,6 +917,7 @@ int main(void)
         cmocka_unit_test(test_ramp_refine),
         cmocka_unit_test(test_placements),
         cmocka_unit_test(test_placements_refine),
+        cmocka_unit_test(test_placements_stored),
         cmocka_unit_test(test_ramp_return_maps),
     };
     const struct CMUnitTest other[] = {

@@ -488,6 +488,7 @@ typedef struct asp_placement_member {
     asp_shear_result res;    /* the ramp */
     stc_status status;
     char message[256];       /* why it failed */
+    double cpu_s;            /* CPU s of its normal step and ramp */
 } asp_placement_member;
 
 typedef struct asp_placement_result {
@@ -546,6 +547,37 @@ STC_API stc_status asp_shear_placements_adaptive(const stc_params *p, const asp_
                                                  const asp_shear_options *so, double delta,
                                                  double P, int k, int k_max, double rel_err,
                                                  asp_placement_result *out);
+
+/* Members kept across runs: an ensemble run again after its process was
+ * killed (a long table point) takes the members an earlier run finished
+ * instead of computing them again.  A member is known by its phase slot
+ * s = j ASP_PLACEMENTS_MAX / k (member j of k; refinement keeps a member's
+ * slot), and it is the same to the bit whichever run computed it. */
+typedef struct asp_placement_store {
+    /* Member j of e has finished (e->m[j]: reached inception or failed, with
+     * its cpu_s); e's period, edge_refine, delta, delta_mesh and edge_a0 are
+     * set.  Called on the thread that ran the member, possibly several at
+     * once: thread-safe. */
+    void (*put)(void *ctx, const asp_placement_result *e, int j);
+    /* The member at slot s, if an earlier run finished it: copied to *m, its
+     * ensemble's period, edge_refine, delta, delta_mesh and edge_a0 to *geom
+     * (no other field of geom is written); returns 1, else 0.
+     * Thread-safe. */
+    int (*get)(void *ctx, int s, asp_placement_result *geom, asp_placement_member *m);
+    void *ctx;
+} asp_placement_store;
+
+/* asp_shear_placements_adaptive with its members kept in and taken from
+ * store (nullable: none).  A taken member is not run; its CPU time counts
+ * in out->cpu_s as when it ran; member 0 taken, its normal step is not run
+ * either (the ensemble's geometry is the stored one).  The result equals
+ * the one of a run that computed every member, but for wall_s and the
+ * members' wall times. */
+STC_API stc_status asp_shear_placements_stored(const stc_params *p, const asp_options *o,
+                                               const asp_shear_options *so, double delta,
+                                               double P, int k, int k_max, double rel_err,
+                                               const asp_placement_store *store,
+                                               asp_placement_result *out);
 
 /* One standard error of an ensemble's mean μs (absolute), the error model
  * above with these relative errors: err_single μs for one member, else the

@@ -236,12 +236,18 @@ STC_API stc_status tbl_read(const char *path, tbl_table **out);
 
 /* Progress of a build, after each finished point or normal curve (a build
  * computes its normal curves first: they are cheap, and every prediction
- * reads them). */
+ * reads them), and with tbl_build_opts.report_members after each finished
+ * placement member of a point (then point is NULL and m is set). */
 typedef struct tbl_progress {
-    int index;              /* the point just finished, or -1 after a curve */
+    int index;              /* the point just finished (or whose member finished), or -1
+                               after a curve */
     const tbl_point *point; /* its result (borrowed), or NULL */
     int curve;              /* the normal curve just finished, or -1 after a point */
     const tbl_curve *c;     /* its result (borrowed), or NULL */
+    int member, members;    /* the member just finished (j of the point's ensemble of
+                               members, asp_placement_result.m[j]); -1 and 0 otherwise */
+    const asp_placement_member *m; /* that member (borrowed; wall time: m->pt.wall_s +
+                                      m->res.wall_s), or NULL */
     int curves_done, curves_total; /* curves finished of this build's share */
     int done, total;        /* points finished of this build's share (resumed included) */
     int resumed;            /* points taken from an earlier run */
@@ -267,6 +273,8 @@ typedef struct tbl_build_opts {
                            completed); default 0 */
     tbl_progress_fn progress; /* nullable */
     void *ctx;
+    int report_members; /* call progress after each finished placement member of a point
+                           too (a long point shows its progress); default 0 */
 } tbl_build_opts;
 STC_API void tbl_build_opts_default(tbl_build_opts *o);
 
@@ -276,6 +284,8 @@ typedef struct tbl_build_summary {
                      or extends refinement: tbl_numerics.placements_max), in every shard;
                      this run computes those of its share */
     int copied;   /* points filled from their source (tbl_point_source), in no share */
+    int members_taken; /* placement members of this run's points that an earlier run of
+                          the build had finished (from the journal), not computed again */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s;  /* this run */
     double cpu_s;   /* of the points this run computed (the curves' own are in tbl_curve) */
@@ -285,10 +295,13 @@ typedef struct tbl_build_summary {
  * fall in the shard and write the table to `path` (curve c falls in shard
  * c % shards; with opts.only, the curves at the t/R and Eco/Esu the chosen
  * points span).  Crash-safe and resumable: each finished point is appended to
- * the journal `path`.journal (synced) before anything else; a build started
- * again with the same table (tbl_same_build) takes the journal's points and
- * those of an existing `path` instead of recomputing them, so a build killed
- * at any moment loses at most the points under way.  At the end the table is
+ * the journal `path`.journal (synced) before anything else, and so is each
+ * finished placement member of a point; a build started again with the same
+ * table (tbl_same_build) takes the journal's points and members and those of
+ * an existing `path` instead of recomputing them, so a build killed at any
+ * moment loses at most the members under way (the table is the one an
+ * uninterrupted build writes, but for the timings; a point's cpu_s counts
+ * its taken members' CPU time as when they ran).  At the end the table is
  * written atomically and the journal removed.  The points of t that are not
  * pending stay as they are.  A journal or `path` of another build is refused
  * (STC_EINVAL, naming the difference), except a `path` built as t but without

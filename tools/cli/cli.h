@@ -272,7 +272,9 @@ typedef struct cli_table_progress {
     const tbl_table *t;
 } cli_table_progress;
 /* tbl_progress_fn: after each point, one line on stderr (rewritten in place
- * on a terminal), with the point's μs, elapsed time and ETA. */
+ * on a terminal), with the point's μs, elapsed time and ETA; after each
+ * placement member of a point (tbl_build_opts.report_members) the same on a
+ * terminal, and elsewhere when the member took 30 s or more. */
 int cli_table_progress_line(void *ctx, const tbl_progress *p);
 
 /* --- the sums `surface predict` and `surface sweep` share (cli_surface_gw.c) --- */

@@ -34,6 +34,29 @@ static int curve_line(const cli_table_progress *c, const tbl_progress *p)
     return 0;
 }
 
+/* After a placement member of a point: on a terminal always (the line is
+ * rewritten in place), else when the member took a while, so that a long
+ * point shows progress in a log without a line per member of short ones. */
+#define MEMBER_LINE_S 30.0
+
+static int member_line(const cli_table_progress *c, const tbl_progress *p)
+{
+    double mw = p->m->pt.wall_s + p->m->res.wall_s;
+    if (!c->tty && !(mw >= MEMBER_LINE_S)) return 0;
+    double w, tR, E;
+    tbl_coords(c->t, p->index, &w, &tR, &E);
+    char el[32], mu[64];
+    fmt_dur(p->elapsed_s, el, sizeof el);
+    if (p->m->status == STC_OK && p->m->res.converged)
+        snprintf(mu, sizeof mu, "mu_s %.4f", p->m->res.mu_s);
+    else snprintf(mu, sizeof mu, "no inception");
+    fprintf(stderr, "%s[%d/%d] delta %g t/R %g E-ratio %g: member %d of %d %s (%.1f s); "
+            "elapsed %s%s", c->tty ? "\r\033[K" : "", p->done, p->total, w, tR, E,
+            p->member + 1, p->members, mu, mw, el, c->tty ? "" : "\n");
+    fflush(stderr);
+    return 0;
+}
+
 /* A line per finished point (stderr): on a terminal one line rewritten in
  * place, else a line each. */
 int cli_table_progress_line(void *ctx, const tbl_progress *p)
@@ -41,6 +64,7 @@ int cli_table_progress_line(void *ctx, const tbl_progress *p)
     const cli_table_progress *c = ctx;
     if (c->quiet) return 0;
     if (p->curve >= 0) return curve_line(c, p);
+    if (p->m) return member_line(c, p);
     double w, tR, E;
     tbl_coords(c->t, p->index, &w, &tR, &E);
     char el[32], eta[32], mu[64];

@@ -186,6 +186,7 @@ stc_status cli_table_fill(const char *cmd, const cli_table_fill_job *job, int nd
         cli_table_progress pc = {isatty(2), 0, t};
         bo.progress = cli_table_progress_line;
         bo.ctx = &pc;
+        bo.report_members = 1;
         double w; /* the file's: tbl_build writes it plus this run's */
         tbl_provenance(t, &w);
         tbl_set_provenance(t, job->command, w); /* this build's command */

@@ -240,6 +240,7 @@ static void build_json(const tbl_table *t, const char *out, const tbl_build_summ
     cj_int(&j, "resumed", sum->resumed);
     cj_int(&j, "reopened", sum->reopened);
     cj_int(&j, "copied", sum->copied);
+    cj_int(&j, "members_taken", sum->members_taken);
     cj_num(&j, "wall_s", sum->wall_s);
     cj_num(&j, "cpu_s_per_point", sum->computed ? sum->cpu_s / sum->computed : 0.0);
     cj_int(&j, "curves_computed", sum->curves_computed);
@@ -282,6 +283,9 @@ static void build_text(const tbl_table *t, const char *out, const tbl_build_summ
     printf("this run%s: %d of %d points of its share computed, %d taken from an earlier run; "
            "%.1f s wall, %.1f CPU s per point\n", on, sum->computed, sum->share, sum->resumed,
            sum->wall_s, sum->computed ? sum->cpu_s / sum->computed : 0.0);
+    if (sum->members_taken > 0)
+        printf("placement members taken from the journal of an earlier run: %d\n",
+               sum->members_taken);
     if (sum->copied > 0)
         printf("one material: %d points (Eco/Esu = 1, t/R beyond the first) filled from the "
                "first t/R's run at their delta\n", sum->copied);
@@ -360,6 +364,7 @@ static int table_build(const cli_cmd *cmd, int argc, char **argv)
     cli_table_progress pc = {isatty(2), a.quiet, t};
     a.bo.progress = cli_table_progress_line;
     a.bo.ctx = &pc;
+    a.bo.report_members = 1;
     tbl_build_summary sum;
     unsigned char *none = a.init ? calloc((size_t)tbl_points(t), 1) : NULL;
     if (a.init && !none) s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
