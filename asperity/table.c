@@ -140,6 +140,43 @@ double tbl_wall_now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+/* The members of a finished ensemble as a point keeps them. */
+static void members_of(const asp_placement_result *e, tbl_members *ens)
+{
+    memset(ens, 0, sizeof *ens);
+    ens->k = e->k;
+    ens->edge_refine = e->edge_refine;
+    ens->period = e->period, ens->delta = e->delta;
+    ens->delta_mesh = e->delta_mesh, ens->edge_a0 = e->edge_a0;
+    for (int j = 0; j < e->k; j++) {
+        const asp_placement_member *m = &e->m[j];
+        tbl_member *q = &ens->m[j];
+        q->elements_per_contact = m->elements_per_contact;
+        q->P = m->pt.P, q->A = m->pt.A;
+        q->P_slide = m->res.P_slide, q->Q_max = m->res.Q_max, q->ux_slide = m->res.ux_slide;
+        q->mu_s = m->res.mu_s, q->mu_s_preload = m->res.mu_s_preload;
+        q->mu_s_err = m->res.mu_s_err;
+        q->cpu_s = m->cpu_s;
+        q->newton_iterations = m->pt.newton_iterations + m->res.newton_iterations;
+        q->factorizations = m->pt.factorizations + m->res.factorizations;
+    }
+}
+
+void tbl_member_unpack(const tbl_point *p, int j, asp_placement_member *m)
+{
+    const tbl_member *q = &p->ens.m[j];
+    memset(m, 0, sizeof *m);
+    m->elements_per_contact = q->elements_per_contact;
+    m->status = STC_OK;
+    m->pt.P = q->P, m->pt.A = q->A;
+    m->pt.newton_iterations = q->newton_iterations, m->pt.factorizations = q->factorizations;
+    m->res.converged = 1;
+    m->res.P_slide = q->P_slide, m->res.Q_max = q->Q_max, m->res.ux_slide = q->ux_slide;
+    m->res.mu_s = q->mu_s, m->res.mu_s_preload = q->mu_s_preload, m->res.mu_s_err = q->mu_s_err;
+    m->cpu_s = q->cpu_s;
+    snprintf(m->res.reason, sizeof m->res.reason, "%s", p->reason);
+}
+
 static void fill_done(const stc_critical *c, const asp_placement_result *e,
                       const tbl_numerics *num, tbl_point *out)
 {
@@ -165,6 +202,7 @@ static void fill_done(const stc_critical *c, const asp_placement_result *e,
     out->ux_slide_wc = ux / c->omega_c;
     out->members = e->n_ok;
     snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, e->m[0].res.reason);
+    members_of(e, &out->ens);
 }
 
 /* tbl_point_compute with the members of the point's ensemble on up to
@@ -379,6 +417,12 @@ stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p)
               p->copied);
     t->pt[i] = *p;
     t->pt[i].reason[TBL_REASON_MAX - 1] = '\0';
+    /* members are kept of a done point only, and all of them (a point marked
+     * failed keeps its stale numbers, which are not an answer, but not them;
+     * one whose member count was changed, not members of another ensemble) */
+    if (p->state != TBL_DONE || p->ens.k != p->members || p->ens.k < 0 ||
+        p->ens.k > ASP_PLACEMENTS_MAX)
+        memset(&t->pt[i].ens, 0, sizeof t->pt[i].ens);
     tbl_gp_destroy(&t->gp);
     return STC_OK;
 }
@@ -424,6 +468,7 @@ int tbl_fill_copies(tbl_table *t)
         p->copied = 1;
         p->newton_iterations = p->factorizations = 0;
         p->wall_s = p->cpu_s = 0.0;
+        memset(&p->ens, 0, sizeof p->ens); /* its source keeps the members */
         n++;
     }
     if (n) tbl_gp_destroy(&t->gp);

@@ -245,16 +245,40 @@ static int journal_member(int fd, const tbl_member_rec *r)
     return journal_append(fd, MEMBER_MAGIC, r->index, r, sizeof *r, NULL, 0);
 }
 
-/* Points and curves of an existing table at path (same build) join t.  A
- * file without a normal grid (format version 1, say) gives its points to a
- * build that has one, which then computes the curves.  A build that adds or
- * extends refinement (tbl_refines) takes the file's points but leaves those
- * it refines pending (*reopened of them): each is computed again, from its
- * first member, as a build with this refinement from the start computes it
- * (the members are deterministic), so the table ends up as that build's. */
-static stc_status take_existing(tbl_table *t, const char *path, int *taken, int *taken_curves,
-                                int *reopened)
+/* The members point p of the file keeps, as member records of point i for
+ * b's store (a refinement goes on from them). */
+static int keep_file_members(tbl_build_state *b, int i, const tbl_point *p)
 {
+    const tbl_members *e = &p->ens;
+    if (e->k < 1 || e->k > ASP_PLACEMENTS_MAX || ASP_PLACEMENTS_MAX % e->k != 0) return 0;
+    tbl_member_rec *r = calloc(1, sizeof *r);
+    if (!r) return -1;
+    int bad = 0;
+    for (int j = 0; j < e->k && !bad; j++) {
+        r->index = i, r->slot = j * (ASP_PLACEMENTS_MAX / e->k);
+        r->edge_refine = e->edge_refine;
+        r->period = e->period, r->delta = e->delta, r->delta_mesh = e->delta_mesh;
+        r->edge_a0 = e->edge_a0;
+        tbl_member_unpack(p, j, &r->m);
+        bad = keep_member(b, r) != 0;
+    }
+    free(r);
+    return bad ? -1 : 0;
+}
+
+/* Points and curves of an existing table at path (same build) join b's
+ * table t.  A file without a normal grid (format version 1, say) gives its
+ * points to a build that has one, which then computes the curves.  A build
+ * that adds or extends refinement (tbl_refines) takes the file's points but
+ * leaves those it refines pending (*reopened of them): each is computed
+ * again as a build with this refinement from the start computes it, going
+ * on from the members the file keeps (b->mem; a file before format 6 keeps
+ * none: then from its first member; the members are deterministic), so the
+ * table ends up as that build's. */
+static stc_status take_existing(tbl_build_state *b, const char *path, int *taken,
+                                int *taken_curves, int *reopened)
+{
+    tbl_table *t = b->t;
     *taken = *taken_curves = *reopened = 0;
     struct stat st;
     if (stat(path, &st) != 0) return STC_OK;
@@ -273,6 +297,10 @@ static stc_status take_existing(tbl_table *t, const char *path, int *taken, int 
         if (refine && tbl_point_source(t, i) != i) continue;
         if (refine && tbl_point_refinable(old, &t->num, i)) { /* by t's refinement */
             (*reopened)++;
+            if (keep_file_members(b, i, &old->pt[i]) != 0) {
+                tbl_destroy(&old);
+                return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
+            }
             continue;
         }
         t->pt[i] = old->pt[i];
@@ -517,7 +545,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     int *todo = NULL;
     unsigned char *need = NULL;
     char jpath[4200];
-    stc_status st = take_existing(t, path, &from_file, &cf, &reopened);
+    stc_status st = take_existing(&b, path, &from_file, &cf, &reopened);
     if (st == STC_OK && snprintf(jpath, sizeof jpath, "%s.journal", path) >= (int)sizeof jpath)
         st = STC_FAIL(STC_EINVAL, "%s: path too long", path);
     if (st == STC_OK) st = journal_open(&b, jpath, &from_journal, &cj);

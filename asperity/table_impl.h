@@ -13,8 +13,9 @@
 
 /* Stored format (docs/table-format.md); a reader refuses other versions. */
 #define TBL_FORMAT_NAME "stiction friction table"
-#define TBL_FORMAT_VERSION 5 /* 2: the normal grid (/normal), 3: foot_rows, 4: copied
-                                points, 5: copied curves; 1 to 4 are read too */
+#define TBL_FORMAT_VERSION 6 /* 2: the normal grid (/normal), 3: foot_rows, 4: copied
+                                points, 5: copied curves, 6: the points' members
+                                (/members); 1 to 5 are read too */
 
 /* The reference sphere every point is computed on (the response is
  * independent of both, include/stiction/table.h). */
@@ -151,6 +152,11 @@ typedef struct tbl_build_state {
     int n_mem;
     int members_taken;          /* of them, taken by this run's points */
 } tbl_build_state;
+
+/* Member j of done point p as the ensemble held it, as far as p.ens keeps
+ * it (what the ensemble's means, error and the point are made of; the
+ * reason is the point's). */
+void tbl_member_unpack(const tbl_point *p, int j, asp_placement_member *m);
 
 /* The store of point i's members in b's journal (table_build.c), for
  * tbl_build_compute: each finished member is journaled (synced) and

@@ -166,6 +166,82 @@ static int write_points(hid_t f, const tbl_table *t)
     return e ? -1 : 0;
 }
 
+/* /members: each done point's placement members (tbl_members), per point
+ * [m_E][m_t][m_w] and per member [m_E][m_t][m_w][ASP_PLACEMENTS_MAX]; the
+ * places past a point's count hold NaN (0 for integers). */
+typedef struct {
+    const char *name;
+    size_t off;  /* in tbl_members (per point) or tbl_member (per member) */
+    int is_int, per_member;
+    const char *doc;
+} mfield;
+
+#define MP(n, m, i, doc) {n, offsetof(tbl_members, m), i, 0, doc}
+#define MM(n, m, i, doc) {n, offsetof(tbl_member, m), i, 1, doc}
+static const mfield mfields[] = {
+    MP("count", k, 1, "members stored: the point's, or 0 (not done, a copy)"),
+    MP("edge_refine", edge_refine, 1, "the members' edge band levels (0: none)"),
+    MP("period", period, 0, "shift of elements per contact that moves the surface nodes at "
+       "the contact edge by one spacing"),
+    MP("delta_mm", delta, 0, "the members' interference, mm (reference sphere)"),
+    MP("delta_mesh_mm", delta_mesh, 0, "the interference their meshes are sized for, mm"),
+    MP("edge_a0_mm", edge_a0, 0, "the edge band's contact radius, mm (0: none)"),
+    MM("elements_per_contact", elements_per_contact, 0, "the member's mesh"),
+    MM("P_N", P, 0, "preload, N (reference sphere: R 10 mm, Esu 200 GPa)"),
+    MM("A_mm2", A, 0, "preload contact area, mm^2"),
+    MM("P_slide_N", P_slide, 0, "normal load at inception, N"),
+    MM("Q_max_N", Q_max, 0, "tangential load at inception, N"),
+    MM("ux_slide_mm", ux_slide, 0, "flat displacement at inception, mm"),
+    MM("mu_s", mu_s, 0, "the member's mu_s"),
+    MM("mu_s_preload", mu_s_preload, 0, "Q_max / preload"),
+    MM("mu_s_err", mu_s_err, 0, "the error its run printed (absolute)"),
+    MM("cpu_s", cpu_s, 0, "CPU time of the member, s"),
+    MM("newton_iterations", newton_iterations, 1, "Newton iterations, both steps"),
+    MM("factorizations", factorizations, 1, "Cholesky factorizations, both steps"),
+};
+#undef MP
+#undef MM
+enum { NMFIELD = sizeof mfields / sizeof *mfields };
+
+/* The place of field k of point i's member j (j ignored per point). */
+static void *mfield_at(tbl_point *p, int k, int j)
+{
+    return mfields[k].per_member ? (char *)&p->ens.m[j] + mfields[k].off
+                                 : (char *)&p->ens + mfields[k].off;
+}
+
+static int write_members(hid_t f, const tbl_table *t)
+{
+    int np = tbl_points(t), nm = ASP_PLACEMENTS_MAX, e = 0;
+    hsize_t dims[4] = {(hsize_t)t->n[2], (hsize_t)t->n[1], (hsize_t)t->n[0], (hsize_t)nm};
+    hid_t g = H5Gcreate2(f, "members", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0) return -1;
+    double *dv = malloc((size_t)np * nm * sizeof *dv);
+    int *iv = malloc((size_t)np * nm * sizeof *iv);
+    e = !dv || !iv;
+    for (int k = 0; !e && k < NMFIELD; k++) {
+        int per = mfields[k].per_member ? nm : 1;
+        for (int i = 0; i < np; i++)
+            for (int j = 0; j < per; j++) {
+                const void *v = mfield_at(&t->pt[i], k, j);
+                int here = !mfields[k].per_member || j < t->pt[i].ens.k;
+                size_t at = (size_t)i * per + j;
+                if (mfields[k].is_int) iv[at] = here ? *(const int *)v : 0;
+                else dv[at] = here && t->pt[i].ens.k > 0 ? *(const double *)v : NAN;
+            }
+        int rank = mfields[k].per_member ? 4 : 3;
+        e = mfields[k].is_int
+                ? write_array(g, mfields[k].name, rank, dims, H5T_STD_I32LE, H5T_NATIVE_INT, iv,
+                              mfields[k].doc)
+                : write_array(g, mfields[k].name, rank, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                              dv, mfields[k].doc);
+    }
+    free(dv);
+    free(iv);
+    H5Gclose(g);
+    return e ? -1 : 0;
+}
+
 static int write_axes(hid_t f, const tbl_table *t)
 {
     hid_t g = H5Gcreate2(f, "axes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -324,8 +400,8 @@ stc_status tbl_write(const tbl_table *t, const char *path)
     STC_CHECK(f >= 0, STC_EIO, "%s: cannot create the table file (%s)", tmp, strerror(errno));
     int e;
     H5E_BEGIN_TRY {
-        e = write_root(f, t) | write_axes(f, t) | write_points(f, t) | write_fit(f, t) |
-            write_normal(f, t);
+        e = write_root(f, t) | write_axes(f, t) | write_points(f, t) | write_members(f, t) |
+            write_fit(f, t) | write_normal(f, t);
     } H5E_END_TRY;
     herr_t c;
     H5E_BEGIN_TRY { c = H5Fclose(f); } H5E_END_TRY;
@@ -352,7 +428,8 @@ static stc_status read_array(hid_t g, const char *path, const char *name, hid_t 
     H5E_BEGIN_TRY { d = H5Dopen2(g, name, H5P_DEFAULT); } H5E_END_TRY;
     STC_CHECK(d >= 0, STC_EFORMAT, "%s: not a friction table: dataset '%s' missing", path, name);
     sp = H5Dget_space(d);
-    hsize_t dims[3] = {0, 0, 0};
+    hsize_t dims[4] = {0, 0, 0, 0};
+    if (rank > 4) rank = -1; /* no dataset of this format has more */
     int r = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
     if (r == rank) H5Sget_simple_extent_dims(sp, dims, NULL);
     int ok = r == rank;
@@ -501,6 +578,49 @@ done:
     return st;
 }
 
+/* /members (format 6): the done points' members; a count that does not fit
+ * the point (not done, or not its members) is a broken file. */
+static stc_status read_members(hid_t f, const char *path, tbl_table *t)
+{
+    int np = tbl_points(t), nm = ASP_PLACEMENTS_MAX;
+    hsize_t dims[4] = {(hsize_t)t->n[2], (hsize_t)t->n[1], (hsize_t)t->n[0], (hsize_t)nm};
+    hid_t g = -1;
+    H5E_BEGIN_TRY { g = H5Gopen2(f, "members", H5P_DEFAULT); } H5E_END_TRY;
+    STC_CHECK(g >= 0, STC_EFORMAT, "%s: not a friction table of format 6: group 'members' "
+              "missing", path);
+    stc_status st = STC_OK;
+    double *dv = malloc((size_t)np * nm * sizeof *dv);
+    int *iv = malloc((size_t)np * nm * sizeof *iv);
+    STC_CHECK_GOTO(dv && iv, st, done, STC_ENOMEM, "tbl_read: out of memory");
+    for (int k = 0; k < NMFIELD; k++) {
+        int isi = mfields[k].is_int, per = mfields[k].per_member ? nm : 1;
+        STC_CALL_GOTO(read_array(g, path, mfields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
+                                 dims, mfields[k].per_member ? 4 : 3,
+                                 isi ? (void *)iv : (void *)dv), st, done);
+        for (int i = 0; i < np; i++)
+            for (int j = 0; j < per; j++) {
+                void *v = mfield_at(&t->pt[i], k, j);
+                size_t at = (size_t)i * per + j;
+                if (isi) *(int *)v = iv[at];
+                else *(double *)v = dv[at];
+            }
+        if (k == 0) /* the counts first: the rest is read within them */
+            for (int i = 0; i < np; i++) {
+                const tbl_point *p = &t->pt[i];
+                STC_CHECK_GOTO(p->ens.k == 0 || (p->state == TBL_DONE && p->ens.k == p->members &&
+                                                 p->ens.k <= nm),
+                               st, done, STC_EFORMAT, "%s: point %d: %d members stored, but "
+                               "it is %s with %d members", path, i, p->ens.k,
+                               tbl_state_name(p->state), p->members);
+            }
+    }
+done:
+    free(dv);
+    free(iv);
+    H5Gclose(g);
+    return st;
+}
+
 /* The normal grid: its own axes (adopted as they are), curves and values. */
 static stc_status read_normal(hid_t f, const char *path, int version, tbl_table *t)
 {
@@ -626,6 +746,10 @@ stc_status tbl_read(const char *path, tbl_table **out)
     STC_CALL_GOTO(tbl_create(&fam, &num, ax[0], n[0], ax[1], n[1], ax[2], n[2], out), st, done);
     H5E_BEGIN_TRY { st = read_points(f, path, ver, *out); } H5E_END_TRY;
     if (st) goto done;
+    if (ver >= 6) { /* before: no members kept (every ens.k 0, tbl_create) */
+        H5E_BEGIN_TRY { st = read_members(f, path, *out); } H5E_END_TRY;
+        if (st) goto done;
+    }
     if (num.normal_level >= 0) {
         H5E_BEGIN_TRY { st = read_normal(f, path, ver, *out); } H5E_END_TRY;
         if (st) goto done;

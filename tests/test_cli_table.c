@@ -683,6 +683,8 @@ static void test_refine_in_place(void **state)
     assert_non_null(strstr(out, "\"reopened\": 1,"));
     assert_non_null(strstr(out, "\"computed\": 1,"));
     assert_non_null(strstr(out, "\"resumed\": 1,"));
+    /* the reopened point's member from the file, not computed again */
+    assert_non_null(strstr(out, "\"members_taken\": 1,"));
     /* the refined point against the same point built with the refinement
      * from the start (alone: the same computation as in a full build) */
     assert_int_equal(run(RIP RIP_REFINE "--deltas 2 --quiet=no --out fresh.h5", 2, out,
@@ -730,7 +732,7 @@ static void test_refine_in_place(void **state)
                    "--refine-err needs --placements-max", NULL);
     assert_int_equal(run("table info rip.h5 --placements-max 2 --refine-err 0.04", 1, out,
                          sizeof out), 0);
-    assert_non_null(strstr(out, "0 of the 2 done points computed again"));
+    assert_non_null(strstr(out, "0 of the 2 done points refined"));
 #undef RIP_REFINE
 #undef RIP
 }

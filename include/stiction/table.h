@@ -97,6 +97,29 @@ STC_API const char *tbl_state_name(tbl_state s); /* "pending", "done", "failed" 
 
 enum { TBL_REASON_MAX = 192 };
 
+/* A done point's node-placement members (asp_placement_result), as far as a
+ * build that refines the point needs them to go on from them instead of
+ * computing them again: the ensemble's geometry and, per member, what the
+ * point's means and error are made of.  Raw values at the reference sphere
+ * every point is computed on (R = 10 mm, Esu = 200 GPa): mm, N. */
+typedef struct tbl_member {
+    double elements_per_contact;
+    double P, A;             /* preload (end of the normal step), N, mm² */
+    double P_slide, Q_max;   /* at inception, N */
+    double ux_slide;         /* mm */
+    double mu_s, mu_s_preload, mu_s_err; /* as the member's run gave them (err absolute) */
+    double cpu_s;            /* its CPU time, s */
+    int newton_iterations, factorizations; /* both steps */
+} tbl_member;
+
+typedef struct tbl_members {
+    int k;                   /* members stored: the point's members, or 0 (not done, a
+                                copy, or read from a file before format 6) */
+    int edge_refine;         /* asp_placement_result's geometry: */
+    double period, delta, delta_mesh, edge_a0; /* elements per contact; mm */
+    tbl_member m[ASP_PLACEMENTS_MAX]; /* in phase order, as the ensemble's m[] */
+} tbl_members;
+
 /* One grid point.  Responses normalised by the substrate's ωc, Pc, Ac
  * (Kogut & Etsion 2002) at the point's R. */
 typedef struct tbl_point {
@@ -117,6 +140,7 @@ typedef struct tbl_point {
                              own (costs, iterations 0); the μs surrogate fits each answer
                              once.  0: computed as itself */
     char reason[TBL_REASON_MAX]; /* why it failed, or the first member's criterion reason */
+    tbl_members ens;      /* its members, for a refinement to go on from */
 } tbl_point;
 
 /* Compute one point: params at R = 10 mm, Esu = 200 GPa, the family's
@@ -172,7 +196,9 @@ STC_API int tbl_axis(const tbl_table *t, int axis, const double **values);
 /* Coordinates of point i. */
 STC_API void tbl_coords(const tbl_table *t, int i, double *w, double *t_over_R, double *E_ratio);
 STC_API const tbl_point *tbl_point_get(const tbl_table *t, int i); /* borrowed */
-/* Store a computed point (copied); invalidates the fit. */
+/* Store a computed point (copied); invalidates the fit.  Its kept members
+ * (ens) are stored where they are all of a done point's (ens.k = members),
+ * else none are. */
 STC_API stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p);
 /* The point whose FE run gives point i: i itself, except where the coating
  * is the substrate (Eco/Esu = 1 in a family with the same E/Y and ν in both
@@ -321,9 +347,10 @@ STC_API stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opt
                              tbl_build_summary *sum);
 
 /* What a build with refinement up to placements_max members at refine_err
- * onto t (tbl_build) would compute again: *points done points, whose stored
- * CPU time sums to *cpu_s (their first members cost that once more; the
- * members added, at least as much again).  STC_EINVAL for values out of range
+ * onto t (tbl_build) would refine: *points done points, whose stored CPU
+ * time sums to *cpu_s (the members added cost at least as much again; the
+ * first members once more where t does not keep them, tbl_point.ens: a
+ * file written before format 6).  STC_EINVAL for values out of range
  * or refining less than t already does (that build would be another). */
 STC_API stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine_err,
                                    int *points, double *cpu_s);

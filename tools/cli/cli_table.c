@@ -800,9 +800,19 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
     }
     if (rp)
         printf("  refinement up to %d placements where the members' standard error exceeds "
-               "%g of mu_s: %d of the %d done points computed again (their first members "
-               "took %.0f CPU s; the members added, at least as much again)\n", rp->k, rp->x,
-               rp->points, nd, rp->cpu_s);
+               "%g of mu_s: %d of the %d done points refined (their members took %.0f CPU "
+               "s; the members added, at least as much again)\n", rp->k, rp->x, rp->points, nd,
+               rp->cpu_s);
+    if (rp && rp->points > 0) {
+        int unkept = 0;
+        for (int i = 0; i < tbl_points(t); i++) {
+            const tbl_point *p = tbl_point_get(t, i);
+            unkept += p->state == TBL_DONE && p->copied == 0 && p->ens.k < p->members;
+        }
+        if (unkept > 0)
+            printf("  %d done points keep no members (a file written before format 6): a "
+                   "refined one computes its first members again\n", unkept);
+    }
 }
 
 /* --points: the stored values of every point, CSV. */
