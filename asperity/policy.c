@@ -74,10 +74,11 @@ stc_status asp_curve_run(const stc_params *p, const asp_options *o, const double
         if (st == STC_OK && cb) cb(ctx, s, res->n);
         res->n++;
     }
-    /* after the whole curve, loaded on past its end (axisymmetric: +5 % of
-     * the run; the 3D curve's tail costs +48 %, so it keeps the one-sided
-     * end): the estimate uses increments on both sides of every point */
-    if (st == STC_OK && n > 1 && res->info.dim == 2) {
+    /* after the whole curve (or a point sampled as one, sample_elastic),
+     * loaded on past its end (axisymmetric: +5 % of the run; the 3D curve's
+     * tail costs +48 %, so it keeps the one-sided end): the estimate uses
+     * increments on both sides of every point */
+    if (st == STC_OK && (n > 1 || (o && o->sample_elastic)) && res->info.dim == 2) {
         res->tail = asp_solver_load_tail(s, NULL);
         if (res->tail != STC_OK)
             snprintf(res->tail_reason, sizeof res->tail_reason, "%s", stc_errmsg());

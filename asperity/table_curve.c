@@ -119,7 +119,10 @@ stc_status tbl_curve_compute(const tbl_family *f, int level, double t_over_R, do
     o.contact = f->contact;
     o.mesh_level = level;
     o.threads = 1;
-    asp_options_for_curve(&o, n_w);
+    /* a curve even at one δ: it samples the elastic node entries, else a
+     * single δ in the elastic range left too few increments for the
+     * smoothed P and A (NaN: the curve failed at 0.5 and 1 ωc_su) */
+    asp_options_for_curve(&o, n_w > 1 ? n_w : 2);
 
     memset(out, 0, sizeof *out);
     for (int k = 0; k < n_w; k++) P_Pc[k] = A_Ac[k] = NAN;

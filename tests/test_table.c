@@ -1636,6 +1636,24 @@ static void test_normal_grid(void **state)
            now() - t0);
     assert_true(eP < 0.005);
     assert_true(eA < 0.02);
+
+    /* a curve of one delta is a curve too (it samples the elastic node
+     * entries and is loaded on past its point): done, and within 0.5 % of
+     * the three-point curve there; it had too few increments for the
+     * smoothed load before (NaN, failed) */
+    const double w3[] = {0.5, 0.7071067812, 1.0};
+    double P3[3], A3[3], P1, A1;
+    check_ok(tbl_curve_compute(&slip, 1, 0.01, 2.0, w3, 3, P3, A3, &cv), "tbl_curve_compute");
+    assert_int_equal(cv.state, TBL_DONE);
+    for (int k = 0; k < 3; k += 2) {
+        check_ok(tbl_curve_compute(&slip, 1, 0.01, 2.0, &w3[k], 1, &P1, &A1, &cv),
+                 "tbl_curve_compute, one delta");
+        printf("a curve of one delta at %g omega_c: %s, P/Pc %.6f (three points: %.6f, "
+               "%+.3f %%), A/Ac %+.3f %%\n", w3[k], tbl_state_name(cv.state), P1, P3[k],
+               100 * (P1 / P3[k] - 1), 100 * (A1 / A3[k] - 1));
+        assert_int_equal(cv.state, TBL_DONE);
+        assert_true(fabs(P1 / P3[k] - 1) < 0.005 && fabs(A1 / A3[k] - 1) < 0.005);
+    }
 }
 
 /* ---- 9. the caller's settings ------------------------------------------- */

@@ -629,8 +629,9 @@ typedef void (*asp_curve_fn)(void *ctx, const asp_solver *s, int i);
 
 /* Normal loading to delta[0..n-1] (mm, increasing) in one solver meshed for
  * delta[n-1] with o (NULL = defaults; asp_options_for_curve for the CLI's
- * settings); an axisymmetric curve of n > 1 points is then loaded on past
- * its end (asp_solver_load_tail) and P_smooth read at every point.  pts[n]
+ * settings); an axisymmetric curve of n > 1 points (or of one point with
+ * o->sample_elastic) is then loaded on past its end (asp_solver_load_tail)
+ * and P_smooth read at every point.  pts[n]
  * and res are written; cb is nullable.  Returns STC_OK, the failure of
  * create (res->n = 0) or of the first point that failed (its status). */
 STC_API stc_status asp_curve_run(const stc_params *p, const asp_options *o,
