@@ -318,7 +318,8 @@ static void test_killed_point_keeps_members(void **state)
     assert_int_equal(run(MEMBER_BUILD "mk.h5", 1, out, sizeof out), 0);
     printf("%s", out);
     assert_non_null(strstr(out, "1 of 1 points of its share computed"));
-    assert_non_null(strstr(out, "placement members taken from the journal of an earlier run: 1"));
+    assert_non_null(strstr(out, "placement members taken from an earlier run (the journal, or "
+                              "the file a refinement goes on from): 1"));
     assert_false(exists(P("mk.h5.journal")));
     assert_int_equal(wait_rc(ref), 0);
     tbl_table *ta = NULL, *tb = NULL;

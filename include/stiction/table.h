@@ -310,8 +310,9 @@ typedef struct tbl_build_summary {
                      or extends refinement: tbl_numerics.placements_max), in every shard;
                      this run computes those of its share */
     int copied;   /* points filled from their source (tbl_point_source), in no share */
-    int members_taken; /* placement members of this run's points that an earlier run of
-                          the build had finished (from the journal), not computed again */
+    int members_taken; /* placement members of this run's points that an earlier run had
+                          finished, not computed again: from the journal (a killed build)
+                          or from the file a refinement goes on from (tbl_point.ens) */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s;  /* this run */
     double cpu_s;   /* of the points this run computed (the curves' own are in tbl_curve) */

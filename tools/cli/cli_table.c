@@ -284,8 +284,8 @@ static void build_text(const tbl_table *t, const char *out, const tbl_build_summ
            "%.1f s wall, %.1f CPU s per point\n", on, sum->computed, sum->share, sum->resumed,
            sum->wall_s, sum->computed ? sum->cpu_s / sum->computed : 0.0);
     if (sum->members_taken > 0)
-        printf("placement members taken from the journal of an earlier run: %d\n",
-               sum->members_taken);
+        printf("placement members taken from an earlier run (the journal, or the file a "
+               "refinement goes on from): %d\n", sum->members_taken);
     if (sum->copied > 0)
         printf("one material: %d points (Eco/Esu = 1, t/R beyond the first) filled from the "
                "first t/R's run at their delta\n", sum->copied);
