@@ -250,7 +250,7 @@ static int journal_member(int fd, const tbl_member_rec *r)
 static int keep_file_members(tbl_build_state *b, int i, const tbl_point *p)
 {
     const tbl_members *e = &p->ens;
-    if (e->k < 1 || e->k > ASP_PLACEMENTS_MAX || ASP_PLACEMENTS_MAX % e->k != 0) return 0;
+    if (e->k < 1 || e->k > ASP_PLACEMENTS_MAX) return 0;
     tbl_member_rec *r = calloc(1, sizeof *r);
     if (!r) return -1;
     int bad = 0;
