@@ -190,10 +190,11 @@ static stc_status ensemble_start(const stc_params *p, const asp_options *o,
         eo.edge_a0 = out->edge_a0;
     } else {
         m[0].elements_per_contact = o->elements_per_contact; /* 0: the level's */
+        double cm = asp_thread_cpu(); /* its own: the edge band's placement is the ensemble's */
         asp_blas_serial_enter(); /* member 0's normal step on one BLAS thread as the rest */
         member_load(p, o, delta, delta, P, &m[0], &sv[0]);
         asp_blas_serial_leave();
-        m[0].cpu_s = asp_thread_cpu() - c0;
+        m[0].cpu_s = asp_thread_cpu() - cm;
         asp_info in;
         if (sv[0]) { /* the mesh resolves the level into elements per contact */
             asp_solver_info(sv[0], &in);

@@ -419,8 +419,9 @@ stc_status tbl_point_set(tbl_table *t, int i, const tbl_point *p)
     t->pt[i].reason[TBL_REASON_MAX - 1] = '\0';
     /* members are kept of a done point only, and all of them (a point marked
      * failed keeps its stale numbers, which are not an answer, but not them;
-     * one whose member count was changed, not members of another ensemble) */
-    if (p->state != TBL_DONE || p->ens.k != p->members || p->ens.k < 0 ||
+     * one whose member count was changed, not members of another ensemble;
+     * a copy, none: its source keeps them) */
+    if (p->state != TBL_DONE || p->copied || p->ens.k != p->members || p->ens.k < 0 ||
         p->ens.k > ASP_PLACEMENTS_MAX)
         memset(&t->pt[i].ens, 0, sizeof t->pt[i].ens);
     tbl_gp_destroy(&t->gp);

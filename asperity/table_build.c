@@ -423,7 +423,7 @@ static void member_put(void *ctx, const asp_placement_result *e, int j)
 /* asp_placement_store.get of point ctx->i: a member an earlier run journaled. */
 static int member_get(void *ctx, int slot, asp_placement_result *geom, asp_placement_member *m)
 {
-    const tbl_member_ctx *mc = ctx;
+    tbl_member_ctx *mc = ctx; /* the point's own: its ensemble takes on one thread */
     tbl_build_state *b = mc->b;
     int got = 0;
     omp_set_lock(&b->lock);
@@ -435,15 +435,24 @@ static int member_get(void *ctx, int slot, asp_placement_result *geom, asp_place
         geom->delta = x->delta, geom->delta_mesh = x->delta_mesh, geom->edge_a0 = x->edge_a0;
         got = 1;
     }
-    if (got) b->members_taken++;
     omp_unset_lock(&b->lock);
+    if (got) mc->taken++, mc->taken_cpu += m->cpu_s;
     return got;
 }
 
 void tbl_member_store(tbl_build_state *b, int i, tbl_member_ctx *ctx, asp_placement_store *s)
 {
-    ctx->b = b, ctx->i = i;
+    ctx->b = b, ctx->i = i, ctx->taken = 0, ctx->taken_cpu = 0.0;
     s->put = member_put, s->get = member_get, s->ctx = ctx;
+}
+
+void tbl_member_done(const tbl_member_ctx *ctx)
+{
+    tbl_build_state *b = ctx->b;
+    omp_set_lock(&b->lock);
+    b->members_taken += ctx->taken;
+    b->cpu -= ctx->taken_cpu;
+    omp_unset_lock(&b->lock);
 }
 
 /* Item k of a todo list: a point i >= 0 (its members on up to `threads`
@@ -456,7 +465,7 @@ static stc_status run_item(tbl_build_state *b, int item, int threads, double *P,
     asp_placement_store store;
     tbl_member_store(b, item, &mc, &store);
     STC_CALL(tbl_build_item(b->t, item, threads, &store, &p, &cv, P, A));
-    if (item >= 0) build_finish(b, item, &p);
+    if (item >= 0) build_finish(b, item, &p), tbl_member_done(&mc);
     else finish_curve(b, -item - 1, &cv, P, A);
     return STC_OK;
 }

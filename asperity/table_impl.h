@@ -165,8 +165,14 @@ void tbl_member_unpack(const tbl_point *p, int j, asp_placement_member *m);
 typedef struct tbl_member_ctx {
     tbl_build_state *b;
     int i;
+    int taken;        /* members handed to the point from an earlier run (within one
+                         build a handed member always fits its ensemble) */
+    double taken_cpu; /* their CPU s, which the point's cpu_s counts */
 } tbl_member_ctx;
 void tbl_member_store(tbl_build_state *b, int i, tbl_member_ctx *ctx, asp_placement_store *s);
+/* After point ctx->i was finished (b->finish): its taken members into the
+ * build's counts, their CPU time out of this run's (tbl_build_summary). */
+void tbl_member_done(const tbl_member_ctx *ctx);
 
 /* Point i of t computed on the calling thread alone: tbl_point_compute at
  * the point's coordinates (table.c); threads > 1: its members on up to that

@@ -607,8 +607,8 @@ static stc_status read_members(hid_t f, const char *path, tbl_table *t)
         if (k == 0) /* the counts first: the rest is read within them */
             for (int i = 0; i < np; i++) {
                 const tbl_point *p = &t->pt[i];
-                STC_CHECK_GOTO(p->ens.k == 0 || (p->state == TBL_DONE && p->ens.k == p->members &&
-                                                 p->ens.k <= nm),
+                STC_CHECK_GOTO(p->ens.k == 0 || (p->state == TBL_DONE && !p->copied &&
+                                                 p->ens.k == p->members && p->ens.k <= nm),
                                st, done, STC_EFORMAT, "%s: point %d: %d members stored, but "
                                "it is %s with %d members", path, i, p->ens.k,
                                tbl_state_name(p->state), p->members);

@@ -345,7 +345,7 @@ static void farm_compute(farm *f)
             farm_fail(f, s, msg);
             break;
         }
-        if (item >= 0) f->b->finish(f->b, item, &p);
+        if (item >= 0) f->b->finish(f->b, item, &p), tbl_member_done(&mc);
         else f->b->finish_curve(f->b, -item - 1, &cv, v, v + nw);
     }
     free(v);

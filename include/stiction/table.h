@@ -315,7 +315,8 @@ typedef struct tbl_build_summary {
                           or from the file a refinement goes on from (tbl_point.ens) */
     int curves_computed, curves_failed;   /* normal curves of this run, failed */
     double wall_s;  /* this run */
-    double cpu_s;   /* of the points this run computed (the curves' own are in tbl_curve) */
+    double cpu_s;   /* of the points this run computed, this run's alone (not the members
+                       it took; the curves' own are in tbl_curve) */
 } tbl_build_summary;
 
 /* Compute the pending normal curves and then the pending points of t that
@@ -328,7 +329,9 @@ typedef struct tbl_build_summary {
  * an existing `path` instead of recomputing them, so a build killed at any
  * moment loses at most the members under way (the table is the one an
  * uninterrupted build writes, but for the timings; a point's cpu_s counts
- * its taken members' CPU time as when they ran).  At the end the table is
+ * its taken members' CPU time as when they ran; under MPI, the members of
+ * the points rank 0 computes itself: another rank's point is computed again
+ * whole).  At the end the table is
  * written atomically and the journal removed.  The points of t that are not
  * pending stay as they are.  A journal or `path` of another build is refused
  * (STC_EINVAL, naming the difference), except a `path` built as t but without
