@@ -113,7 +113,7 @@ static int member_take(const asp_placement_store *store, asp_placement_result *o
     if (!store || !store->get) return 0;
     asp_placement_result *g = malloc(sizeof *g);
     asp_placement_member *m = malloc(sizeof *m);
-    int got = g && m && store->get(store->ctx, j * (ASP_PLACEMENTS_MAX / out->k), g, m);
+    int got = g && m && store->get(store->ctx, asp_placement_slot(j, out->k), g, m);
     if (got && j > 0) /* a member of another ensemble: computed, not taken */
         got = m->elements_per_contact == out->m[j].elements_per_contact &&
               g->period == out->period && g->delta == out->delta &&
@@ -272,6 +272,11 @@ stc_status asp_shear_placements_refine(const stc_params *p, const asp_options *o
                                        const asp_shear_options *so, asp_placement_result *out)
 {
     return ensemble_refine(p, o, so, NULL, out);
+}
+
+int asp_placement_slot(int j, int k)
+{
+    return j * (ASP_PLACEMENTS_MAX / k);
 }
 
 stc_status asp_placements_refine_check(int k, int k_max, double rel_err)

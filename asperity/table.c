@@ -162,7 +162,8 @@ static void members_of(const asp_placement_result *e, tbl_members *ens)
     }
 }
 
-void tbl_member_unpack(const tbl_point *p, int j, asp_placement_member *m)
+/* Member j of done point p as its ensemble held it (tbl_members_unpack). */
+static void member_unpack(const tbl_point *p, int j, asp_placement_member *m)
 {
     const tbl_member *q = &p->ens.m[j];
     memset(m, 0, sizeof *m);
@@ -175,6 +176,17 @@ void tbl_member_unpack(const tbl_point *p, int j, asp_placement_member *m)
     m->res.mu_s = q->mu_s, m->res.mu_s_preload = q->mu_s_preload, m->res.mu_s_err = q->mu_s_err;
     m->cpu_s = q->cpu_s;
     snprintf(m->res.reason, sizeof m->res.reason, "%s", p->reason);
+}
+
+void tbl_members_unpack(const tbl_point *p, asp_placement_result *e)
+{
+    const tbl_members *ens = &p->ens;
+    memset(e, 0, sizeof *e);
+    e->k = e->n_ok = ens->k;
+    e->edge_refine = ens->edge_refine;
+    e->period = ens->period, e->delta = ens->delta;
+    e->delta_mesh = ens->delta_mesh, e->edge_a0 = ens->edge_a0;
+    for (int j = 0; j < ens->k; j++) member_unpack(p, j, &e->m[j]);
 }
 
 static void fill_done(const stc_critical *c, const asp_placement_result *e,

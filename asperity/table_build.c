@@ -93,6 +93,18 @@ static int write_all(int fd, const void *buf, size_t n)
     return 0;
 }
 
+/* Member j of ensemble e, of point i, as a record (zeroed first: no stray
+ * padding bytes in the checksum). */
+static void member_rec(tbl_member_rec *r, int i, const asp_placement_result *e, int j)
+{
+    memset(r, 0, sizeof *r);
+    r->index = i, r->slot = asp_placement_slot(j, e->k);
+    r->edge_refine = e->edge_refine;
+    r->period = e->period, r->delta = e->delta, r->delta_mesh = e->delta_mesh;
+    r->edge_a0 = e->edge_a0;
+    r->m = e->m[j];
+}
+
 /* Keep member record r for its point (pending in b's table): b->mem. */
 static int keep_member(tbl_build_state *b, const tbl_member_rec *r)
 {
@@ -249,19 +261,16 @@ static int journal_member(int fd, const tbl_member_rec *r)
  * b's store (a refinement goes on from them). */
 static int keep_file_members(tbl_build_state *b, int i, const tbl_point *p)
 {
-    const tbl_members *e = &p->ens;
-    if (e->k < 1 || e->k > ASP_PLACEMENTS_MAX) return 0;
-    tbl_member_rec *r = calloc(1, sizeof *r);
-    if (!r) return -1;
-    int bad = 0;
-    for (int j = 0; j < e->k && !bad; j++) {
-        r->index = i, r->slot = j * (ASP_PLACEMENTS_MAX / e->k);
-        r->edge_refine = e->edge_refine;
-        r->period = e->period, r->delta = e->delta, r->delta_mesh = e->delta_mesh;
-        r->edge_a0 = e->edge_a0;
-        tbl_member_unpack(p, j, &r->m);
+    if (p->ens.k < 1 || p->ens.k > ASP_PLACEMENTS_MAX) return 0;
+    asp_placement_result *e = malloc(sizeof *e);
+    tbl_member_rec *r = malloc(sizeof *r);
+    int bad = !e || !r;
+    if (!bad) tbl_members_unpack(p, e);
+    for (int j = 0; !bad && j < e->k; j++) {
+        member_rec(r, i, e, j);
         bad = keep_member(b, r) != 0;
     }
+    free(e);
     free(r);
     return bad ? -1 : 0;
 }
@@ -398,17 +407,11 @@ static void member_put(void *ctx, const asp_placement_result *e, int j)
 {
     const tbl_member_ctx *mc = ctx;
     tbl_build_state *b = mc->b;
-    tbl_member_rec *r = calloc(1, sizeof *r); /* no stray padding bytes in the checksum */
+    tbl_member_rec *r = malloc(sizeof *r);
+    if (r) member_rec(r, mc->i, e, j);
     omp_set_lock(&b->lock);
     {
         int stop = 0;
-        if (r) {
-            r->index = mc->i, r->slot = j * (ASP_PLACEMENTS_MAX / e->k);
-            r->edge_refine = e->edge_refine;
-            r->period = e->period, r->delta = e->delta, r->delta_mesh = e->delta_mesh;
-            r->edge_a0 = e->edge_a0;
-            r->m = e->m[j];
-        }
         if (!r || journal_member(b->fd, r) != 0) b->io_error = errno ? errno : EIO, stop = 1;
         else if (b->o->report_members) stop = report(b, mc->i, NULL, -1, NULL, e, j);
         if (stop) {

@@ -153,10 +153,10 @@ typedef struct tbl_build_state {
     int members_taken;          /* of them, taken by this run's points */
 } tbl_build_state;
 
-/* Member j of done point p as the ensemble held it, as far as p.ens keeps
- * it (what the ensemble's means, error and the point are made of; the
- * reason is the point's). */
-void tbl_member_unpack(const tbl_point *p, int j, asp_placement_member *m);
+/* Done point p's ensemble as it held its members, as far as p.ens keeps
+ * them (the geometry and what the means, error and point are made of; the
+ * reason is the point's): the inverse of what the point keeps of it. */
+void tbl_members_unpack(const tbl_point *p, asp_placement_result *e);
 
 /* The store of point i's members in b's journal (table_build.c), for
  * tbl_build_compute: each finished member is journaled (synced) and

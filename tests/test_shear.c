@@ -764,7 +764,7 @@ static void mem_put(void *ctx, const asp_placement_result *e, int j)
     mem_store *s = ctx;
 #pragma omp critical(mem_store)
     {
-        int slot = j * (ASP_PLACEMENTS_MAX / e->k);
+        int slot = asp_placement_slot(j, e->k);
         s->have[slot] = 1;
         s->m[slot] = e->m[j];
         s->slots_put[s->puts++] = slot;

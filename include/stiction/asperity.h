@@ -551,9 +551,9 @@ STC_API stc_status asp_shear_placements_adaptive(const stc_params *p, const asp_
 /* Members kept across runs: an ensemble run again after its process was
  * killed (a long table point) takes the members an earlier run finished
  * instead of computing them again.  A member is known by its phase slot
- * s = j (ASP_PLACEMENTS_MAX / k), integer division (member j of k; a
- * refinement, which doubles k, keeps a member's slot), and it is the same
- * to the bit whichever run computed it. */
+ * s = j (ASP_PLACEMENTS_MAX / k), integer division (asp_placement_slot;
+ * member j of k; a refinement, which doubles k, keeps a member's slot), and
+ * it is the same to the bit whichever run computed it. */
 typedef struct asp_placement_store {
     /* Member j of e has finished (e->m[j]: reached inception or failed, with
      * its cpu_s); e's period, edge_refine, delta, delta_mesh and edge_a0 are
@@ -567,6 +567,8 @@ typedef struct asp_placement_store {
     int (*get)(void *ctx, int s, asp_placement_result *geom, asp_placement_member *m);
     void *ctx;
 } asp_placement_store;
+/* The phase slot of member j of k (k in [1, ASP_PLACEMENTS_MAX]).  Pure. */
+STC_API int asp_placement_slot(int j, int k);
 
 /* asp_shear_placements_adaptive with its members kept in and taken from
  * store (nullable: none).  A taken member is not run; its CPU time counts
