@@ -779,6 +779,7 @@ static void fill_result(const asp_solver *s, const ramp *r, asp_slide *det, doub
     res->slip_frac = sr.slip_frac;
     res->KT_after = sr.KT_after;
     res->q_rising = sr.q_rising;
+    res->mu_s_ux_slope = sr.mu_s_ux_slope;
     res->index = sr.index;
     res->increments = sr.increments;
     res->converged = sr.state == ASP_SLIDE_INCEPTION;

@@ -190,6 +190,12 @@ static asp_slide_state finish(asp_slide *d, asp_slide_state st, asp_outcome why,
     r->KT_ratio = i >= 1 && d->KT1 != 0.0 ? KT(d, i) / d->KT1 : 1.0;
     int l = d->n - 1;
     r->KT_after = l > i && d->KT1 != 0.0 ? secant(d, i, l) / d->KT1 : r->KT_ratio;
+    int a = l > i ? i : i - 1, b = l > i ? l : i;
+    r->mu_s_ux_slope = a >= 1 && d->Q[a] > 0.0 && d->Q[b] > 0.0 && d->P[a] > 0.0 &&
+                               d->P[b] > 0.0 && d->ux[b] > d->ux[a]
+                           ? log((d->Q[b] / d->P[b]) / (d->Q[a] / d->P[a])) /
+                                 log(d->ux[b] / d->ux[a])
+                           : NAN;
     r->n_contact = d->nc[i];
     snprintf(r->reason, sizeof r->reason, fmt, v);
     return st;

@@ -182,6 +182,11 @@ typedef struct asp_slide_result {
     int q_rising;        /* 1: the whole contact at its limit while Q still rose
                             past it (KT_after > flat_tol): μs depends on where
                             inception is declared */
+    double mu_s_ux_slope;/* d ln(Q/P) / d ln ux at inception: the secant from
+                            there to the last point pushed, or over the increment
+                            that reached it when none was pushed past it; how
+                            many per cent μs moves per per cent of ux where
+                            inception is declared.  NaN: no secant */
     int n_contact;       /* contact nodes there */
     int index;           /* index of that point in the ramp (0 = ux = 0) */
     int increments;      /* accepted increments pushed */

@@ -448,7 +448,7 @@ static void test_cli_json(void **state)
                           "\"tau_c_MPa\"", "\"junction\": \"footprint\"",
                           "\"stick_radius_mm\"", "\"shear_increments\"",
                           "\"KT_over_KT1_after_slide\"", "\"mu_s_err\"",
-                          "\"Q_still_rising\"", "\"elements_per_contact\"",
+                          "\"Q_still_rising\"", "\"mu_s_ux_slope\"", "\"elements_per_contact\"",
                           "\"factorizations\"", "\"converged\": true", "\"reason\"",
                           "\"delta_mm\"", "\"P_N\""};
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)

@@ -250,7 +250,10 @@ static void test_plastic_plateau(void **state)
 
 /* KT_after, the stiffness left past inception: ~0 on a flat plateau; on a
  * Q that still rises once the whole contact is at its limit (the solver's
- * full_tol 0.5, shear.c) it reads that slope, 0.2 KT_1 here. */
+ * full_tol 0.5, shear.c) it reads that slope, 0.2 KT_1 here.  mu_s_ux_slope,
+ * d ln(Q/P) / d ln ux from inception to the last point: 0 on the plateau (P
+ * is constant past the knee too); on the rising one the secant of
+ * ln(1 + 0.6 (x - 1)) against ln x, 0.6 at the knee x = 1 and rising. */
 static void test_rising_after(void **state)
 {
     (void)state;
@@ -273,6 +276,16 @@ static void test_rising_after(void **state)
     assert_non_null(strstr(r.r.reason, "still rising"));
     assert_int_equal(f.r.q_rising, 0); /* the flag a caller reads */
     assert_int_equal(r.r.q_rising, 1);
+    double xi = r.r.ux / c.us, xl = r.ux_last / c.us;
+    double want = log((1.0 + 0.6 * (xl - 1.0)) / (1.0 + 0.6 * (xi - 1.0))) / log(xl / xi);
+    printf("d ln mu_s / d ln ux past inception: plateau %.2e, rising %.6f (secant of the "
+           "curve from x = %.4f to %.4f: %.6f)\n", f.r.mu_s_ux_slope, r.r.mu_s_ux_slope, xi, xl,
+           want);
+    assert_true(xi >= 1.0 && xl > xi);
+    assert_true(fabs(f.r.mu_s_ux_slope) < 1e-9);
+    assert_true(fabs(r.r.mu_s_ux_slope - want) < 1e-9);
+    /* between the derivative 0.6 x / (0.4 + 0.6 x) at the two ends */
+    assert_true(r.r.mu_s_ux_slope > 0.6 && r.r.mu_s_ux_slope < 0.6 * xl / (0.4 + 0.6 * xl));
 }
 
 /* The ramp's solver finds no equilibrium past a point (cut-back limit):

@@ -380,6 +380,13 @@ typedef struct asp_shear_result {
     int q_rising;        /* 1: inception declared with the whole contact at its
                             shear limit while Q still rose past it (KT_after >
                             0.01): a flagged result */
+    double mu_s_ux_slope;/* d ln(Q/P) / d ln ux at inception (from there to the end
+                            of the ramp, or over the increment that reached it):
+                            per cent of μs per per cent of the ux where inception
+                            is declared.  ~0 where Q/P is flat there; 0.1 and more
+                            past ~10 ωc, where Q still rises and a stop 20 % later
+                            (another mesh) reads μs 2 % or more higher
+                            (docs/design.md §4.4).  NaN: not measured */
     double tau_c;        /* τc used, MPa */
     double a0;           /* contact radius after the normal step, mm */
     asp_shear_criterion criterion;

@@ -227,11 +227,12 @@ static void print_json(const asp_point *pt, const asp_info *in, const asp_shear_
         cj_num(&j, "stick_radius_mm", sqrt(r->A_stick / M_PI));
         cj_num(&j, "slip_fraction_at_slide", r->slip_frac);
         cj_num(&j, "KT_over_KT1_after_slide", r->KT_after);
+        cj_num(&j, "mu_s_ux_slope", r->mu_s_ux_slope);
     } else {
         const char *k[] = {"Q_max_N", "Q_max_over_P_c", "mu_s", "mu_s_err", "Q_still_rising",
                            "mu_s_preload", "ux_at_slide_mm", "ux_at_slide_over_omega_c",
                            "P_at_slide_N", "stick_radius_mm", "slip_fraction_at_slide",
-                           "KT_over_KT1_after_slide"};
+                           "KT_over_KT1_after_slide", "mu_s_ux_slope"};
         for (size_t i = 0; i < sizeof k / sizeof *k; i++) cj_null(&j, k[i]);
     }
     cj_num(&j, "P_preload_N", r->P0);
@@ -292,13 +293,14 @@ static void print_text(const asp_point *pt, const asp_info *in, const asp_shear_
 }
 
 /* The flag of a result whose Q still rose past inception (stderr). */
-static void warn_rising(const char *cmd, int n, int k, double KT_after)
+static void warn_rising(const char *cmd, int n, int k, double KT_after, double slope)
 {
     if (n == 0) return;
     if (k == 1)
         fprintf(stderr, "stiction %s: warning: Q still rising past sliding inception "
-                        "(KT/KT1 = %.3g after it): mu_s depends on where inception is declared "
-                        "(docs/design.md §4.4)\n", cmd, KT_after);
+                        "(KT/KT1 = %.3g after it): mu_s depends on where inception is declared, "
+                        "by %.3g %% per %% of ux there (docs/design.md §4.4)\n", cmd, KT_after,
+                slope);
     else
         fprintf(stderr, "stiction %s: warning: Q still rising past sliding inception in %d of "
                         "%d members: their mu_s depends on where inception is declared "
@@ -390,11 +392,13 @@ static void print_placements_json(const asp_placement_result *e, const stc_criti
             cj_num(&j, "mu_s", m->res.mu_s);
             cj_num(&j, "mu_s_err", m->res.mu_s_err);
             cj_bool(&j, "Q_still_rising", m->res.q_rising);
+            cj_num(&j, "mu_s_ux_slope", m->res.mu_s_ux_slope);
             cj_num(&j, "Q_max_N", m->res.Q_max);
             cj_num(&j, "P_at_slide_N", m->res.P_slide);
             cj_num(&j, "ux_at_slide_mm", m->res.ux_slide);
         } else {
             cj_null(&j, "mu_s"), cj_null(&j, "mu_s_err"), cj_null(&j, "Q_still_rising");
+            cj_null(&j, "mu_s_ux_slope");
             cj_null(&j, "Q_max_N");
             cj_null(&j, "P_at_slide_N"), cj_null(&j, "ux_at_slide_mm");
         }
@@ -466,7 +470,7 @@ static int run_placements(const char *cmd, const stc_params *p, asp_options *o,
     double delta = sa->load > 0.0 ? e->m[0].pt.delta : dmm;
     if (json) print_placements_json(e, c, delta, sa->load, st);
     else print_placements_text(e, c, delta, sa->load, st);
-    if (st == STC_OK) warn_rising(cmd, rising_members(e), e->k, NAN);
+    if (st == STC_OK) warn_rising(cmd, rising_members(e), e->k, NAN, NAN);
     int rc = CLI_EXIT_OK;
     if (st != STC_OK) {
         fprintf(stderr, "stiction %s: %s\n", cmd, why);
@@ -552,7 +556,7 @@ int cli_asperity_shear(const char *cmd, const stc_params *p, asp_options *o,
     if (ok && out && write_fields(cmd, sv, out, &q08) != 0) rc = CLI_EXIT_FAIL;
     if (json) print_json(&pt, &in, &r, &c, &l, st, sa->load, q08);
     else print_text(&pt, &in, &r, &c, &l, st);
-    if (ok) warn_rising(cmd, r.q_rising, 1, r.KT_after);
+    if (ok) warn_rising(cmd, r.q_rising, 1, r.KT_after, r.mu_s_ux_slope);
     if (!ok) {
         fprintf(stderr, "stiction %s: %s\n", cmd, r.reason);
         /* the ramp points reached are kept for the diagnosis (no μs is claimed) */
