@@ -159,6 +159,7 @@ static void members_of(const asp_placement_result *e, tbl_members *ens)
         q->cpu_s = m->cpu_s;
         q->newton_iterations = m->pt.newton_iterations + m->res.newton_iterations;
         q->factorizations = m->pt.factorizations + m->res.factorizations;
+        q->mu_s_ux_slope = m->res.mu_s_ux_slope;
     }
 }
 
@@ -174,6 +175,7 @@ static void member_unpack(const tbl_point *p, int j, asp_placement_member *m)
     m->res.converged = 1;
     m->res.P_slide = q->P_slide, m->res.Q_max = q->Q_max, m->res.ux_slide = q->ux_slide;
     m->res.mu_s = q->mu_s, m->res.mu_s_preload = q->mu_s_preload, m->res.mu_s_err = q->mu_s_err;
+    m->res.mu_s_ux_slope = q->mu_s_ux_slope; /* NaN: not known */
     m->cpu_s = q->cpu_s;
     snprintf(m->res.reason, sizeof m->res.reason, "%s", p->reason);
 }
@@ -193,8 +195,10 @@ static void fill_done(const stc_critical *c, const asp_placement_result *e,
                       const tbl_numerics *num, tbl_point *out)
 {
     double P0 = 0.0, A0 = 0.0, ux = 0.0;
+    double slope = 0.0; /* NaN if a member does not say (taken from an older file) */
     int k = e->k;
     for (int j = 0; j < k; j++) {
+        slope += e->m[j].res.mu_s_ux_slope / k;
         P0 += e->m[j].pt.P / k;
         A0 += e->m[j].pt.A / k;
         ux += e->m[j].res.ux_slide / k;
@@ -213,6 +217,7 @@ static void fill_done(const stc_critical *c, const asp_placement_result *e,
     out->mu_s_max = e->mu_s_max;
     out->ux_slide_wc = ux / c->omega_c;
     out->members = e->n_ok;
+    out->mu_s_ux_slope = slope;
     snprintf(out->reason, sizeof out->reason, "%.*s", TBL_REASON_MAX - 1, e->m[0].res.reason);
     members_of(e, &out->ens);
 }

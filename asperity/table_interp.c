@@ -310,6 +310,31 @@ static double clamp_axis(const tbl_table *t, int k, double v)
     return fmin(fmax(v, t->ax[k][0]), t->ax[k][t->n[k] - 1]);
 }
 
+/* The done points around (w, tR, E), on the axes, weighted as multilinear
+ * interpolation in the logarithms weighs them: their mu_s_ux_slope (NaN if
+ * one does not say). */
+static double slope_around(const tbl_table *t, double w, double tR, double E)
+{
+    double x[3] = {w, tR, E}, f[3];
+    int i0[3];
+    for (int k = 0; k < 3; k++) i0[k] = tbl_bracket(t->ax[k], t->n[k], x[k], &f[k]);
+    double s = 0.0, sw = 0.0;
+    for (int c = 0; c < 8; c++) {
+        double wgt = 1.0;
+        int idx[3];
+        for (int k = 0; k < 3; k++) {
+            int b = (c >> k) & 1;
+            wgt *= b ? f[k] : 1.0 - f[k];
+            idx[k] = i0[k] + b;
+        }
+        if (wgt == 0.0) continue;
+        const tbl_point *p = &t->pt[(idx[2] * t->n[1] + idx[1]) * t->n[0] + idx[0]];
+        if (p->state != TBL_DONE) continue;
+        s += wgt * p->mu_s_ux_slope, sw += wgt;
+    }
+    return sw > 0.0 ? s / sw : NAN;
+}
+
 stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
                      tbl_value *out)
 {
@@ -356,6 +381,7 @@ stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_rat
     out->mu_s_err = out->mu_s * sd;
     out->Q_max_Pc = out->mu_s * out->P_slide_Pc;
     out->Q_max_Pc_err = out->mu_s_err * out->P_slide_Pc;
+    out->mu_s_ux_slope = slope_around(t, clamp_axis(t, 0, w), tR, E);
     return STC_OK;
 }
 
@@ -463,14 +489,17 @@ static int usable_block(const tbl_table *t, double E, int *t0, int *t1, int *w0,
  * interpolates between them: Steffen in ln w, linear in t/R). */
 enum { DENSE_W = 8, DENSE_TR = 4 };
 
+/* TBL_MODEL_SLOPE's least slope (the data model interpolates ln Q). */
+#define SLOPE_FLOOR 1e-4
+
 stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
                             tbl_model_kind kind, asp_model **out)
 {
     STC_CHECK(out, STC_EINVAL, "tbl_model_create: out must not be NULL");
     *out = NULL;
     STC_CHECK(t && p, STC_EINVAL, "tbl_model_create: table and parameters required");
-    STC_CHECK(kind >= TBL_MODEL_PRELOAD && kind <= TBL_MODEL_ERR, STC_EINVAL,
-              "tbl_model_create: kind = %d: must be preload, slide or err", (int)kind);
+    STC_CHECK(kind >= TBL_MODEL_PRELOAD && kind <= TBL_MODEL_SLOPE, STC_EINVAL,
+              "tbl_model_create: kind = %d: must be preload, slide, err or slope", (int)kind);
     STC_CHECK(t->gp, STC_ERANGE, "the table has fewer than 3 done points: no model");
     STC_CALL(tbl_check_params(t, p));
     STC_CHECK(t->n[0] >= 2, STC_ERANGE, "the table has one delta value: no model along delta");
@@ -506,10 +535,17 @@ stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm
             P[k] = kind == TBL_MODEL_SLIDE ? v.P_slide_Pc : v.P_Pc;
             A[k] = v.A_Ac;
             Q[k] = kind == TBL_MODEL_ERR ? v.Q_max_Pc_err : v.Q_max_Pc;
+            if (kind == TBL_MODEL_SLOPE) {
+                STC_CHECK_GOTO(isfinite(v.mu_s_ux_slope), st, done, STC_ERANGE, "the table "
+                               "keeps no d ln mu_s / d ln ux at delta/omega_c = %g, t/R = %g "
+                               "(a point written before format 7)", w[i], tR[j]);
+                Q[k] *= fmax(v.mu_s_ux_slope, SLOPE_FLOOR);
+            }
         }
     stc_material su;
     stc_params_materials(p, &su, NULL);
-    static const char *const kname[3] = {"table", "table (P at inception)", "table (error)"};
+    static const char *const kname[4] = {"table", "table (P at inception)", "table (error)",
+                                         "table (d ln mu_s / d ln ux)"};
     asp_model_data d = {kname[kind], su, t_mm, nw, nt, w, tR, P, A, Q, !tbl_is_homogeneous(t)};
     st = asp_model_create_data(&d, out);
 done:

@@ -48,6 +48,9 @@ static const field fields[] = {
     D("mu_s_min", mu_s_min, "smallest member mu_s"),
     D("mu_s_max", mu_s_max, "largest member mu_s"),
     D("ux_slide_over_omega_c", ux_slide_wc, "flat displacement at inception / omega_c_su"),
+    {"mu_s_ux_slope", offsetof(tbl_point, mu_s_ux_slope), 0, "d ln mu_s / d ln ux at "
+     "inception, mean of the members: how much mu_s depends on where inception is declared "
+     "(NaN: not known)", 7},
     I("members", members, "node-placement members that reached inception"),
     I("newton_iterations", newton_iterations, "Newton iterations, both steps, all members"),
     I("factorizations", factorizations, "Cholesky factorizations, both steps, all members"),
@@ -174,10 +177,11 @@ typedef struct {
     size_t off;  /* in tbl_members (per point) or tbl_member (per member) */
     int is_int, per_member;
     const char *doc;
+    int since;   /* the format version that added it */
 } mfield;
 
-#define MP(n, m, i, doc) {n, offsetof(tbl_members, m), i, 0, doc}
-#define MM(n, m, i, doc) {n, offsetof(tbl_member, m), i, 1, doc}
+#define MP(n, m, i, doc) {n, offsetof(tbl_members, m), i, 0, doc, 6}
+#define MM(n, m, i, doc) {n, offsetof(tbl_member, m), i, 1, doc, 6}
 static const mfield mfields[] = {
     MP("count", k, 1, "members stored: the point's, or 0 (not done, a copy)"),
     MP("edge_refine", edge_refine, 1, "the members' edge band levels (0: none)"),
@@ -198,6 +202,8 @@ static const mfield mfields[] = {
     MM("cpu_s", cpu_s, 0, "CPU time of the member, s"),
     MM("newton_iterations", newton_iterations, 1, "Newton iterations, both steps"),
     MM("factorizations", factorizations, 1, "Cholesky factorizations, both steps"),
+    {"mu_s_ux_slope", offsetof(tbl_member, mu_s_ux_slope), 0, 1, "d ln(Q/P) / d ln ux at "
+     "inception (asp_shear_result.mu_s_ux_slope)", 7},
 };
 #undef MP
 #undef MM
@@ -580,20 +586,29 @@ done:
 
 /* /members (format 6): the done points' members; a count that does not fit
  * the point (not done, or not its members) is a broken file. */
-static stc_status read_members(hid_t f, const char *path, tbl_table *t)
+static stc_status read_members(hid_t f, const char *path, int version, tbl_table *t)
 {
     int np = tbl_points(t), nm = ASP_PLACEMENTS_MAX;
     hsize_t dims[4] = {(hsize_t)t->n[2], (hsize_t)t->n[1], (hsize_t)t->n[0], (hsize_t)nm};
     hid_t g = -1;
     H5E_BEGIN_TRY { g = H5Gopen2(f, "members", H5P_DEFAULT); } H5E_END_TRY;
-    STC_CHECK(g >= 0, STC_EFORMAT, "%s: not a friction table of format 6: group 'members' "
-              "missing", path);
+    STC_CHECK(g >= 0, STC_EFORMAT, "%s: not a friction table of format %d: group 'members' "
+              "missing", path, version);
     stc_status st = STC_OK;
     double *dv = malloc((size_t)np * nm * sizeof *dv);
     int *iv = malloc((size_t)np * nm * sizeof *iv);
     STC_CHECK_GOTO(dv && iv, st, done, STC_ENOMEM, "tbl_read: out of memory");
     for (int k = 0; k < NMFIELD; k++) {
         int isi = mfields[k].is_int, per = mfields[k].per_member ? nm : 1;
+        if (mfields[k].since > version) { /* not in the file: not known */
+            for (int i = 0; i < np; i++)
+                for (int j = 0; j < t->pt[i].ens.k; j++) {
+                    void *v = mfield_at(&t->pt[i], k, j);
+                    if (isi) *(int *)v = -1;
+                    else *(double *)v = NAN;
+                }
+            continue;
+        }
         STC_CALL_GOTO(read_array(g, path, mfields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
                                  dims, mfields[k].per_member ? 4 : 3,
                                  isi ? (void *)iv : (void *)dv), st, done);
@@ -746,8 +761,9 @@ stc_status tbl_read(const char *path, tbl_table **out)
     STC_CALL_GOTO(tbl_create(&fam, &num, ax[0], n[0], ax[1], n[1], ax[2], n[2], out), st, done);
     H5E_BEGIN_TRY { st = read_points(f, path, ver, *out); } H5E_END_TRY;
     if (st) goto done;
+    for (int i = 0; ver < 7 && i < tbl_points(*out); i++) (*out)->pt[i].mu_s_ux_slope = NAN;
     if (ver >= 6) { /* before: no members kept (every ens.k 0, tbl_create) */
-        H5E_BEGIN_TRY { st = read_members(f, path, *out); } H5E_END_TRY;
+        H5E_BEGIN_TRY { st = read_members(f, path, ver, *out); } H5E_END_TRY;
         if (st) goto done;
     }
     if (num.normal_level >= 0) {

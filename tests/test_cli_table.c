@@ -634,8 +634,23 @@ static void test_refined_build(void **state)
     assert_non_null(strstr(out, "node placements of the done points: 2 (1 point)"));
     assert_non_null(strstr(out, "error estimates (one standard error) of the 1 point computed: "
                                 "median "));
+    assert_non_null(strstr(out, "mu_s against where inception is declared (d ln mu_s / d ln ux "
+                                "there, docs/design.md §4.4): 0.1 or more at "));
+    assert_non_null(strstr(out, " of 1 point"));
+    /* the point keeps its members' d ln mu_s / d ln ux, and their mean */
+    tbl_table *rt = NULL;
+    assert_int_equal(tbl_read(P("refined.h5"), &rt), STC_OK);
+    const tbl_point *rp = tbl_point_get(rt, 0);
+    assert_int_equal(rp->ens.k, 2);
+    double s0 = rp->ens.m[0].mu_s_ux_slope, s1 = rp->ens.m[1].mu_s_ux_slope;
+    printf("  d ln mu_s / d ln ux: members %.4f, %.4f; point %.4f\n", s0, s1,
+           rp->mu_s_ux_slope);
+    assert_true(isfinite(s0) && isfinite(s1));
+    assert_true(rp->mu_s_ux_slope == s0 / 2 + s1 / 2);
+    tbl_destroy(&rt);
     assert_int_equal(run("table info refined.h5 --json", 1, out, sizeof out), 0);
     assert_json(out);
+    assert_non_null(strstr(out, "\"mu_s_ux_slope\": {\n    \"points\": 1,"));
     const char *by = strstr(out, "\"done_points_by_placements\": {");
     assert_non_null(by);
     assert_non_null(strstr(by, "\"2\": 1"));

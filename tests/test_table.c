@@ -214,6 +214,7 @@ static const char *point_diff(const tbl_point *a, const tbl_point *b)
     SAME_D(mu_s_min);
     SAME_D(mu_s_max);
     SAME_D(ux_slide_wc);
+    SAME_D(mu_s_ux_slope);
     SAME_I(members);
     SAME_I(newton_iterations);
     SAME_I(factorizations);
@@ -240,6 +241,7 @@ static const char *point_diff(const tbl_point *a, const tbl_point *b)
         SAME_D(ens.m[j].mu_s);
         SAME_D(ens.m[j].mu_s_preload);
         SAME_D(ens.m[j].mu_s_err);
+        SAME_D(ens.m[j].mu_s_ux_slope);
         SAME_I(ens.m[j].newton_iterations);
         SAME_I(ens.m[j].factorizations);
     }
@@ -313,6 +315,7 @@ static void distinct_point(tbl_table *t, int i)
     tbl_point p = *tbl_point_get(t, i);
     /* numbers that use the whole mantissa, so a float or text step shows */
     p.ux_slide_wc = 1.0 / (i + 3.0);
+    p.mu_s_ux_slope = 1.0 / (i + 29.0);
     p.mu_s_min = p.mu_s * (1.0 - 1.0 / (i + 7.0));
     p.mu_s_max = p.mu_s * (1.0 + 1.0 / (i + 11.0));
     p.mu_s_preload = p.mu_s * M_PI / 3.0;
@@ -338,6 +341,7 @@ static void distinct_point(tbl_table *t, int i)
             m->P_slide = 9.0 + x, m->Q_max = 3.0 + x, m->ux_slide = 1e-3 * x;
             m->mu_s = 0.3 + x, m->mu_s_preload = 0.29 + x, m->mu_s_err = 0.03 * x;
             m->cpu_s = 7.0 + x;
+            m->mu_s_ux_slope = 0.1 + x;
             m->newton_iterations = 11 * j + i, m->factorizations = 3 * j + i;
         }
     }
@@ -1915,6 +1919,137 @@ static void test_point_threads(void **state)
     tbl_destroy(&b);
 }
 
+/* ---- how much μs depends on where inception is declared ----------------- */
+
+/* d ln mu_s / d ln ux at inception (tbl_point.mu_s_ux_slope): a query reads
+ * it off the done points around it with multilinear weights in the
+ * logarithms, exact for a slope linear in ln w, ln t/R, ln Eco/Esu; a point
+ * that does not say makes the query's NaN.  On the surface
+ * (TBL_MODEL_SLOPE) sum s Qmax / sum Qmax: a slope the same everywhere is
+ * the surface's, to rounding; one that varies lies between its values.  A
+ * file of format 6 has no slopes: read back, points and members say NaN
+ * (not 0), everything else is as written, and there is no slope model. */
+static double slope_fn(double w, double tR, double E)
+{
+    return 0.3 + 0.05 * log(w) + 0.02 * log(tR) + 0.1 * log(E);
+}
+
+static void test_ux_slope(void **state)
+{
+    char dir[128], path[192];
+    scratch_sub(state, "ux-slope", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/slope.h5", dir);
+    tbl_table *t = hertz_table(0.0, 0.02, 3), *r = NULL;
+    for (int i = 0; i < tbl_points(t); i++) {
+        tbl_point p = *tbl_point_get(t, i);
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        p.mu_s_ux_slope = slope_fn(w, tR, E);
+        if (i == 5) { /* two members, each its own slope */
+            p.members = p.ens.k = 2;
+            p.ens.period = 1.2, p.ens.delta = 1e-3, p.ens.delta_mesh = 1e-3;
+            for (int j = 0; j < 2; j++) {
+                tbl_member *m = &p.ens.m[j];
+                m->elements_per_contact = 6.0 + 0.6 * j, m->P = 10.0, m->A = 0.01;
+                m->P_slide = 9.0, m->Q_max = 3.0, m->ux_slide = 1e-3, m->mu_s = p.mu_s;
+                m->mu_s_preload = p.mu_s, m->mu_s_err = 0.01, m->cpu_s = 1.0;
+                m->mu_s_ux_slope = p.mu_s_ux_slope + (j ? 0.01 : -0.01);
+            }
+        }
+        check_ok(tbl_point_set(t, i, &p), "tbl_point_set");
+    }
+    check_ok(tbl_fit(t), "tbl_fit");
+    const double *wa;
+    tbl_axis(t, 0, &wa);
+    double wq = sqrt(wa[10] * wa[11]), tq = 0.01, Eq = 1.5;
+    tbl_value v;
+    check_ok(tbl_query(t, wq, tq, Eq, &v), "tbl_query");
+    printf("slope at an inner query %.12f, the function %.12f\n", v.mu_s_ux_slope,
+           slope_fn(wq, tq, Eq));
+    assert_true(fabs(v.mu_s_ux_slope - slope_fn(wq, tq, Eq)) < 1e-12);
+    check_ok(tbl_query(t, wa[10], TR[1], ER[0], &v), "tbl_query");
+    assert_true(v.mu_s_ux_slope == slope_fn(wa[10], TR[1], ER[0])); /* on a node: its own */
+
+    check_ok(tbl_write(t, path), "tbl_write");
+    check_ok(tbl_read(path, &r), "tbl_read");
+    for (int i = 0; i < tbl_points(t); i++) {
+        const char *d = point_diff(tbl_point_get(t, i), tbl_point_get(r, i));
+        if (d) fail_msg("point %d: %s differs after the round trip", i, d);
+    }
+    tbl_destroy(&r);
+
+    /* the same file as format 6 wrote it */
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_true(H5Ldelete(f, "points/mu_s_ux_slope", H5P_DEFAULT) >= 0);
+    assert_true(H5Ldelete(f, "members/mu_s_ux_slope", H5P_DEFAULT) >= 0);
+    hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
+    int ver = 6;
+    assert_true(a >= 0 && H5Awrite(a, H5T_NATIVE_INT, &ver) >= 0);
+    H5Aclose(a);
+    H5Fclose(f);
+    check_ok(tbl_read(path, &r), "tbl_read format 6");
+    for (int i = 0; i < tbl_points(t); i++) {
+        tbl_point want = *tbl_point_get(t, i);
+        const tbl_point *got = tbl_point_get(r, i);
+        assert_true(isnan(got->mu_s_ux_slope));
+        for (int j = 0; j < got->ens.k; j++) assert_true(isnan(got->ens.m[j].mu_s_ux_slope));
+        want.mu_s_ux_slope = got->mu_s_ux_slope;
+        for (int j = 0; j < want.ens.k; j++) want.ens.m[j].mu_s_ux_slope = NAN;
+        const char *d = point_diff(&want, got);
+        if (d) fail_msg("point %d: %s differs in the format-6 file", i, d);
+    }
+    assert_int_equal(tbl_point_get(r, 5)->ens.k, 2);
+    check_ok(tbl_query(r, wq, tq, Eq, &v), "tbl_query format 6");
+    assert_true(isnan(v.mu_s_ux_slope));
+    stc_params p;
+    family_params(1.5, &p);
+    asp_model *ms = NULL;
+    expect_fail(tbl_model_create(r, &p, T_MM, TBL_MODEL_SLOPE, &ms), STC_ERANGE,
+                "slope model of a format-6 file", "before format 7", NULL);
+    assert_null(ms);
+    tbl_destroy(&r);
+
+    /* the surface: the slope summed as the share of each summit's Qmax */
+    asp_model *hz = hertz_model();
+    double sigma_s = 3.0 * asp_model_omega_c(hz, R_SUMMIT), lo = INFINITY, hi = -INFINITY;
+    asp_model_destroy(&hz);
+    for (int pass = 1; pass >= 0; pass--) {
+        for (int i = 0; pass == 0 && i < tbl_points(t); i++) { /* 0: one slope, 0.2 */
+            tbl_point q = *tbl_point_get(t, i);
+            q.mu_s_ux_slope = 0.2;
+            check_ok(tbl_point_set(t, i, &q), "tbl_point_set");
+        }
+        check_ok(tbl_fit(t), "tbl_fit");
+        asp_model *mq = NULL;
+        ms = NULL;
+        srf_gw *gq = NULL, *gs = NULL;
+        check_ok(tbl_model_create(t, &p, T_MM, TBL_MODEL_PRELOAD, &mq), "model");
+        check_ok(tbl_model_create(t, &p, T_MM, TBL_MODEL_SLOPE, &ms), "slope model");
+        check_ok(srf_gw_create_gaussian(mq, ETA, R_SUMMIT, sigma_s, NULL, &gq), "gw");
+        check_ok(srf_gw_create_gaussian(ms, ETA, R_SUMMIT, sigma_s, NULL, &gs), "gw slope");
+        for (int i = 0; i < tbl_points(t); i++) {
+            double w, tR, E;
+            tbl_coords(t, i, &w, &tR, &E);
+            lo = fmin(lo, slope_fn(w, tR, E)), hi = fmax(hi, slope_fn(w, tR, E));
+        }
+        for (double h = 0.0; h <= 2.0; h += 1.0) {
+            srf_gw_point a, b;
+            check_ok(srf_gw_at_separation(gq, h, &a), "gw at separation");
+            check_ok(srf_gw_at_separation(gs, h, &b), "gw slope at separation");
+            double s = b.Q_MPa / a.Q_MPa;
+            printf("  %s slope, h = %.0f: surface d ln mu_s / d ln ux %.12f\n",
+                   pass ? "varying" : "uniform", h, s);
+            if (pass == 0) assert_true(fabs(s - 0.2) < 1e-12);
+            else assert_true(s > lo && s < hi && fabs(s - 0.2) > 1e-3);
+        }
+        srf_gw_destroy(&gq), srf_gw_destroy(&gs);
+        asp_model_destroy(&mq), asp_model_destroy(&ms);
+    }
+
+    tbl_destroy(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1928,7 +2063,7 @@ int main(void)
         cmocka_unit_test(test_point_refine), cmocka_unit_test(test_refinable),
         cmocka_unit_test(test_normal_grid), cmocka_unit_test(test_one_material),
         cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_point_threads),
-        cmocka_unit_test(test_fit_reused),
+        cmocka_unit_test(test_fit_reused),         cmocka_unit_test(test_ux_slope),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

@@ -110,6 +110,8 @@ typedef struct tbl_member {
     double mu_s, mu_s_preload, mu_s_err; /* as the member's run gave them (err absolute) */
     double cpu_s;            /* its CPU time, s */
     int newton_iterations, factorizations; /* both steps */
+    double mu_s_ux_slope;    /* its asp_shear_result.mu_s_ux_slope (NaN: not known, as
+                                read from a file before format 7) */
 } tbl_member;
 
 typedef struct tbl_members {
@@ -133,6 +135,10 @@ typedef struct tbl_point {
     double mu_s_min, mu_s_max; /* over the members */
     double ux_slide_wc;   /* ux at inception / ωc_su (mean) */
     int members;          /* members that reached inception */
+    double mu_s_ux_slope; /* d ln μs / d ln ux at inception, mean over the members
+                             (asp_shear_result.mu_s_ux_slope): how much μs depends on
+                             where inception is declared.  NaN: not known (a file
+                             before format 7, or members taken from one) */
     int newton_iterations, factorizations; /* summed over members, both steps */
     double wall_s;        /* wall time of the point, s */
     double cpu_s;         /* CPU time of the point, s */
@@ -418,6 +424,11 @@ typedef struct tbl_value {
     int from_normal;        /* 1: P and A from the normal grid, 0: from the 3D points */
     double mu_s, mu_s_err;  /* the surrogate and its standard error */
     double Q_max_Pc, Q_max_Pc_err; /* mu_s P_slide_Pc */
+    double mu_s_ux_slope;   /* d ln μs / d ln ux at inception of the done grid points
+                               around the query (tbl_point.mu_s_ux_slope), weighted as
+                               multilinear interpolation in ln w, ln t/R, ln Eco/Esu
+                               weighs them: how much μs there depends on where
+                               inception is declared.  NaN where a point does not say */
     unsigned flags;
 } tbl_value;
 STC_API stc_status tbl_query(const tbl_table *t, double w, double t_over_R, double E_ratio,
@@ -446,7 +457,14 @@ STC_API int tbl_is_homogeneous(const tbl_table *t);
 typedef enum tbl_model_kind {
     TBL_MODEL_PRELOAD = 0, /* P = preload, Qmax = μs P_slide: the sum at a separation */
     TBL_MODEL_SLIDE = 1,   /* P = P at inception, Qmax as above */
-    TBL_MODEL_ERR = 2      /* P = preload, Qmax = σ(μs) P_slide: the error band's sum */
+    TBL_MODEL_ERR = 2,     /* P = preload, Qmax = σ(μs) P_slide: the error band's sum */
+    TBL_MODEL_SLOPE = 3    /* P = preload, Qmax = s μs P_slide, s the points'
+                              mu_s_ux_slope (tbl_value; at least 1e-4, the log
+                              interpolation's floor: a negative s, Q/P falling past a
+                              maximum, counts as none): over the table model's sum of
+                              Qmax, the surface μs's d ln μs / d ln ux for inception
+                              declared at a ux the same per cent later on every summit.
+                              STC_ERANGE where the table does not keep s (format < 7) */
 } tbl_model_kind;
 
 /* STC_OK when the materials p (E/Y and ν of both layers, Eco/Esu) can use the

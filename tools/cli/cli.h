@@ -323,17 +323,21 @@ stc_status cli_gw_pop_load(cli_gw_pop *pop, const char *surface, const cli_surfa
 stc_status cli_gw_pop_sum(const cli_gw_pop *pop, const asp_model *m, srf_gw **out);
 void cli_gw_pop_free(cli_gw_pop *pop);
 /* One coating on an FE friction table: its models at the preload, at
- * sliding inception and μs's error band, each summed over the population. */
+ * sliding inception, μs's error band and (where the table keeps it, else
+ * NULL) μs's slope against where inception is declared, each summed over
+ * the population. */
 typedef struct cli_table_design {
-    asp_model *m[3];
-    srf_gw *g[3];
+    asp_model *m[4];
+    srf_gw *g[4];
 } cli_table_design;
 stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, double t_mm,
                                    const cli_gw_pop *pop, cli_table_design *d);
 /* The sums at a pressure (MPa; by_pressure) or separation, with μs's error
- * band and μs with P at inception. */
+ * band, μs with P at inception and d ln μs / d ln ux (NaN where the table
+ * does not keep it; TBL_MODEL_SLOPE). */
 stc_status cli_table_design_at(const cli_table_design *d, int by_pressure, double x,
-                               srf_gw_point *pt, double *mu_s_err, double *mu_s_slide);
+                               srf_gw_point *pt, double *mu_s_err, double *mu_s_slide,
+                               double *mu_s_slope);
 void cli_table_design_free(cli_table_design *d);
 /* --fill over one or more coatings (t_mm[k] with materials p[k]): the table
  * file's missing points that the loads touch, computed into it; the counts

@@ -119,12 +119,17 @@ stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, doub
         s = tbl_model_create(t, p, t_mm, kind[k], &d->m[k]);
         if (s == STC_OK) s = cli_gw_pop_sum(pop, d->m[k], &d->g[k]);
     }
+    /* the slope where the table keeps it (format 7 on) */
+    if (s == STC_OK && tbl_model_create(t, p, t_mm, TBL_MODEL_SLOPE, &d->m[3]) != STC_OK)
+        stc_error_clear();
+    if (s == STC_OK && d->m[3]) s = cli_gw_pop_sum(pop, d->m[3], &d->g[3]);
     if (s != STC_OK) cli_table_design_free(d);
     return s;
 }
 
 stc_status cli_table_design_at(const cli_table_design *d, int by_pressure, double x,
-                               srf_gw_point *pt, double *mu_s_err, double *mu_s_slide)
+                               srf_gw_point *pt, double *mu_s_err, double *mu_s_slide,
+                               double *mu_s_slope)
 {
     stc_status s = by_pressure ? srf_gw_at_pressure(d->g[0], x, pt)
                                : srf_gw_at_separation(d->g[0], x, pt);
@@ -135,12 +140,17 @@ stc_status cli_table_design_at(const cli_table_design *d, int by_pressure, doubl
         return s;
     *mu_s_slide = pt->Q_MPa / a.pressure_MPa;
     *mu_s_err = b.Q_MPa / pt->pressure_MPa; /* errors taken fully correlated */
+    *mu_s_slope = NAN;
+    if (d->g[3]) { /* sum s Qmax / sum Qmax */
+        if ((s = srf_gw_at_separation(d->g[3], pt->h, &b))) return s;
+        *mu_s_slope = b.Q_MPa / pt->Q_MPa;
+    }
     return STC_OK;
 }
 
 void cli_table_design_free(cli_table_design *d)
 {
-    for (int k = 0; k < 3; k++) srf_gw_destroy(&d->g[k]), asp_model_destroy(&d->m[k]);
+    for (int k = 0; k < 4; k++) srf_gw_destroy(&d->g[k]), asp_model_destroy(&d->m[k]);
 }
 
 /* The contact states come from a guide model: the table's own where it has

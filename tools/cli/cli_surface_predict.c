@@ -158,7 +158,7 @@ static stc_status make_model(const predict_opts *o, const stc_params *p, asp_mod
 
 /* Per load point with --table: μs's error band and μs with P at inception. */
 typedef struct {
-    double mu_s_err, mu_s_slide;
+    double mu_s_err, mu_s_slide, mu_s_slope;
 } table_extra;
 
 static stc_status run_points(const predict_opts *o, srf_gw *g, const table_aux *x,
@@ -169,7 +169,8 @@ static stc_status run_points(const predict_opts *o, srf_gw *g, const table_aux *
         stc_status s;
         if (x->t)
             s = cli_table_design_at(&x->d, o->np > 0, o->np ? o->pressures[i] : o->separations[i],
-                                    &pts[i], &ex[i].mu_s_err, &ex[i].mu_s_slide);
+                                    &pts[i], &ex[i].mu_s_err, &ex[i].mu_s_slide,
+                                    &ex[i].mu_s_slope);
         else
             s = o->np ? srf_gw_at_pressure(g, o->pressures[i], &pts[i])
                       : srf_gw_at_separation(g, o->separations[i], &pts[i]);
@@ -207,6 +208,7 @@ static void json_point(cli_json *j, const context *c, const srf_gw_point *q,
     if (e) {
         cj_num(j, "mu_s_err", e->mu_s_err);
         cj_num(j, "mu_s_P_at_inception", e->mu_s_slide);
+        cj_num(j, "mu_s_ux_slope", e->mu_s_slope); /* null: the table does not keep it */
     }
     cj_bool(j, "in_range", !(q->load_fraction_outside > 0.0));
     cj_num(j, "delta_max_over_omega_c", q->delta_max_over_omega_c);
@@ -237,6 +239,9 @@ static void json_points(FILE *f, const context *c, const srf_gw_point *pts, int 
             cj_str(&j, "mu_s_definition", "sum Qmax / sum P with P the preload at the "
                                           "separation; mu_s_P_at_inception uses the asperities' "
                                           "P at sliding inception");
+            cj_str(&j, "mu_s_ux_slope", "d ln mu_s / d ln ux: per cent of mu_s per per cent "
+                                        "of the ux at which every asperity's inception is "
+                                        "declared (sum s Qmax / sum Qmax)");
         }
         cj_str(&j, "surface", c->o->surface);
         cj_str(&j, "separation_datum", DATUM);
@@ -279,7 +284,7 @@ static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n
     fprintf(f, "separation_over_sigma_s,nominal_pressure_MPa,P_over_An_Estar,A_over_An,"
                "contacts_per_mm2,Q_over_An_Estar,mu_s,delta_max_over_omega_c,t_over_R_min,"
                "t_over_R_max,load_fraction_outside_model_range,err_P_over_An_MPa%s\n",
-            c->ex ? ",mu_s_err,mu_s_P_at_inception" : "");
+            c->ex ? ",mu_s_err,mu_s_P_at_inception,mu_s_ux_slope" : "");
     for (int k = 0; k < n; k++) {
         const srf_gw_point *q = &pts[k];
         /* a value that does not exist (Q and mu_s of the frictionless hertz
@@ -296,9 +301,10 @@ static void csv_points(FILE *f, const context *c, const srf_gw_point *pts, int n
             fprintf(f, "%s%s", cli_num(b, sizeof b, fmt[m], v[m], ""), m < 11 ? "," : "");
         }
         if (c->ex) {
-            char b[2][32];
-            fprintf(f, ",%s,%s", cli_num(b[0], sizeof b[0], "%.4g", c->ex[k].mu_s_err, ""),
-                    cli_num(b[1], sizeof b[1], "%.10g", c->ex[k].mu_s_slide, ""));
+            char b[3][32];
+            fprintf(f, ",%s,%s,%s", cli_num(b[0], sizeof b[0], "%.4g", c->ex[k].mu_s_err, ""),
+                    cli_num(b[1], sizeof b[1], "%.10g", c->ex[k].mu_s_slide, ""),
+                    cli_num(b[2], sizeof b[2], "%.4g", c->ex[k].mu_s_slope, ""));
         }
         fputc('\n', f);
     }
@@ -333,6 +339,11 @@ static void table_points(const context *c, const srf_gw_point *pts, int n)
     if (c->ex)
         printf("  (mu_s = sum Qmax / sum P with P the preload; +- err: the table's one-standard-"
                "error band; mu_s(Pi): P at sliding inception)\n");
+    if (c->ex && isfinite(c->ex[0].mu_s_slope)) {
+        printf("  (d ln mu_s / d ln ux where inception is declared, load by load:");
+        for (int k = 0; k < n; k++) printf(" %.3f", c->ex[k].mu_s_slope);
+        printf("; docs/table-format.md)\n");
+    }
     printf("  (outside = share of the load from summits outside the model's range "
            "delta/omega_c in [%g, %g])\n", c->range.w_lo, c->range.w_hi);
 }

@@ -119,7 +119,7 @@ static stc_status design_params(const tbl_table *t, const stc_params *base, doub
 typedef struct {
     double t_mm, E_ratio, Y_co;
     srf_gw_point *pt;       /* [np] */
-    double *mu_err, *mu_pi; /* [np] */
+    double *mu_err, *mu_pi, *mu_slope; /* [np] */
 } design;
 
 static void json_out(FILE *f, const sweep_opts *o, const design *d, int nd, const srf_gw_info *gi)
@@ -153,6 +153,7 @@ static void json_out(FILE *f, const sweep_opts *o, const design *d, int nd, cons
             cj_num(&j, "mu_s", q->mu_s);
             cj_num(&j, "mu_s_err", d[k].mu_err[i]);
             cj_num(&j, "mu_s_P_at_inception", d[k].mu_pi[i]);
+            cj_num(&j, "mu_s_ux_slope", d[k].mu_slope[i]);
             cj_num(&j, "A_over_An", q->area_fraction);
             cj_num(&j, "contacts_per_mm2", q->contacts_per_mm2);
             cj_num(&j, "separation_over_sigma_s", q->h);
@@ -370,7 +371,8 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
             d[k].Y_co = dp[k].Y_co;
             if (s == STC_OK && (!(d[k].pt = calloc((size_t)o.np, sizeof *d[k].pt)) ||
                                 !(d[k].mu_err = calloc((size_t)o.np, sizeof(double))) ||
-                                !(d[k].mu_pi = calloc((size_t)o.np, sizeof(double)))))
+                                !(d[k].mu_pi = calloc((size_t)o.np, sizeof(double))) ||
+                                !(d[k].mu_slope = calloc((size_t)o.np, sizeof(double)))))
                 s = stc_error(STC_ENOMEM, __FILE__, __LINE__, "out of memory");
         }
     if (s == STC_OK) s = cli_gw_pop_load(&o.pop, o.surface, &o.imp, &p);
@@ -393,7 +395,7 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
         if (k == 0) srf_gw_get_info(td.g[0], &gi);
         for (int i = 0; i < o.np && s == STC_OK; i++)
             s = cli_table_design_at(&td, 1, o.pressures[i], &d[k].pt[i], &d[k].mu_err[i],
-                                    &d[k].mu_pi[i]);
+                                    &d[k].mu_pi[i], &d[k].mu_slope[i]);
         cli_table_design_free(&td);
     }
     if (s == STC_OK && o.out) s = write_files(&o, d, nd, nE, &gi);
@@ -412,7 +414,8 @@ int cli_surface_sweep(const cli_cmd *cmd, int argc, char **argv)
                 cmd->name, cli_percent_up(worst));
 out:
     if (rc != CLI_EXIT_OK && o.out_made) rmdir(o.out);
-    for (int k = 0; d && k < nd; k++) free(d[k].pt), free(d[k].mu_err), free(d[k].mu_pi);
+    for (int k = 0; d && k < nd; k++) free(d[k].pt), free(d[k].mu_err), free(d[k].mu_pi),
+                                    free(d[k].mu_slope);
     free(d);
     free(dp);
     free(dt);

@@ -533,6 +533,30 @@ static int err_summarise(const tbl_table *t, err_summary *e)
     return 0;
 }
 
+/* How much the done points' μs (run as themselves) depends on where
+ * inception is declared (tbl_point.mu_s_ux_slope): of the n that say, how
+ * many reach SLOPE_HIGH, from which δ/ωc, the largest (imax its point). */
+#define SLOPE_HIGH 0.1
+typedef struct slope_summary {
+    int n, high, imax;
+    double w_min, max;
+} slope_summary;
+
+static void slope_summarise(const tbl_table *t, slope_summary *r)
+{
+    *r = (slope_summary){.imax = -1, .w_min = NAN, .max = NAN};
+    for (int i = 0; i < tbl_points(t); i++) {
+        const tbl_point *p = tbl_point_get(t, i);
+        if (p->state != TBL_DONE || p->copied || !isfinite(p->mu_s_ux_slope)) continue;
+        r->n++;
+        if (r->imax < 0 || p->mu_s_ux_slope > r->max) r->max = p->mu_s_ux_slope, r->imax = i;
+        if (p->mu_s_ux_slope < SLOPE_HIGH) continue;
+        double w, tR, E;
+        tbl_coords(t, i, &w, &tR, &E);
+        if (r->high++ == 0 || w < r->w_min) r->w_min = w;
+    }
+}
+
 /* The next command of a table's history (tbl_history: one a line) into
  * line[n]; returns where the one after it starts, NULL at the end. */
 static const char *history_line(const char *h, char *line, size_t n)
@@ -632,6 +656,15 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
         }
         cj_end_obj(&j);
     }
+    slope_summary ss;
+    slope_summarise(t, &ss);
+    cj_obj(&j, "mu_s_ux_slope"); /* how much mu_s depends on where inception is declared */
+    cj_int(&j, "points", ss.n);  /* that say (0: a file before format 7) */
+    cj_num(&j, "high_from", SLOPE_HIGH);
+    cj_int(&j, "high", ss.high);
+    cj_num(&j, "high_delta_min", ss.w_min);
+    cj_num(&j, "largest", ss.max);
+    cj_end_obj(&j);
     tbl_fit_info fi;
     if (tbl_get_fit_info(t, &fi) == STC_OK) {
         cj_num(&j, "loo_rms_rel", fi.loo_rms);
@@ -784,6 +817,17 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
                "%.1f %%, %d at %.0f %% or more, largest %.1f %% (delta %g, t/R %g, Eco/Esu %g; %d "
                "member%s)\n", es.n, es.n == 1 ? "" : "s", 100 * es.median, es.noisy,
                100 * ERR_NOISY, 100 * es.max, w, tR, E, m, m == 1 ? "" : "s");
+    }
+    slope_summary ss;
+    slope_summarise(t, &ss);
+    if (ss.n > 0) {
+        double w, tR, E;
+        tbl_coords(t, ss.imax, &w, &tR, &E);
+        printf("  mu_s against where inception is declared (d ln mu_s / d ln ux there, "
+               "docs/design.md §4.4): %g or more at %d of %d point%s", SLOPE_HIGH, ss.high,
+               ss.n, ss.n == 1 ? "" : "s");
+        if (ss.high > 0) printf(" (from delta %g on)", ss.w_min);
+        printf(", largest %.2f (delta %g, t/R %g, Eco/Esu %g)\n", ss.max, w, tR, E);
     }
     info_normal_text(t);
     tbl_fit_info fi;
@@ -1013,6 +1057,7 @@ static int table_query(const cli_cmd *cmd, int argc, char **argv)
             cj_num(&j, "Q_max_over_P_c", v[i].Q_max_Pc);
             cj_num(&j, "Q_max_over_P_c_err", v[i].Q_max_Pc_err);
             cj_str(&j, "P_A_from", v[i].from_normal ? "normal grid" : "3D points");
+            cj_num(&j, "mu_s_ux_slope", v[i].mu_s_ux_slope);
             cj_bool(&j, "in_range", v[i].flags == 0);
             cj_str(&j, "flags", flags_text(v[i].flags, fl, sizeof fl));
             cj_end_obj(&j);
@@ -1021,13 +1066,22 @@ static int table_query(const cli_cmd *cmd, int argc, char **argv)
         cj_done(&j);
     } else {
         printf("t/R = %g, Eco/Esu = %g (one standard error after +-)\n", q.tR, q.E);
-        printf("%10s %22s %22s %11s %20s %22s  %s\n", "delta/wc", "P/Pc", "A/Ac", "Pslide/Pc",
-               "mu_s", "Qmax/Pc", "flags");
-        for (int i = 0; i < q.nw; i++)
+        int slope = 0;
+        for (int i = 0; i < q.nw; i++) slope |= isfinite(v[i].mu_s_ux_slope);
+        printf("%10s %22s %22s %11s %20s %22s", "delta/wc", "P/Pc", "A/Ac", "Pslide/Pc", "mu_s",
+               "Qmax/Pc");
+        printf(slope ? " %8s  %s\n" : "%.0s  %s\n", "dmu/dux", "flags");
+        for (int i = 0; i < q.nw; i++) {
             printf("%10g %12.5g +- %-7.2g %12.5g +- %-7.2g %11.5g %9.4f +- %-7.4f %12.5g +- "
-                   "%-7.2g  %s\n", q.w[i], v[i].P_Pc, v[i].P_Pc_err, v[i].A_Ac, v[i].A_Ac_err,
-                   v[i].P_slide_Pc, v[i].mu_s, v[i].mu_s_err, v[i].Q_max_Pc, v[i].Q_max_Pc_err,
-                   flags_text(v[i].flags, fl, sizeof fl));
+                   "%-7.2g", q.w[i], v[i].P_Pc, v[i].P_Pc_err, v[i].A_Ac, v[i].A_Ac_err,
+                   v[i].P_slide_Pc, v[i].mu_s, v[i].mu_s_err, v[i].Q_max_Pc, v[i].Q_max_Pc_err);
+            if (slope) printf(" %8.3f", v[i].mu_s_ux_slope);
+            printf("  %s\n", flags_text(v[i].flags, fl, sizeof fl));
+        }
+        if (slope)
+            printf("(dmu/dux: d ln mu_s / d ln ux where inception is declared, of the grid "
+                   "points around it: per cent of mu_s per per cent of that ux; "
+                   "docs/design.md §4.4)\n");
     }
     if (any)
         fprintf(stderr, "stiction %s: warning: %s: outside the table's range (not an answer of "
