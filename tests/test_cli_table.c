@@ -647,6 +647,12 @@ static void test_refined_build(void **state)
            rp->mu_s_ux_slope);
     assert_true(isfinite(s0) && isfinite(s1));
     assert_true(rp->mu_s_ux_slope == s0 / 2 + s1 / 2);
+    /* and --points lists it (the column after ux at inception) */
+    assert_int_equal(run("table info refined.h5 --points", 1, out, sizeof out), 0);
+    char want[64];
+    snprintf(want, sizeof want, ",%.6g,2,", rp->mu_s_ux_slope); /* slope, members */
+    assert_non_null(strstr(out, "ux_slide_over_omega_c,mu_s_ux_slope,members,"));
+    assert_non_null(strstr(out, want));
     tbl_destroy(&rt);
     assert_int_equal(run("table info refined.h5 --json", 1, out, sizeof out), 0);
     assert_json(out);

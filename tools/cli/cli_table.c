@@ -865,20 +865,22 @@ static void info_points(const tbl_table *t)
     static const char *const state[] = {"pending", "done", "failed"};
     printf("index,delta_over_omega_c,t_over_R,E_ratio,state,P_over_P_c,A_over_A_c,"
            "P_slide_over_P_c,Q_max_over_P_c,mu_s,mu_s_err,mu_s_preload,mu_s_min,mu_s_max,"
-           "ux_slide_over_omega_c,members,newton_iterations,factorizations,wall_s,cpu_s,"
-           "source,reason\n");
+           "ux_slide_over_omega_c,mu_s_ux_slope,members,newton_iterations,factorizations,"
+           "wall_s,cpu_s,source,reason\n");
     for (int i = 0; i < tbl_points(t); i++) {
         const tbl_point *p = tbl_point_get(t, i);
         double w, tR, E;
         tbl_coords(t, i, &w, &tR, &E);
         printf("%d,%.10g,%.10g,%.10g,%s", i, w, tR, E,
                p->state >= 0 && p->state <= 2 ? state[p->state] : "?");
+        char sl[32]; /* not kept (a file before format 7): an empty field */
         if (p->state == TBL_DONE)
-            printf(",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%d,%d,%.4g,"
-                   "%.4g,", p->P_Pc, p->A_Ac, p->P_slide_Pc, p->Q_max_Pc, p->mu_s, p->mu_s_err,
-                   p->mu_s_preload, p->mu_s_min, p->mu_s_max, p->ux_slide_wc, p->members,
+            printf(",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%s,%d,%d,%d,"
+                   "%.4g,%.4g,", p->P_Pc, p->A_Ac, p->P_slide_Pc, p->Q_max_Pc, p->mu_s,
+                   p->mu_s_err, p->mu_s_preload, p->mu_s_min, p->mu_s_max, p->ux_slide_wc,
+                   cli_num(sl, sizeof sl, "%.6g", p->mu_s_ux_slope, ""), p->members,
                    p->newton_iterations, p->factorizations, p->wall_s, p->cpu_s);
-        else printf(",,,,,,,,,,,,,,%.4g,%.4g,", p->wall_s, p->cpu_s);
+        else printf(",,,,,,,,,,,,,,,%.4g,%.4g,", p->wall_s, p->cpu_s);
         printf("%d,", p->copied ? tbl_point_source(t, i) : i);
         /* the reason is free text: quoted, its quotes doubled */
         putchar('"');
