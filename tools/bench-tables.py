@@ -12,7 +12,12 @@
    fitted to, else by a search), with the surrogate's leave-one-out error.
    What refining it in place would cost (`table info --placements-max 8
    --refine-err X`): the points computed again and their recorded CPU time.
-2. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
+2. What keeping a point's members saves (table format 6 on): one thesis-family
+   point (8 omega_c_su, t/R 0.025, Eco/Esu 2) built with one placement, then
+   refined in place to two, against the two-placement build from scratch:
+   CPU seconds of each, the members taken, and whether the refined point
+   equals the fresh one (every stored number but the timings).
+3. What sharing one normal loading run per (t/R, Eco/Esu) column could save:
    one table point at the thesis family's settings run by `stiction asperity
    --shear` with the normal step and the shear ramp timed apart (the normal
    step's share of a point is the most that sharing it could save).
@@ -23,8 +28,10 @@ import glob
 import io
 import json
 import statistics
+import os
 import subprocess
 import sys
+import tempfile
 import time
 
 
@@ -96,6 +103,43 @@ def curve_costs(cli, path):
     print("  " + (line[0] if line else "normal grid: %d curves" % g["curves"]))
 
 
+def build_point(cli, out, extra):
+    cfg = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples",
+                       "thesis-table.ini")
+    t0 = time.monotonic()
+    r = json.loads(run([cli, "table", "build", "--config", cfg, "--deltas", "8", "--t-over-R",
+                        "0.025", "--E-ratio", "2", "--placements", "1", "--normal-level", "-1",
+                        "--jobs", "1", "--quiet", "--json", "--out", out] + extra))
+    return r["this_run"], time.monotonic() - t0
+
+
+def point_row(cli, path):
+    row = [r for r in csv.DictReader(io.StringIO(run([cli, "table", "info", path, "--points"])))
+           if r["state"] == "done"][0]
+    return {k: v for k, v in row.items() if k not in ("wall_s", "cpu_s")}
+
+
+def member_reuse(cli):
+    print("\nkeeping a point's members (thesis family, 8 omega_c_su, t/R 0.025, Eco/Esu 2, one "
+          "thread):")
+    refine = ["--placements-max", "2", "--refine-err", "0.001"]
+    with tempfile.TemporaryDirectory() as d:
+        a, b = os.path.join(d, "refined.h5"), os.path.join(d, "fresh.h5")
+        one, w1 = build_point(cli, a, ["--placements-max", "0"])
+        ref, w2 = build_point(cli, a, refine)
+        fresh, w3 = build_point(cli, b, refine)
+        cpu = lambda r: r["cpu_s_per_point"] * r["computed"]
+        print("  one placement: %.1f CPU s (%.1f s wall)" % (cpu(one), w1))
+        print("  refined in place to two: %.1f CPU s (%.1f s wall), %d member taken from the file"
+              % (cpu(ref), w2, ref["members_taken"]))
+        print("  two placements from scratch: %.1f CPU s (%.1f s wall)" % (cpu(fresh), w3))
+        same = point_row(cli, a) == point_row(cli, b)
+        print("  the refined point equals the fresh one in every stored number but the "
+              "timings: %s" % ("yes" if same else "NO"))
+        if not same:
+            sys.exit("member reuse: the refined point differs from the fresh build")
+
+
 def normal_share(cli):
     print("\nnormal step versus shear ramp of one point (thesis family, t/R 0.025, "
           "Eco/Esu 2, stick, one placement, one thread):")
@@ -117,6 +161,7 @@ def main():
         table_costs(cli, t)
         refine_costs(cli, t)
         curve_costs(cli, t)
+    member_reuse(cli)
     normal_share(cli)
     print("  solver reuse kept: none. A shared normal loading run per column could save at "
           "most the share above, and only on one mesh fit for every contact of the column "
