@@ -115,6 +115,26 @@ static int keep_member(tbl_build_state *b, const tbl_member_rec *r)
     return 0;
 }
 
+/* A point or curve in this state is computed by b's build: pending, or
+ * failed where the build retries failed ones (--retry-failed). */
+static int reopens(const tbl_build_state *b, int state)
+{
+    return state == TBL_PENDING ||
+           ((b->o->retry_failed || b->o->only_failed) && state == TBL_FAILED);
+}
+
+/* Item k (a point, or curve k - points) was failed and an earlier run of
+ * this build journaled its retry: b->retried[k].  0, or -1 out of memory. */
+static int mark_retried(tbl_build_state *b, int state, int k)
+{
+    if (state != TBL_FAILED) return 0;
+    if (!b->retried &&
+        !(b->retried = calloc((size_t)(tbl_points(b->t) + tbl_curves(b->t)), 1)))
+        return -1;
+    b->retried[k] = 1;
+    return 0;
+}
+
 /* Open the journal of b's table at jpath: take its whole records into the
  * table (pending points and curves only) and the members of its pending
  * points into b->mem, cut off a torn tail, or start a new journal.  b->fd
@@ -163,9 +183,15 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
             if (rh.magic == POINT_MAGIC) {
                 tbl_point p;
                 memcpy(&p, buf + sizeof rh, sizeof p);
-                if (t->pt[rh.index].state == TBL_PENDING && p.state != TBL_PENDING &&
-                    tbl_point_set(t, rh.index, &p) == STC_OK)
+                int was = t->pt[rh.index].state;
+                if (reopens(b, was) && p.state != TBL_PENDING &&
+                    tbl_point_set(t, rh.index, &p) == STC_OK) {
                     (*taken)++;
+                    if (mark_retried(b, was, rh.index) != 0) {
+                        free(buf);
+                        return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
+                    }
+                }
             } else if (rh.magic == MEMBER_MAGIC) {
                 tbl_member_rec r;
                 memcpy(&r, buf + sizeof rh, sizeof r);
@@ -179,18 +205,27 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
                 tbl_curve c;
                 const double *v = (const double *)(buf + sizeof rh + sizeof c);
                 memcpy(&c, buf + sizeof rh, sizeof c);
-                if (t->nrm.c[rh.index].state == TBL_PENDING && c.state != TBL_PENDING &&
-                    tbl_curve_set(t, rh.index, &c, v, v + t->nrm.n[0]) == STC_OK)
+                int was = t->nrm.c[rh.index].state;
+                if (reopens(b, was) && c.state != TBL_PENDING &&
+                    tbl_curve_set(t, rh.index, &c, v, v + t->nrm.n[0]) == STC_OK) {
                     (*taken_curves)++;
+                    if (mark_retried(b, was, tbl_points(t) + rh.index) != 0) {
+                        free(buf);
+                        return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
+                    }
+                }
             }
             good += (off_t)(sizeof rh + n + sizeof sum);
         }
         free(buf);
-        /* members only of the points still pending (a failed point computed
-         * again, --retry-failed, runs its members again too) */
+        /* members only of the points still to compute (pending, or failed
+         * and to be retried) */
         int kept = 0;
-        for (int r = 0; r < b->n_mem; r++)
-            if (t->pt[b->mem[r].index].state == TBL_PENDING) b->mem[kept++] = b->mem[r];
+        for (int r = 0; r < b->n_mem; r++) {
+            int i = b->mem[r].index;
+            if (reopens(b, t->pt[i].state) && !(b->retried && b->retried[i]))
+                b->mem[kept++] = b->mem[r];
+        }
         b->n_mem = kept;
         /* a torn last record (killed mid-write) is dropped and recomputed */
         STC_CHECK(ftruncate(*fd, good) == 0 && lseek(*fd, good, SEEK_SET) == good, STC_EIO,
@@ -527,7 +562,7 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
         if (tbl_curve_source(t, c) != c) continue; /* filled from its source */
         if ((o->only && !need[c]) || (o->only_failed && st_c == TBL_PENDING)) continue;
         b->curves_total++;
-        if (st_c == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_c == TBL_FAILED))
+        if (reopens(b, st_c) && !(b->retried && b->retried[tbl_points(t) + c]))
             todo[n++] = -c - 1;
         else b->curves_done++;
     }
@@ -537,7 +572,7 @@ static int share(tbl_build_state *b, const tbl_build_opts *o, int *todo, unsigne
             (o->only_failed && st_i == TBL_PENDING))
             continue;
         b->total++;
-        if (st_i == TBL_PENDING || ((o->retry_failed || o->only_failed) && st_i == TBL_FAILED))
+        if (reopens(b, st_i) && !(b->retried && b->retried[i]))
             todo[n++] = i;
         else b->done++, b->resumed++, b->failed += st_i == TBL_FAILED;
     }
@@ -571,6 +606,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
         if (b.fd >= 0) close(b.fd);
         free(todo);
         free(b.mem);
+        free(b.retried);
         return st;
     }
     n = share(&b, o, todo, need);
@@ -587,6 +623,7 @@ static stc_status build_here(tbl_mpi *m, tbl_table *t, const char *path,
     tbl_mpi_end(m); /* every rank is done: the other ranks need not wait for the file */
     free(todo);
     free(b.mem);
+    free(b.retried);
     close(b.fd);
     if (sum) {
         sum->computed = b.computed;

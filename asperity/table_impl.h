@@ -152,6 +152,10 @@ typedef struct tbl_build_state {
     struct tbl_member_rec *mem;
     int n_mem;
     int members_taken;          /* of them, taken by this run's points */
+    /* [points + curves]: 1 where an earlier run of this build retried the
+     * failed point (curve np + c) and journaled it: not retried again (NULL:
+     * none) */
+    unsigned char *retried;
 } tbl_build_state;
 
 /* Done point p's ensemble as it held its members, as far as p.ens keeps

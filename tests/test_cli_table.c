@@ -291,29 +291,39 @@ static int file_has(const char *path, const char *tag)
  * journaled ("TBTM") and before the point was ("TBTP"), keeps that member:
  * the next run computes only the other one, and the point equals the
  * uninterrupted build's. */
-static void test_killed_point_keeps_members(void **state)
+/* Run `args` (a build writing file, whose journal is file.journal) and
+ * kill it after its first member's record and before the point's (up to
+ * three tries); `keep`: file existed before and must still. */
+static void kill_after_first_member(const char *args, const char *file, int keep)
 {
-    (void)state;
-    pid_t ref = start_cli(MEMBER_BUILD "mref.h5", P("mref.err"));
+    char journal[512], err[512];
+    snprintf(journal, sizeof journal, "%s.journal", file);
+    snprintf(err, sizeof err, "%s.err", file);
     int attempt = 0, caught = 0;
     for (; attempt < 3 && !caught; attempt++) {
-        unlink(P("mk.h5.journal"));
-        pid_t pid = start_cli(MEMBER_BUILD "mk.h5", P("mk.err"));
+        unlink(journal);
+        pid_t pid = start_cli(args, err);
         int st, gone = 0;
-        while (!(gone = waitpid(pid, &st, WNOHANG) == pid) &&
-               !file_has(P("mk.h5.journal"), "TBTM")) {
+        while (!(gone = waitpid(pid, &st, WNOHANG) == pid) && !file_has(journal, "TBTM")) {
             struct timespec poll = {0, 5000000};
             nanosleep(&poll, NULL);
         }
         if (gone) fail_msg("the build ended before its first member was journaled");
         kill(pid, SIGKILL);
         wait_rc(pid);
-        assert_false(exists(P("mk.h5")));
+        assert_int_equal(exists(file), keep);
         /* the point itself journaled before the kill landed: try again */
-        caught = !file_has(P("mk.h5.journal"), "TBTP");
+        caught = !file_has(journal, "TBTP");
     }
     printf("  killed after the first member's record (attempt %d)\n", attempt);
     assert_true(caught);
+}
+
+static void test_killed_point_keeps_members(void **state)
+{
+    (void)state;
+    pid_t ref = start_cli(MEMBER_BUILD "mref.h5", P("mref.err"));
+    kill_after_first_member(MEMBER_BUILD "mk.h5", P("mk.h5"), 0);
     char out[4096];
     assert_int_equal(run(MEMBER_BUILD "mk.h5", 1, out, sizeof out), 0);
     printf("%s", out);
@@ -332,6 +342,27 @@ static void test_killed_point_keeps_members(void **state)
            tbl_point_get(ta, 0)->cpu_s);
     assert_true(worst == 0.0);
     assert_true(tbl_point_get(tb, 0)->cpu_s > 0.75 * tbl_point_get(ta, 0)->cpu_s);
+    tbl_destroy(&tb);
+
+    /* the same when the point was failed and is retried (--retry-failed) */
+    tbl_point p;
+    memset(&p, 0, sizeof p);
+    p.state = TBL_FAILED;
+    snprintf(p.reason, sizeof p.reason, "made to fail");
+    assert_int_equal(tbl_point_set(ta, 0, &p), STC_OK);
+    assert_int_equal(tbl_write(ta, P("mr.h5")), STC_OK);
+    kill_after_first_member(MEMBER_BUILD "mr.h5 --retry-failed", P("mr.h5"), 1);
+    assert_int_equal(run(MEMBER_BUILD "mr.h5 --retry-failed", 1, out, sizeof out), 0);
+    printf("%s", out);
+    assert_non_null(strstr(out, "placement members taken from an earlier run (the journal, or "
+                              "the file a refinement goes on from): 1"));
+    tbl_destroy(&ta);
+    assert_int_equal(tbl_read(P("mref.h5"), &ta), STC_OK);
+    assert_int_equal(tbl_read(P("mr.h5"), &tb), STC_OK);
+    worst = same_points(ta, tb);
+    printf("  retried point resumed against the uninterrupted build: largest relative "
+           "difference %.2g\n", worst);
+    assert_true(worst == 0.0);
     tbl_destroy(&ta);
     tbl_destroy(&tb);
 }
