@@ -684,7 +684,7 @@ int tbl_point_refinable(const tbl_table *t, const tbl_numerics *n, int i)
 }
 
 stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine_err,
-                           int *points, double *cpu_s)
+                           int *points, double *cpu_s, int *unkept)
 {
     STC_CHECK(t && points, STC_EINVAL, "tbl_refine_plan: NULL argument");
     const tbl_numerics *o = &t->num;
@@ -699,12 +699,16 @@ stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine
               "would be another build)", refine_err, o->refine_err);
     tbl_numerics n = *o;
     n.placements_max = placements_max, n.refine_err = refine_err;
-    int k = 0;
+    int k = 0, u = 0;
     double c = 0.0;
     for (int i = 0; i < tbl_points(t); i++) /* a copy is filled again from its source */
-        if (tbl_point_source(t, i) == i && tbl_point_refinable(t, &n, i)) k++, c += t->pt[i].cpu_s;
+        if (tbl_point_source(t, i) == i && tbl_point_refinable(t, &n, i)) {
+            k++, c += t->pt[i].cpu_s;
+            u += t->pt[i].ens.k < t->pt[i].members;
+        }
     *points = k;
     if (cpu_s) *cpu_s = c;
+    if (unkept) *unkept = u;
     return STC_OK;
 }
 

@@ -720,6 +720,7 @@ static void test_refine_in_place(void **state)
     const char *plan = strstr(out, "\"refine_plan\": {");
     assert_non_null(plan);
     assert_non_null(strstr(plan, "\"points\": 1,"));
+    assert_non_null(strstr(plan, "\"keeping_no_members\": 0")); /* format 6 on keeps them */
     /* the same refinement sharded over two copies of the file, then merged */
     char cmd[3 * PATH_MAX];
     snprintf(cmd, sizeof cmd, "cp '%s' '%s' && cp '%s' '%s'", P("rip.h5"), P("r0.h5"),

@@ -1840,11 +1840,14 @@ static void test_one_material(void **state)
 
     /* a refinement computes the sources again and fills the copies: its
      * plan counts the sources (one member's error at δ 1 is above 4 %) */
-    int k = -1;
+    int k = -1, unkept = -1;
     double cpu = 0.0;
-    check_ok(tbl_refine_plan(t, 2, 1e-3, &k, &cpu), "tbl_refine_plan");
-    printf("one material: a refinement to 2 members computes %d of the 12 points again\n", k);
+    check_ok(tbl_refine_plan(t, 2, 1e-3, &k, &cpu, &unkept), "tbl_refine_plan");
+    printf("one material: a refinement to 2 members computes %d of the 12 points again (%d of "
+           "them without kept members)\n", k, unkept);
     assert_int_equal(k, 8);
+    /* the point the build computed keeps its member, those set by hand none */
+    assert_int_equal(unkept, 7);
     tbl_destroy(&t);
 }
 

@@ -358,12 +358,13 @@ STC_API stc_status tbl_build(tbl_table *t, const char *path, const tbl_build_opt
 
 /* What a build with refinement up to placements_max members at refine_err
  * onto t (tbl_build) would refine: *points done points, whose stored CPU
- * time sums to *cpu_s (the members added cost at least as much again; the
- * first members once more where t does not keep them, tbl_point.ens: a
- * file written before format 6).  STC_EINVAL for values out of range
- * or refining less than t already does (that build would be another). */
+ * time sums to *cpu_s (the members added cost at least as much again), and
+ * of them *unkept (nullable) whose members t does not keep (tbl_point.ens:
+ * a file written before format 6), whose first members are computed once
+ * more.  STC_EINVAL for values out of range or refining less than t
+ * already does (that build would be another). */
 STC_API stc_status tbl_refine_plan(const tbl_table *t, int placements_max, double refine_err,
-                                   int *points, double *cpu_s);
+                                   int *points, double *cpu_s, int *unkept);
 
 /* Join tables of one build (shards of it, or partial runs): each point is
  * taken from the table that has it done or failed, a done one from the table

@@ -408,6 +408,7 @@ typedef struct {
 typedef struct {
     int k, points;
     double x, cpu_s;
+    int unkept;
 } refine_plan;
 
 static const cli_opt info_opts[] = {
@@ -713,6 +714,7 @@ static void info_json(const tbl_table *t, const char *path, const refine_plan *r
         cj_num(&j, "refine_err", rp->x);
         cj_int(&j, "points", rp->points);
         cj_num(&j, "their_cpu_s", rp->cpu_s);
+        cj_int(&j, "keeping_no_members", rp->unkept); /* their first members run again */
         cj_end_obj(&j);
     }
     cj_end_obj(&j);
@@ -847,16 +849,9 @@ static void info_text(const tbl_table *t, const char *path, const refine_plan *r
                "%g of mu_s: %d of the %d done points refined (their members took %.0f CPU "
                "s; the members added, at least as much again)\n", rp->k, rp->x, rp->points, nd,
                rp->cpu_s);
-    if (rp && rp->points > 0) {
-        int unkept = 0;
-        for (int i = 0; i < tbl_points(t); i++) {
-            const tbl_point *p = tbl_point_get(t, i);
-            unkept += p->state == TBL_DONE && p->copied == 0 && p->ens.k < p->members;
-        }
-        if (unkept > 0)
-            printf("  %d done points keep no members (a file written before format 6): a "
-                   "refined one computes its first members again\n", unkept);
-    }
+    if (rp && rp->unkept > 0)
+        printf("  %d of them keep no members (a file written before format 6): they compute "
+               "their first members again\n", rp->unkept);
 }
 
 /* --points: the stored values of every point, CSV. */
@@ -940,9 +935,9 @@ static int table_info(const cli_cmd *cmd, int argc, char **argv)
         fprintf(stderr, "stiction %s: --refine-err needs --placements-max\n", cmd->name);
         rc = CLI_EXIT_USAGE;
     }
-    refine_plan rp = {q.plan_k, 0, q.plan_x > 0.0 ? q.plan_x : ASP_REFINE_ERR, 0.0};
+    refine_plan rp = {q.plan_k, 0, q.plan_x > 0.0 ? q.plan_x : ASP_REFINE_ERR, 0.0, 0};
     if (!rc && !done && !(rc = open_table(cmd->name, path, &t)) && rp.k > 0) {
-        stc_status s = tbl_refine_plan(t, rp.k, rp.x, &rp.points, &rp.cpu_s);
+        stc_status s = tbl_refine_plan(t, rp.k, rp.x, &rp.points, &rp.cpu_s, &rp.unkept);
         if (s) rc = cli_fail(cmd->name, s);
     }
     if (!rc && !done && t) {
