@@ -38,14 +38,6 @@ static const char JOURNAL_MAGIC[8] = {'S', 'T', 'C', 'T', 'B', 'L', 'J', '2'};
 #define CURVE_MAGIC 0x43544254u /* "TBTC" */
 #define MEMBER_MAGIC 0x4d544254u /* "TBTM" */
 
-/* A member record's payload: the member of point `index` at phase slot
- * `slot` (asp_placement_store) and its ensemble's geometry. */
-typedef struct tbl_member_rec {
-    int32_t index, slot, edge_refine, pad;
-    double period, delta, delta_mesh, edge_a0;
-    asp_placement_member m;
-} tbl_member_rec;
-
 /* A record: this head, the payload (a tbl_point, or a tbl_curve and the
  * curve's P[n_w] and A[n_w]), a checksum of everything before it. */
 typedef struct {
@@ -93,9 +85,7 @@ static int write_all(int fd, const void *buf, size_t n)
     return 0;
 }
 
-/* Member j of ensemble e, of point i, as a record (zeroed first: no stray
- * padding bytes in the checksum). */
-static void member_rec(tbl_member_rec *r, int i, const asp_placement_result *e, int j)
+void tbl_member_rec_fill(tbl_member_rec *r, int i, const asp_placement_result *e, int j)
 {
     memset(r, 0, sizeof *r);
     r->index = i, r->slot = asp_placement_slot(j, e->k);
@@ -302,7 +292,7 @@ static int keep_file_members(tbl_build_state *b, int i, const tbl_point *p)
     int bad = !e || !r;
     if (!bad) tbl_members_unpack(p, e);
     for (int j = 0; !bad && j < e->k; j++) {
-        member_rec(r, i, e, j);
+        tbl_member_rec_fill(r, i, e, j);
         bad = keep_member(b, r) != 0;
     }
     free(e);
@@ -436,26 +426,56 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
     omp_unset_lock(&b->lock);
 }
 
-/* asp_placement_store.put of point ctx->i: journal member j of e, then
+/* Journal member record r (NULL: out of memory) of member j of e, then
  * report it. */
-static void member_put(void *ctx, const asp_placement_result *e, int j)
+static void keep_finished_member(tbl_build_state *b, const tbl_member_rec *r,
+                                 const asp_placement_result *e, int j)
 {
-    const tbl_member_ctx *mc = ctx;
-    tbl_build_state *b = mc->b;
-    tbl_member_rec *r = malloc(sizeof *r);
-    if (r) member_rec(r, mc->i, e, j);
     omp_set_lock(&b->lock);
     {
         int stop = 0;
         if (!r || journal_member(b->fd, r) != 0) b->io_error = errno ? errno : EIO, stop = 1;
-        else if (b->o->report_members) stop = report(b, mc->i, NULL, -1, NULL, e, j);
+        else if (b->o->report_members) stop = report(b, r->index, NULL, -1, NULL, e, j);
         if (stop) {
 #pragma omp atomic write
             b->stop = 1;
         }
     }
     omp_unset_lock(&b->lock);
+}
+
+/* asp_placement_store.put of point ctx->i: journal member j of e, then
+ * report it. */
+static void member_put(void *ctx, const asp_placement_result *e, int j)
+{
+    const tbl_member_ctx *mc = ctx;
+    tbl_member_rec *r = malloc(sizeof *r);
+    if (r) tbl_member_rec_fill(r, mc->i, e, j);
+    keep_finished_member(mc->b, r, e, j);
     free(r);
+}
+
+void tbl_member_journal(tbl_build_state *b, const tbl_member_rec *r, int j, int k)
+{
+    /* the report reads member j of an ensemble of k */
+    asp_placement_result *e = calloc(1, sizeof *e);
+    if (e) e->k = k, e->m[j] = r->m;
+    keep_finished_member(b, e ? r : NULL, e, j);
+    free(e);
+}
+
+int tbl_member_recs(tbl_build_state *b, int i, tbl_member_rec *out)
+{
+    int n = 0, have[ASP_PLACEMENTS_MAX] = {0};
+    omp_set_lock(&b->lock);
+    for (int r = 0; r < b->n_mem; r++) { /* the first of a slot, as member_get takes */
+        const tbl_member_rec *x = &b->mem[r];
+        if (x->index != i || have[x->slot]) continue;
+        have[x->slot] = 1;
+        out[n++] = *x;
+    }
+    omp_unset_lock(&b->lock);
+    return n;
 }
 
 /* asp_placement_store.get of point ctx->i: a member an earlier run journaled. */
@@ -484,13 +504,17 @@ void tbl_member_store(tbl_build_state *b, int i, tbl_member_ctx *ctx, asp_placem
     s->put = member_put, s->get = member_get, s->ctx = ctx;
 }
 
+void tbl_members_taken(tbl_build_state *b, int n, double cpu)
+{
+    omp_set_lock(&b->lock);
+    b->members_taken += n;
+    b->cpu -= cpu;
+    omp_unset_lock(&b->lock);
+}
+
 void tbl_member_done(const tbl_member_ctx *ctx)
 {
-    tbl_build_state *b = ctx->b;
-    omp_set_lock(&b->lock);
-    b->members_taken += ctx->taken;
-    b->cpu -= ctx->taken_cpu;
-    omp_unset_lock(&b->lock);
+    tbl_members_taken(ctx->b, ctx->taken, ctx->taken_cpu);
 }
 
 /* Item k of a todo list: a point i >= 0 (its members on up to `threads`

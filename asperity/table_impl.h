@@ -163,6 +163,28 @@ typedef struct tbl_build_state {
  * reason is the point's): the inverse of what the point keeps of it. */
 void tbl_members_unpack(const tbl_point *p, asp_placement_result *e);
 
+/* A finished placement member of point `index` at phase slot `slot`
+ * (asp_placement_store) and its ensemble's geometry: a journal record's
+ * payload (table_build.c) and an MPI message's (table_mpi.c). */
+typedef struct tbl_member_rec {
+    int32_t index, slot, edge_refine, pad;
+    double period, delta, delta_mesh, edge_a0;
+    asp_placement_member m;
+} tbl_member_rec;
+
+/* Member j of ensemble e, of point i, as a record (zeroed first: no stray
+ * padding bytes). */
+void tbl_member_rec_fill(tbl_member_rec *r, int i, const asp_placement_result *e, int j);
+/* The members of point i that an earlier run finished (b->mem), one per
+ * slot, into out[ASP_PLACEMENTS_MAX]; returns how many.  Thread-safe. */
+int tbl_member_recs(tbl_build_state *b, int i, tbl_member_rec *out);
+/* A member of another rank's point finished: journaled (synced) and
+ * reported as member j of k, as the serial path's.  Thread-safe. */
+void tbl_member_journal(tbl_build_state *b, const tbl_member_rec *r, int j, int k);
+/* n members taken by a point from an earlier run, cpu their CPU s: into the
+ * build's counts, out of this run's CPU time.  Thread-safe. */
+void tbl_members_taken(tbl_build_state *b, int n, double cpu);
+
 /* The store of point i's members in b's journal (table_build.c), for
  * tbl_build_compute: each finished member is journaled (synced) and
  * reported, and those an earlier run journaled are taken.  *s refers to

@@ -21,7 +21,11 @@
  * callback and writes the table at the end.  Ranks >= 1 write no file: they
  * say hello, get a point, compute it on one thread, send it back as bytes,
  * and get the next one in the reply (dynamic scheduling, one point at a
- * time: point costs vary about 10x).  The normal grid's curves are handed
+ * time: point costs vary about 10x).  A point comes with the placement
+ * members an earlier run finished (the journal's, or those the file keeps
+ * for a refinement), which it takes instead of running them, and each
+ * member it finishes goes to rank 0 at once, which journals it before its
+ * receipt, so a kill loses no finished member on any rank.  The normal grid's curves are handed
  * out the same way, before the points (a curve's values follow its result
  * in a second message), so that no rank waits while rank 0 computes them.
  * --shard combines with the farm: the farm shares out the shard's pending
@@ -78,10 +82,12 @@
 #include "stiction/table_mpi.h"
 #include "table_impl.h"
 
-/* Message tags: worker -> rank 0, rank 0 -> worker, a curve's values. */
-enum { TAG_UP = 1, TAG_DOWN = 2, TAG_VALUES = 3 };
+/* Message tags: worker -> rank 0, rank 0 -> worker, a curve's values, a
+ * handed-out point's members an earlier run finished (rank 0 -> worker, after
+ * the point's TAG_DOWN), rank 0's receipt of a member (no payload). */
+enum { TAG_UP = 1, TAG_DOWN = 2, TAG_VALUES = 3, TAG_MEMBERS = 4, TAG_ACK = 5 };
 /* Kinds of a worker's message. */
-enum { UP_HELLO = 1, UP_POINT = 2, UP_FAIL = 3, UP_CURVE = 4 };
+enum { UP_HELLO = 1, UP_POINT = 2, UP_FAIL = 3, UP_CURVE = 4, UP_MEMBER = 5 };
 /* Room for a message (stc_errmsg holds up to 1023 characters). */
 enum { WHY_MAX = 1024 };
 /* given[] of a rank without an item (items are points >= 0 and curves < 0). */
@@ -96,7 +102,11 @@ typedef struct {
     int32_t shard, shards;
     uint64_t hash;     /* UP_HELLO: tbl_build_hash of the rank's table */
     tbl_point p;       /* UP_POINT */
+    int32_t taken;     /* UP_POINT: members it took from an earlier run, */
+    double taken_cpu;  /*   and their CPU s */
     tbl_curve c;       /* UP_CURVE; its P[n_w] and A[n_w] follow, tagged TAG_VALUES */
+    tbl_member_rec rec;/* UP_MEMBER: a finished member of the point the rank computes, */
+    int32_t j, k;      /*   member j of k (answered with TAG_ACK, not TAG_DOWN) */
     char why[WHY_MAX]; /* UP_FAIL */
 } msg_up;
 
@@ -253,6 +263,12 @@ static void farm_reply(farm *f, int src)
         f->open--;
     }
     MPI_Send(&d, (int)sizeof d, MPI_BYTE, src, TAG_DOWN, MPI_COMM_WORLD);
+    if (!d.stop && d.item >= 0) { /* the point's members an earlier run finished */
+        tbl_member_rec *r = calloc(ASP_PLACEMENTS_MAX, sizeof *r);
+        int n = r && f->b ? tbl_member_recs(f->b, d.item, r) : 0; /* none: computed anew */
+        MPI_Send(r, n * (int)sizeof *r, MPI_BYTE, src, TAG_MEMBERS, MPI_COMM_WORLD);
+        free(r);
+    }
 }
 
 /* A curve's result from rank src (u) and the values that follow it. */
@@ -302,11 +318,24 @@ static void farm_handle(farm *f)
                 snprintf(msg, sizeof msg, "rank %d: another build (family, numerics, axes or "
                          "shard differ from rank 0's): start every rank with the same "
                          "options", src);
+        } else if (u.kind == UP_MEMBER) { /* answered with a receipt, not the next item */
+            if (!f->b || !f->given || u.index != f->given[src] || u.index < 0 ||
+                u.rec.index != u.index || u.rec.slot < 0 || u.rec.slot >= ASP_PLACEMENTS_MAX ||
+                u.k < 1 || u.k > ASP_PLACEMENTS_MAX || u.j < 0 || u.j >= u.k)
+                snprintf(msg, sizeof msg, "rank %d: sent a member of point %d, which it was "
+                         "not given", src, (int)u.index);
+            else tbl_member_journal(f->b, &u.rec, u.j, u.k);
+            if (msg[0]) farm_fail(f, bad, msg);
+            MPI_Send(NULL, 0, MPI_BYTE, src, TAG_ACK, MPI_COMM_WORLD);
+            return;
         } else if (u.kind == UP_POINT) {
             if (!f->b || !f->given || u.index != f->given[src] || u.index < 0)
                 snprintf(msg, sizeof msg, "rank %d: sent point %d, which it was not given",
                          src, (int)u.index);
-            else f->b->finish(f->b, u.index, &u.p);
+            else {
+                f->b->finish(f->b, u.index, &u.p);
+                tbl_members_taken(f->b, u.taken, u.taken_cpu);
+            }
         } else if (u.kind == UP_CURVE) {
             curve_values(f, src, &u, msg, sizeof msg);
         } else if (u.kind == UP_FAIL) {
@@ -394,6 +423,62 @@ void tbl_mpi_release(const tbl_mpi *m, stc_status s, const char *why)
 
 /* ---- ranks >= 1 ---------------------------------------------------------------- */
 
+/* The members of the point a rank computes: those an earlier run finished,
+ * as rank 0 handed them out with the point, and each one finished here
+ * sent to rank 0 to journal (the point runs on the thread that called
+ * MPI_Init: one thread, its members one after another). */
+typedef struct {
+    int i, n;
+    tbl_member_rec rec[ASP_PLACEMENTS_MAX];
+    int taken;
+    double taken_cpu;
+    msg_up *u; /* a message's room */
+} worker_members;
+
+static void worker_put(void *ctx, const asp_placement_result *e, int j)
+{
+    worker_members *w = ctx;
+    memset(w->u, 0, sizeof *w->u);
+    w->u->kind = UP_MEMBER;
+    w->u->index = w->i;
+    tbl_member_rec_fill(&w->u->rec, w->i, e, j);
+    w->u->j = j, w->u->k = e->k;
+    MPI_Send(w->u, (int)sizeof *w->u, MPI_BYTE, 0, TAG_UP, MPI_COMM_WORLD);
+    MPI_Status st;
+    wait_message(0, TAG_ACK, &st);
+    MPI_Recv(NULL, 0, MPI_BYTE, 0, TAG_ACK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+}
+
+static int worker_get(void *ctx, int slot, asp_placement_result *geom, asp_placement_member *m)
+{
+    worker_members *w = ctx;
+    for (int r = 0; r < w->n; r++) {
+        const tbl_member_rec *x = &w->rec[r];
+        if (x->slot != slot) continue;
+        *m = x->m;
+        geom->period = x->period, geom->edge_refine = x->edge_refine;
+        geom->delta = x->delta, geom->delta_mesh = x->delta_mesh, geom->edge_a0 = x->edge_a0;
+        w->taken++, w->taken_cpu += m->cpu_s;
+        return 1;
+    }
+    return 0;
+}
+
+/* After the TAG_DOWN that handed out point i: its members from rank 0. */
+static void worker_members_recv(worker_members *w, int i)
+{
+    MPI_Status st;
+    int bytes = 0;
+    wait_message(0, TAG_MEMBERS, &st);
+    MPI_Get_count(&st, MPI_BYTE, &bytes);
+    /* a count that does not fit is MPI's truncation error, which ends the job */
+    MPI_Recv(w->rec, (int)sizeof w->rec, MPI_BYTE, 0, TAG_MEMBERS, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    w->i = i;
+    w->n = bytes / (int)sizeof w->rec[0];
+    w->taken = 0, w->taken_cpu = 0.0;
+}
+
 static double seconds_since(const struct timespec *t0)
 {
     struct timespec t1;
@@ -412,7 +497,14 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
     int nw = tbl_curves(t) > 0 ? t->nrm.n[0] : 1;
     double cpu = 0;
     double *v = malloc(2 * (size_t)nw * sizeof *v);
-    STC_CHECK(v, STC_ENOMEM, "tbl_build: out of memory"); /* rank 0 sees this rank end */
+    worker_members *wm = malloc(sizeof *wm);
+    msg_up *mu = malloc(sizeof *mu);
+    if (!v || !wm || !mu) {
+        free(v), free(wm), free(mu);
+        return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory"); /* rank 0 sees this rank end */
+    }
+    wm->u = mu;
+    asp_placement_store store = {worker_put, worker_get, wm};
     memset(&u, 0, sizeof u); /* no stray bytes on the wire */
     u.kind = UP_HELLO;
     u.hash = tbl_build_hash(t);
@@ -432,8 +524,10 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
         memset(&u, 0, sizeof u);
         u.index = d.item;
         int c = -d.item - 1;
+        if (d.item >= 0) worker_members_recv(wm, d.item);
         stc_status s = d.item < tbl_points(t)
-                           ? tbl_build_item(t, d.item, 1, NULL, &u.p, &u.c, v, v + nw)
+                           ? tbl_build_item(t, d.item, 1, d.item >= 0 ? &store : NULL, &u.p,
+                                            &u.c, v, v + nw)
                            : STC_FAIL(STC_EINVAL, "point %d: not in the table of %d points",
                                       (int)d.item, tbl_points(t));
         if (s != STC_OK) { /* told to rank 0 in the next message; kept as our status */
@@ -451,12 +545,15 @@ stc_status tbl_mpi_work(tbl_table *t, const tbl_build_opts *o, tbl_build_summary
             continue;
         }
         u.kind = UP_POINT;
+        u.taken = wm->taken, u.taken_cpu = wm->taken_cpu;
         tbl_point_set(t, d.item, &u.p);
         computed++;
         failed += u.p.state == TBL_FAILED;
-        cpu += u.p.cpu_s;
+        cpu += u.p.cpu_s - wm->taken_cpu;
     }
     free(v);
+    free(wm);
+    free(mu);
     if (st == STC_OK && d.code != STC_OK) {
         d.why[WHY_MAX - 1] = '\0';
         st = STC_FAIL(d.code > STC_OK && d.code < STC_NSTATUS ? (stc_status)d.code : STC_EINVAL,

@@ -1,6 +1,7 @@
 /* Distributed table builds (asperity/table_mpi.c): `mpirun -n N stiction
  * table build` gives the serial build's table, every number bit for bit;
- * --shard combines with it; resuming works as in the serial path; only rank
+ * --shard combines with it; resuming works as in the serial path, a
+ * refinement in place takes the file's members on every rank; only rank
  * 0 writes; a plain run never initialises MPI; a failure on any rank ends
  * every rank with the message, none hangs.
  *
@@ -101,20 +102,44 @@ static tbl_table *read_table(const char *path)
     return t;
 }
 
-/* Every number of every point of shard/shards equal bit for bit (wall and
- * CPU times aside), the other points of b pending; the same axes, family
- * and numerics.  Returns the points compared. */
-static int compare_tables(const tbl_table *a, const tbl_table *b, int shard, int shards)
+/* Done point i of two tables: every number equal bit for bit (wall and CPU
+ * times aside), its kept members' too. */
+static void compare_point(const tbl_point *pa, const tbl_point *pb, int i)
 {
     static const size_t dbl[] = {
         offsetof(tbl_point, P_Pc),       offsetof(tbl_point, A_Ac),
         offsetof(tbl_point, P_slide_Pc), offsetof(tbl_point, Q_max_Pc),
         offsetof(tbl_point, mu_s),       offsetof(tbl_point, mu_s_err),
         offsetof(tbl_point, mu_s_preload), offsetof(tbl_point, mu_s_min),
-        offsetof(tbl_point, mu_s_max),   offsetof(tbl_point, ux_slide_wc)};
+        offsetof(tbl_point, mu_s_max),   offsetof(tbl_point, ux_slide_wc),
+        offsetof(tbl_point, mu_s_ux_slope)};
     static const size_t ints[] = {offsetof(tbl_point, members),
                                   offsetof(tbl_point, newton_iterations),
                                   offsetof(tbl_point, factorizations)};
+    assert_int_equal(pa->state, TBL_DONE);
+    assert_int_equal(pb->state, TBL_DONE);
+    for (size_t k = 0; k < sizeof dbl / sizeof *dbl; k++)
+        if (memcmp((const char *)pa + dbl[k], (const char *)pb + dbl[k], sizeof(double)))
+            fail_msg("point %d: the double at offset %zu differs: %.17g vs %.17g", i, dbl[k],
+                     *(const double *)((const char *)pa + dbl[k]),
+                     *(const double *)((const char *)pb + dbl[k]));
+    for (size_t k = 0; k < sizeof ints / sizeof *ints; k++)
+        assert_int_equal(*(const int *)((const char *)pa + ints[k]),
+                         *(const int *)((const char *)pb + ints[k]));
+    assert_string_equal(pa->reason, pb->reason);
+    assert_int_equal(pa->ens.k, pb->ens.k);
+    for (int j = 0; j < pa->ens.k; j++)
+        if (memcmp(&pa->ens.m[j].mu_s, &pb->ens.m[j].mu_s, sizeof(double)) ||
+            memcmp(&pa->ens.m[j].Q_max, &pb->ens.m[j].Q_max, sizeof(double)))
+            fail_msg("point %d: member %d differs: mu_s %.17g vs %.17g", i, j,
+                     pa->ens.m[j].mu_s, pb->ens.m[j].mu_s);
+}
+
+/* Every number of every point of shard/shards equal bit for bit (wall and
+ * CPU times aside), the other points of b pending; the same axes, family
+ * and numerics.  Returns the points compared. */
+static int compare_tables(const tbl_table *a, const tbl_table *b, int shard, int shards)
+{
     assert_true(tbl_same_build(a, b));
     for (int k = 0; k < 3; k++) {
         const double *va, *vb;
@@ -129,17 +154,7 @@ static int compare_tables(const tbl_table *a, const tbl_table *b, int shard, int
             assert_int_equal(pb->state, TBL_PENDING);
             continue;
         }
-        assert_int_equal(pa->state, TBL_DONE);
-        assert_int_equal(pb->state, TBL_DONE);
-        for (size_t k = 0; k < sizeof dbl / sizeof *dbl; k++)
-            if (memcmp((const char *)pa + dbl[k], (const char *)pb + dbl[k], sizeof(double)))
-                fail_msg("point %d: the double at offset %zu differs: %.17g vs %.17g", i,
-                         dbl[k], *(const double *)((const char *)pa + dbl[k]),
-                         *(const double *)((const char *)pb + dbl[k]));
-        for (size_t k = 0; k < sizeof ints / sizeof *ints; k++)
-            assert_int_equal(*(const int *)((const char *)pa + ints[k]),
-                             *(const int *)((const char *)pb + ints[k]));
-        assert_string_equal(pa->reason, pb->reason);
+        compare_point(pa, pb, i);
         compared++;
     }
     /* the normal curves of the shard (handed out like the points), bit for bit */
@@ -256,6 +271,42 @@ static void test_mpi_matches_serial(void **state)
            "build's bit for bit\n");
 }
 
+/* A refinement in place under the farm (one placement to two, shard 0/2:
+ * its three points): every rank's point goes on from the member the file
+ * keeps (handed out with the point; the new member sent back to rank 0's
+ * journal), and the refined points equal the serial refinement's bit for
+ * bit. */
+#define REFINE "--placements-max 2 --refine-err 0.001 --shard 0/2"
+static void test_mpi_refines_from_members(void **state)
+{
+    (void)state;
+    copy_file(in_dir("mpi.h5"), in_dir("refine-serial.h5"));
+    copy_file(in_dir("mpi.h5"), in_dir("refine-mpi.h5"));
+    int rc = run("'%s' table build " AXES " " FAMILY " " REFINE " --jobs 1 --out '%s'", cli,
+                 in_dir("refine-serial.h5"));
+    if (rc != 0) fail_msg("serial refinement: exit %d:\n%s", rc, out);
+    expect_in_output("placement members taken from an earlier run (the journal, or the file a "
+                     "refinement goes on from): 3");
+    rc = run(MPIRUN " -n 2 '%s' table build " AXES " " FAMILY " " REFINE " --out '%s'", cli,
+             in_dir("refine-mpi.h5"));
+    if (rc != 0) fail_msg("mpirun -n 2 refinement: exit %d:\n%s", rc, out);
+    expect_in_output("placement members taken from an earlier run (the journal, or the file a "
+                     "refinement goes on from): 3");
+    assert_false(exists(in_dir("refine-mpi.h5.journal")));
+    tbl_table *a = read_table(in_dir("refine-serial.h5")), *b = read_table(in_dir("refine-mpi.h5"));
+    int refined = 0;
+    for (int i = 0; i < tbl_points(a); i += 2) {
+        assert_int_equal(tbl_point_get(b, i)->members, 2);
+        compare_point(tbl_point_get(a, i), tbl_point_get(b, i), i);
+        refined++;
+    }
+    assert_int_equal(refined, 3);
+    tbl_destroy(&a);
+    tbl_destroy(&b);
+    printf("mpirun -n 2 refining shard 0/2 in place: 3 members taken from the file on both "
+           "ranks, the 3 refined points equal the serial refinement's bit for bit\n");
+}
+
 /* Failures end every rank (timeout 300 would report a hang as 124) with
  * the message, on rank 0's stderr. */
 static void test_mpi_failures(void **state)
@@ -368,6 +419,7 @@ int main(void)
         cmocka_unit_test(test_plain_build),
         cmocka_unit_test(test_in_process),
         cmocka_unit_test(test_mpi_matches_serial),
+        cmocka_unit_test(test_mpi_refines_from_members),
         cmocka_unit_test(test_mpi_failures),
         cmocka_unit_test(test_mpirun_one),
     };
