@@ -478,6 +478,14 @@ int tbl_member_recs(tbl_build_state *b, int i, tbl_member_rec *out)
     return n;
 }
 
+void tbl_member_rec_take(const tbl_member_rec *r, asp_placement_result *geom,
+                         asp_placement_member *m)
+{
+    *m = r->m;
+    geom->period = r->period, geom->edge_refine = r->edge_refine;
+    geom->delta = r->delta, geom->delta_mesh = r->delta_mesh, geom->edge_a0 = r->edge_a0;
+}
+
 /* asp_placement_store.get of point ctx->i: a member an earlier run journaled. */
 static int member_get(void *ctx, int slot, asp_placement_result *geom, asp_placement_member *m)
 {
@@ -488,9 +496,7 @@ static int member_get(void *ctx, int slot, asp_placement_result *geom, asp_place
     for (int r = 0; r < b->n_mem && !got; r++) {
         const tbl_member_rec *x = &b->mem[r];
         if (x->index != mc->i || x->slot != slot) continue;
-        *m = x->m;
-        geom->period = x->period, geom->edge_refine = x->edge_refine;
-        geom->delta = x->delta, geom->delta_mesh = x->delta_mesh, geom->edge_a0 = x->edge_a0;
+        tbl_member_rec_take(x, geom, m);
         got = 1;
     }
     omp_unset_lock(&b->lock);

@@ -175,6 +175,10 @@ typedef struct tbl_member_rec {
 /* Member j of ensemble e, of point i, as a record (zeroed first: no stray
  * padding bytes). */
 void tbl_member_rec_fill(tbl_member_rec *r, int i, const asp_placement_result *e, int j);
+/* Its member into *m and its ensemble's geometry into *geom (the fields
+ * asp_placement_store.get writes). */
+void tbl_member_rec_take(const tbl_member_rec *r, asp_placement_result *geom,
+                         asp_placement_member *m);
 /* The members of point i that an earlier run finished (b->mem), one per
  * slot, into out[ASP_PLACEMENTS_MAX]; returns how many.  Thread-safe. */
 int tbl_member_recs(tbl_build_state *b, int i, tbl_member_rec *out);

@@ -455,9 +455,7 @@ static int worker_get(void *ctx, int slot, asp_placement_result *geom, asp_place
     for (int r = 0; r < w->n; r++) {
         const tbl_member_rec *x = &w->rec[r];
         if (x->slot != slot) continue;
-        *m = x->m;
-        geom->period = x->period, geom->edge_refine = x->edge_refine;
-        geom->delta = x->delta, geom->delta_mesh = x->delta_mesh, geom->edge_a0 = x->edge_a0;
+        tbl_member_rec_take(x, geom, m);
         w->taken++, w->taken_cpu += m->cpu_s;
         return 1;
     }
