@@ -25,9 +25,10 @@
  * members an earlier run finished (the journal's, or those the file keeps
  * for a refinement), which it takes instead of running them, and each
  * member it finishes goes to rank 0 at once, which journals it before its
- * receipt, so a kill loses no finished member on any rank.  The normal grid's curves are handed
- * out the same way, before the points (a curve's values follow its result
- * in a second message), so that no rank waits while rank 0 computes them.
+ * receipt, so a kill loses no finished member on any rank.  The normal
+ * grid's curves are handed out the same way, before the points (a curve's
+ * values follow its result in a second message), so that no rank waits
+ * while rank 0 computes them.
  * --shard combines with the farm: the farm shares out the shard's pending
  * curves and points.
  *
