@@ -168,7 +168,8 @@ def main():
           "(a 3D mesh level costs 5-10x the one below, docs/design.md 2.6); the preload's P "
           "and A come from the normal grid instead, at the CPU s per curve listed per table. "
           "Work skipped instead: the plane where the coating is the substrate is computed "
-          "once, as the uncoated sphere (the copies above).")
+          "once, as the uncoated sphere (the copies above), and a point's finished placement "
+          "members are kept for a resumed or refined build (measured above).")
 
 
 if __name__ == "__main__":
