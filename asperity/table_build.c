@@ -209,12 +209,15 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
         }
         free(buf);
         /* members only of the points still to compute (pending, or failed
-         * and to be retried) */
+         * and to be retried), and only those that reached inception: a
+         * member that failed runs again (taken, it would fail its point
+         * again without a run, also where the retry follows a solver fix) */
         int kept = 0;
         for (int r = 0; r < b->n_mem; r++) {
-            int i = b->mem[r].index;
-            if (reopens(b, t->pt[i].state) && !(b->retried && b->retried[i]))
-                b->mem[kept++] = b->mem[r];
+            const tbl_member_rec *x = &b->mem[r];
+            if (reopens(b, t->pt[x->index].state) && !(b->retried && b->retried[x->index]) &&
+                x->m.status == STC_OK && x->m.res.converged)
+                b->mem[kept++] = *x;
         }
         b->n_mem = kept;
         /* a torn last record (killed mid-write) is dropped and recomputed */

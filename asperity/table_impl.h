@@ -15,8 +15,8 @@
 #define TBL_FORMAT_NAME "stiction friction table"
 #define TBL_FORMAT_VERSION 7 /* 2: the normal grid (/normal), 3: foot_rows, 4: copied
                                 points, 5: copied curves, 6: the points' members
-                                (/members), 7: whose Q still rose (members_rising,
-                                /members/Q_still_rising, KT_after); 1 to 6 are read too */
+                                (/members), 7: mu_s_ux_slope (points and members);
+                                1 to 6 are read too */
 
 /* The reference sphere every point is computed on (the response is
  * independent of both, include/stiction/table.h). */

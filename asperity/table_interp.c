@@ -538,7 +538,8 @@ stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm
             if (kind == TBL_MODEL_SLOPE) {
                 STC_CHECK_GOTO(isfinite(v.mu_s_ux_slope), st, done, STC_ERANGE, "the table "
                                "keeps no d ln mu_s / d ln ux at delta/omega_c = %g, t/R = %g "
-                               "(a point written before format 7)", w[i], tR[j]);
+                               "(a point written before format 7, or refined from one)", w[i],
+                               tR[j]);
                 Q[k] *= fmax(v.mu_s_ux_slope, SLOPE_FLOOR);
             }
         }

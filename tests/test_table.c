@@ -1353,6 +1353,97 @@ static tbl_table *coarse_point_table(void **state, const char *name, double w, d
     return t;
 }
 
+/* A journal record as table_build.c writes one (its layout mirrored here:
+ * magic, index, payload, FNV-1a of all before). */
+static void journal_record(FILE *f, uint32_t magic, int32_t index, const void *p, size_t n)
+{
+    unsigned char *buf = malloc(8 + n);
+    assert_non_null(buf);
+    memcpy(buf, &magic, 4);
+    memcpy(buf + 4, &index, 4);
+    memcpy(buf + 8, p, n);
+    uint64_t h = 14695981039346656037ULL;
+    for (size_t i = 0; i < 8 + n; i++) h = (h ^ buf[i]) * 1099511628211ULL;
+    assert_int_equal(fwrite(buf, 1, 8 + n, f), 8 + n);
+    assert_int_equal(fwrite(&h, 8, 1, f), 1);
+    free(buf);
+}
+
+/* A build killed after a point failed, its failed member journaled (a
+ * transient failure, or one a solver change fixes), run again with
+ * --retry-failed: the member that failed is not taken (it would fail the
+ * point again without a run), the one that reached inception is; the point
+ * comes out as the build from scratch computes it. */
+static void test_failed_member_not_taken(void **state)
+{
+    char path[192], jpath[256];
+    tbl_table *t = coarse_point_table(state, "failed-member", 0.5, 2.0, path, sizeof path);
+    tbl_numerics num;
+    tbl_get_numerics(t, &num);
+    num.placements = 2;
+    tbl_family fam;
+    tbl_get_family(t, &fam);
+    double w = 0.5, tr = 0.01, er = 2.0;
+    tbl_table *ref = NULL;
+    check_ok(tbl_create(&fam, &num, &w, 1, &tr, 1, &er, 1, &ref), "tbl_create");
+    tbl_destroy(&t);
+    check_ok(tbl_create(&fam, &num, &w, 1, &tr, 1, &er, 1, &t), "tbl_create");
+    tbl_build_opts o;
+    tbl_build_summary sum;
+    tbl_build_opts_default(&o);
+    o.jobs = 1;
+    char rpath[256];
+    snprintf(rpath, sizeof rpath, "%s.ref.h5", path);
+    check_ok(tbl_build(ref, rpath, &o, &sum), "tbl_build reference");
+    const tbl_point *good = tbl_point_get(ref, 0);
+    assert_int_equal(good->ens.k, 2);
+
+    /* the file: the point pending; its journal: member 0 as computed,
+     * member 1 failed, the point failed */
+    check_ok(tbl_write(t, path), "tbl_write");
+    asp_placement_result *e = calloc(1, sizeof *e);
+    assert_non_null(e);
+    tbl_members_unpack(good, e);
+    tbl_member_rec r[2];
+    tbl_member_rec_fill(&r[0], 0, e, 0);
+    tbl_member_rec_fill(&r[1], 0, e, 1);
+    r[1].m.status = STC_ENOCONV, r[1].m.res.converged = 0;
+    snprintf(r[1].m.message, sizeof r[1].m.message, "made to fail");
+    free(e);
+    tbl_point fp;
+    memset(&fp, 0, sizeof fp);
+    fp.state = TBL_FAILED, fp.members = 1;
+    snprintf(fp.reason, sizeof fp.reason, "1 of 2 members failed: made to fail");
+    snprintf(jpath, sizeof jpath, "%s.journal", path);
+    FILE *f = fopen(jpath, "wb");
+    assert_non_null(f);
+    uint64_t hash = tbl_build_hash(t);
+    assert_int_equal(fwrite("STCTBLJ2", 1, 8, f), 8);
+    assert_int_equal(fwrite(&hash, 8, 1, f), 1);
+    journal_record(f, 0x4d544254u /* "TBTM" */, 0, &r[0], sizeof r[0]);
+    journal_record(f, 0x4d544254u, 0, &r[1], sizeof r[1]);
+    journal_record(f, 0x50544254u /* "TBTP" */, 0, &fp, sizeof fp);
+    assert_int_equal(fclose(f), 0);
+
+    o.retry_failed = 1;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build --retry-failed");
+    const tbl_point *p = tbl_point_get(t, 0);
+    printf("failed member in the journal: the retry computed %d point, took %d member; %s, "
+           "mu_s %.6f (from scratch %.6f)\n", sum.computed, sum.members_taken,
+           p->state == TBL_DONE ? "done" : "not done", p->mu_s, good->mu_s);
+    assert_int_equal(sum.computed, 1);
+    assert_int_equal(sum.members_taken, 1);
+    assert_int_equal(p->state, TBL_DONE);
+    p = tbl_point_get(t, 0);
+    tbl_point want = *good;
+    want.wall_s = p->wall_s, want.cpu_s = p->cpu_s; /* timings */
+    for (int j = 0; j < want.ens.k; j++) want.ens.m[j].cpu_s = p->ens.m[j].cpu_s;
+    const char *d = point_diff(&want, p);
+    if (d) fail_msg("the retried point differs from the build from scratch in %s", d);
+    tbl_destroy(&t);
+    tbl_destroy(&ref);
+}
+
 /* Refinement (tbl_numerics.placements_max): a coarse elastic point with a
  * threshold below any spread doubles its members twice, 1 -> 2 -> 4 (that
  * a refined ensemble equals the one made at once: test_shear); with a
@@ -2067,6 +2158,7 @@ int main(void)
         cmocka_unit_test(test_normal_grid), cmocka_unit_test(test_one_material),
         cmocka_unit_test(test_caller_settings),    cmocka_unit_test(test_point_threads),
         cmocka_unit_test(test_fit_reused),         cmocka_unit_test(test_ux_slope),
+        cmocka_unit_test(test_failed_member_not_taken),
     };
     return cmocka_run_group_tests(tests, scratch_setup, scratch_teardown);
 }

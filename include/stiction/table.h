@@ -465,6 +465,8 @@ typedef enum tbl_model_kind {
                               maximum, counts as none): over the table model's sum of
                               Qmax, the surface μs's d ln μs / d ln ux for inception
                               declared at a ux the same per cent later on every summit.
+                              Below the table's first δ the two sums follow their own
+                              power laws (summits flagged outside, as with every model).
                               STC_ERANGE where the table does not keep s (format < 7) */
 } tbl_model_kind;
 

@@ -119,9 +119,11 @@ stc_status cli_table_design_create(const tbl_table *t, const stc_params *p, doub
         s = tbl_model_create(t, p, t_mm, kind[k], &d->m[k]);
         if (s == STC_OK) s = cli_gw_pop_sum(pop, d->m[k], &d->g[k]);
     }
-    /* the slope where the table keeps it (format 7 on) */
-    if (s == STC_OK && tbl_model_create(t, p, t_mm, TBL_MODEL_SLOPE, &d->m[3]) != STC_OK)
-        stc_error_clear();
+    /* the slope where the table keeps it (format 7 on; STC_ERANGE: it does not) */
+    if (s == STC_OK) {
+        s = tbl_model_create(t, p, t_mm, TBL_MODEL_SLOPE, &d->m[3]);
+        if (s == STC_ERANGE) stc_error_clear(), s = STC_OK;
+    }
     if (s == STC_OK && d->m[3]) s = cli_gw_pop_sum(pop, d->m[3], &d->g[3]);
     if (s != STC_OK) cli_table_design_free(d);
     return s;
