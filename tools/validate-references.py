@@ -86,15 +86,17 @@ def main():
             "(data/fe/references.csv, tools/references.py; the members are in "
             "data/fe/reference-members.csv).  'single' is a fresh default run (no numerical "
             "option) with its printed error estimate; 'L0 mean' the default mesh's own "
-            "placement mean (its K in brackets)." % a.level)
+            "placement mean (its K in brackets); 'slope' the single run's d ln mu_s / d ln ux at "
+            "inception (mu_s_ux_slope: how much its mu_s depends on where inception is "
+            "declared)." % a.level)
     rep.out("")
     cols = ["case", "delta_over_omega_c", "t_over_R", "E_ratio", "mu_s_ref", "mu_s_ref_err",
             "placements", "mu_s_single", "mu_s_single_err", "single_error_pct", "covered",
-            "wall_s", "mu_s_L0", "placements_L0", "L0_vs_ref_pct"]
+            "mu_s_ux_slope", "wall_s", "mu_s_L0", "placements_L0", "L0_vs_ref_pct"]
     rows, why = [], {}
-    rep.out("| case | reference | K | single run ± printed error | error | covered | wall s | "
-            "L0 mean (K) | L0 mean vs ref |")
-    rep.out("|---|---|---|---|---|---|---|---|---|")
+    rep.out("| case | reference | K | single run ± printed error | error | covered | slope | "
+            "wall s | L0 mean (K) | L0 mean vs ref |")
+    rep.out("|---|---|---|---|---|---|---|---|---|---|")
     for c in cases:
         ref = refs.get((c[0], a.level))
         if ref is None:
@@ -115,15 +117,18 @@ def main():
             mu, se = j["mu_s"], j["mu_s_err"]
             err = mu / mu_r - 1
             band = 2 * math.hypot(se, se_r)
+            slope = j.get("mu_s_ux_slope")
             r.update(mu_s_single="%.5f" % mu, mu_s_single_err="%.5f" % se,
                      single_error_pct="%+.2f" % (100 * err),
-                     covered=int(abs(mu - mu_r) <= band))
+                     covered=int(abs(mu - mu_r) <= band),
+                     mu_s_ux_slope="%.3f" % slope if slope is not None else "")
         rows.append(r)
         write_progress(a.out, cols, rows)
-        rep.out("| %s | %.4f ± %.4f | %s | %s ± %s | %s %% | %s | %s | %s | %s %% |"
+        rep.out("| %s | %.4f ± %.4f | %s | %s ± %s | %s %% | %s | %s | %s | %s | %s %% |"
                 % (c[0], mu_r, se_r, r["placements"], r.get("mu_s_single", "failed"),
                    r.get("mu_s_single_err", "-"), r.get("single_error_pct", "-"),
-                   "yes" if r.get("covered") else "no", r["wall_s"],
+                   "yes" if r.get("covered") else "no", r.get("mu_s_ux_slope") or "-",
+                   r["wall_s"],
                    "%s (%s)" % (r["mu_s_L0"], r["placements_L0"]) if l0 else "-",
                    r["L0_vs_ref_pct"] or "-"))
         why[c[0]] = j.get("reason") or (p.stderr.strip().splitlines() or ["failed"])[-1]
