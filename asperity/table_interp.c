@@ -489,8 +489,11 @@ static int usable_block(const tbl_table *t, double E, int *t0, int *t1, int *w0,
  * interpolates between them: Steffen in ln w, linear in t/R). */
 enum { DENSE_W = 8, DENSE_TR = 4 };
 
-/* TBL_MODEL_SLOPE's least slope (the data model interpolates ln Q). */
-#define SLOPE_FLOOR 1e-4
+/* TBL_MODEL_SLOPE's least slope: the data model interpolates ln Q, and a
+ * slope near 0 next to one of 0.1 would make its power law in δ steep (and
+ * the extrapolation below the table's first δ run away); 0.01, a per cent
+ * of μs per doubling of ux at most, reads as none. */
+#define SLOPE_FLOOR 0.01
 
 stc_status tbl_model_create(const tbl_table *t, const stc_params *p, double t_mm,
                             tbl_model_kind kind, asp_model **out)

@@ -460,11 +460,12 @@ typedef enum tbl_model_kind {
     TBL_MODEL_SLIDE = 1,   /* P = P at inception, Qmax as above */
     TBL_MODEL_ERR = 2,     /* P = preload, Qmax = σ(μs) P_slide: the error band's sum */
     TBL_MODEL_SLOPE = 3    /* P = preload, Qmax = s μs P_slide, s the points'
-                              mu_s_ux_slope (tbl_value; at least 1e-4, the log
-                              interpolation's floor: a negative s, Q/P falling past a
-                              maximum, counts as none): over the table model's sum of
-                              Qmax, the surface μs's d ln μs / d ln ux for inception
-                              declared at a ux the same per cent later on every summit.
+                              mu_s_ux_slope (tbl_value; at least 0.01, the log
+                              interpolation's floor: a smaller or negative s, Q/P flat or
+                              falling past a maximum, counts as 0.01): over the table
+                              model's sum of Qmax, the surface μs's d ln μs / d ln ux for
+                              inception declared at a ux the same per cent later on
+                              every summit.
                               Below the table's first δ the two sums follow their own
                               power laws (summits flagged outside, as with every model).
                               STC_ERANGE where the table does not keep s (format < 7) */
