@@ -113,6 +113,16 @@ static int reopens(const tbl_build_state *b, int state)
            ((b->o->retry_failed || b->o->only_failed) && state == TBL_FAILED);
 }
 
+/* A journal record in state `rec` for a point or curve in state `was`: taken
+ * where this build computes it (reopens), and a done record of a failed
+ * one in any case: only a retry of this build can have written it, and a
+ * build resumed without --retry-failed must not lose it. */
+static int takes_record(const tbl_build_state *b, int was, int rec)
+{
+    return rec != TBL_PENDING &&
+           (reopens(b, was) || (was == TBL_FAILED && rec == TBL_DONE));
+}
+
 /* Item k (a point, or curve k - points) was failed and an earlier run of
  * this build journaled its retry: b->retried[k].  0, or -1 out of memory. */
 static int mark_retried(tbl_build_state *b, int state, int k)
@@ -174,8 +184,7 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
                 tbl_point p;
                 memcpy(&p, buf + sizeof rh, sizeof p);
                 int was = t->pt[rh.index].state;
-                if (reopens(b, was) && p.state != TBL_PENDING &&
-                    tbl_point_set(t, rh.index, &p) == STC_OK) {
+                if (takes_record(b, was, p.state) && tbl_point_set(t, rh.index, &p) == STC_OK) {
                     (*taken)++;
                     if (mark_retried(b, was, rh.index) != 0) {
                         free(buf);
@@ -196,7 +205,7 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
                 const double *v = (const double *)(buf + sizeof rh + sizeof c);
                 memcpy(&c, buf + sizeof rh, sizeof c);
                 int was = t->nrm.c[rh.index].state;
-                if (reopens(b, was) && c.state != TBL_PENDING &&
+                if (takes_record(b, was, c.state) &&
                     tbl_curve_set(t, rh.index, &c, v, v + t->nrm.n[0]) == STC_OK) {
                     (*taken_curves)++;
                     if (mark_retried(b, was, tbl_points(t) + rh.index) != 0) {

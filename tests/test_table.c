@@ -1441,6 +1441,30 @@ static void test_failed_member_not_taken(void **state)
     const char *d = point_diff(&want, p);
     if (d) fail_msg("the retried point differs from the build from scratch in %s", d);
     tbl_destroy(&t);
+
+    /* a retry killed after it finished the point, before it wrote the file,
+     * run again without --retry-failed: the done point is taken from the
+     * journal, not lost (the file says failed) */
+    check_ok(tbl_create(&fam, &num, &w, 1, &tr, 1, &er, 1, &t), "tbl_create");
+    check_ok(tbl_point_set(t, 0, &fp), "tbl_point_set failed");
+    check_ok(tbl_write(t, path), "tbl_write");
+    f = fopen(jpath, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite("STCTBLJ2", 1, 8, f), 8);
+    assert_int_equal(fwrite(&hash, 8, 1, f), 1);
+    tbl_point done = *good;
+    journal_record(f, 0x50544254u, 0, &done, sizeof done);
+    assert_int_equal(fclose(f), 0);
+    o.retry_failed = 0;
+    check_ok(tbl_build(t, path, &o, &sum), "tbl_build without --retry-failed");
+    printf("a retry's done point in the journal, resumed without the option: %d computed, %d "
+           "resumed, %s\n", sum.computed, sum.resumed,
+           tbl_point_get(t, 0)->state == TBL_DONE ? "done" : "not done");
+    assert_int_equal(sum.computed, 0);
+    assert_int_equal(tbl_point_get(t, 0)->state, TBL_DONE);
+    d = point_diff(good, tbl_point_get(t, 0));
+    if (d) fail_msg("the point taken from the journal differs in %s", d);
+    tbl_destroy(&t);
     tbl_destroy(&ref);
 }
 
