@@ -1373,7 +1373,9 @@ static void journal_record(FILE *f, uint32_t magic, int32_t index, const void *p
  * transient failure, or one a solver change fixes), run again with
  * --retry-failed: the member that failed is not taken (it would fail the
  * point again without a run), the one that reached inception is; the point
- * comes out as the build from scratch computes it. */
+ * comes out as the build from scratch computes it.  And a retry killed
+ * after it finished a point, run again without --retry-failed, keeps that
+ * point (the file still says failed). */
 static void test_failed_member_not_taken(void **state)
 {
     char path[192], jpath[256];
