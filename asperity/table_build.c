@@ -98,9 +98,12 @@ void tbl_member_rec_fill(tbl_member_rec *r, int i, const asp_placement_result *e
 /* Keep member record r for its point (pending in b's table): b->mem. */
 static int keep_member(tbl_build_state *b, const tbl_member_rec *r)
 {
-    tbl_member_rec *m = realloc(b->mem, (size_t)(b->n_mem + 1) * sizeof *m);
-    if (!m) return -1;
-    b->mem = m;
+    if (b->n_mem == b->cap_mem) { /* room doubles: a journal holds hundreds */
+        int cap = b->cap_mem ? 2 * b->cap_mem : 16;
+        tbl_member_rec *m = realloc(b->mem, (size_t)cap * sizeof *m);
+        if (!m) return -1;
+        b->mem = m, b->cap_mem = cap;
+    }
     b->mem[b->n_mem++] = *r;
     return 0;
 }
@@ -166,6 +169,7 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
         if (sizeof(tbl_member_rec) > cap) cap = sizeof(tbl_member_rec);
         unsigned char *buf = malloc(sizeof(record_head) + cap + sizeof(uint64_t));
         STC_CHECK(buf, STC_ENOMEM, "tbl_build: out of memory");
+        int oom = 0;
         for (;;) {
             record_head rh;
             if (read(*fd, &rh, sizeof rh) != (ssize_t)sizeof rh) break;
@@ -186,19 +190,13 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
                 int was = t->pt[rh.index].state;
                 if (takes_record(b, was, p.state) && tbl_point_set(t, rh.index, &p) == STC_OK) {
                     (*taken)++;
-                    if (mark_retried(b, was, rh.index) != 0) {
-                        free(buf);
-                        return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
-                    }
+                    oom = mark_retried(b, was, rh.index) != 0;
                 }
             } else if (rh.magic == MEMBER_MAGIC) {
                 tbl_member_rec r;
                 memcpy(&r, buf + sizeof rh, sizeof r);
-                if (r.index == rh.index && r.slot >= 0 && r.slot < ASP_PLACEMENTS_MAX &&
-                    keep_member(b, &r) != 0) {
-                    free(buf);
-                    return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
-                }
+                oom = r.index == rh.index && r.slot >= 0 && r.slot < ASP_PLACEMENTS_MAX &&
+                      keep_member(b, &r) != 0;
             } else {
                 if (rh.index < 0 || rh.index >= tbl_curves(t)) break;
                 tbl_curve c;
@@ -208,15 +206,14 @@ static stc_status journal_open(tbl_build_state *b, const char *jpath, int *taken
                 if (takes_record(b, was, c.state) &&
                     tbl_curve_set(t, rh.index, &c, v, v + t->nrm.n[0]) == STC_OK) {
                     (*taken_curves)++;
-                    if (mark_retried(b, was, tbl_points(t) + rh.index) != 0) {
-                        free(buf);
-                        return STC_FAIL(STC_ENOMEM, "tbl_build: out of memory");
-                    }
+                    oom = mark_retried(b, was, tbl_points(t) + rh.index) != 0;
                 }
             }
+            if (oom) break;
             good += (off_t)(sizeof rh + n + sizeof sum);
         }
         free(buf);
+        STC_CHECK(!oom, STC_ENOMEM, "tbl_build: out of memory");
         /* members only of the points still to compute (pending, or failed
          * and to be retried), and only those that reached inception: a
          * member that failed runs again (taken, it would fail its point
@@ -368,9 +365,9 @@ static stc_status take_existing(tbl_build_state *b, const char *path, int *taken
 }
 
 /* Report to the caller (holding the build's lock): point i (p), curve c
- * (cv) or member j of point i's ensemble e; nonzero: stop. */
+ * (cv) or member j (m) of k of point i's ensemble; nonzero: stop. */
 static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tbl_curve *cv,
-                  const asp_placement_result *e, int j)
+                  const asp_placement_member *m, int j, int k)
 {
     if (!b->o->progress) return 0;
     double el = wall_now() - b->t0, eta;
@@ -378,14 +375,13 @@ static int report(tbl_build_state *b, int i, const tbl_point *p, int c, const tb
         eta = b->curves_done < b->curves_total
                   ? el / b->curves_computed * (b->curves_total - b->curves_done)
                   : 0.0;
-    else if (e) /* no estimate before the first point */
+    else if (m) /* no estimate before the first point */
         eta = b->computed > 0 ? (el - b->curves_wall) / b->computed * (b->total - b->done) : NAN;
     else
         eta = b->done < b->total ? (el - b->curves_wall) / b->computed * (b->total - b->done)
                                  : 0.0;
     tbl_progress pr = {.index = i, .point = p, .curve = c, .c = cv,
-                       .member = e ? j : -1, .members = e ? e->k : 0,
-                       .m = e ? &e->m[j] : NULL,
+                       .member = m ? j : -1, .members = m ? k : 0, .m = m,
                        .curves_done = b->curves_done, .curves_total = b->curves_total,
                        .done = b->done, .total = b->total, .resumed = b->resumed,
                        .failed = b->failed, .elapsed_s = el, .eta_s = eta};
@@ -404,7 +400,7 @@ static void build_finish(tbl_build_state *b, int i, const tbl_point *p)
             b->done++, b->computed++;
             b->failed += p->state == TBL_FAILED;
             b->cpu += p->cpu_s;
-            stop = report(b, i, p, -1, NULL, NULL, 0);
+            stop = report(b, i, p, -1, NULL, NULL, 0, 0);
         }
         if (stop) {
 #pragma omp atomic write
@@ -428,7 +424,7 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
             b->curves_done++, b->curves_computed++;
             b->curves_failed += cv->state == TBL_FAILED;
             b->curves_wall = wall_now() - b->t0;
-            stop = report(b, -1, NULL, c, tbl_curve_get(b->t, c), NULL, 0);
+            stop = report(b, -1, NULL, c, tbl_curve_get(b->t, c), NULL, 0, 0);
         }
         if (stop) {
 #pragma omp atomic write
@@ -438,16 +434,14 @@ static void finish_curve(tbl_build_state *b, int c, const tbl_curve *cv, const d
     omp_unset_lock(&b->lock);
 }
 
-/* Journal member record r (NULL: out of memory) of member j of e, then
- * report it. */
-static void keep_finished_member(tbl_build_state *b, const tbl_member_rec *r,
-                                 const asp_placement_result *e, int j)
+/* r NULL: out of memory (the build stops as on a journal error). */
+void tbl_member_journal(tbl_build_state *b, const tbl_member_rec *r, int j, int k)
 {
     omp_set_lock(&b->lock);
     {
         int stop = 0;
         if (!r || journal_member(b->fd, r) != 0) b->io_error = errno ? errno : EIO, stop = 1;
-        else if (b->o->report_members) stop = report(b, r->index, NULL, -1, NULL, e, j);
+        else if (b->o->report_members) stop = report(b, r->index, NULL, -1, NULL, &r->m, j, k);
         if (stop) {
 #pragma omp atomic write
             b->stop = 1;
@@ -463,17 +457,8 @@ static void member_put(void *ctx, const asp_placement_result *e, int j)
     const tbl_member_ctx *mc = ctx;
     tbl_member_rec *r = malloc(sizeof *r);
     if (r) tbl_member_rec_fill(r, mc->i, e, j);
-    keep_finished_member(mc->b, r, e, j);
+    tbl_member_journal(mc->b, r, j, e->k);
     free(r);
-}
-
-void tbl_member_journal(tbl_build_state *b, const tbl_member_rec *r, int j, int k)
-{
-    /* the report reads member j of an ensemble of k */
-    asp_placement_result *e = calloc(1, sizeof *e);
-    if (e) e->k = k, e->m[j] = r->m;
-    keep_finished_member(b, e ? r : NULL, e, j);
-    free(e);
 }
 
 int tbl_member_recs(tbl_build_state *b, int i, tbl_member_rec *out)

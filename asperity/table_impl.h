@@ -150,7 +150,7 @@ typedef struct tbl_build_state {
     /* members of pending points that an earlier run of the build finished
      * (the journal's member records, table_build.c) */
     struct tbl_member_rec *mem;
-    int n_mem;
+    int n_mem, cap_mem;
     int members_taken;          /* of them, taken by this run's points */
     /* [points + curves]: 1 where an earlier run of this build retried the
      * failed point (curve np + c) and journaled it: not retried again (NULL:
@@ -182,8 +182,8 @@ void tbl_member_rec_take(const tbl_member_rec *r, asp_placement_result *geom,
 /* The members of point i that an earlier run finished (b->mem), one per
  * slot, into out[ASP_PLACEMENTS_MAX]; returns how many.  Thread-safe. */
 int tbl_member_recs(tbl_build_state *b, int i, tbl_member_rec *out);
-/* A member of another rank's point finished: journaled (synced) and
- * reported as member j of k, as the serial path's.  Thread-safe. */
+/* Member record r, member j of k of its point, finished (this process's,
+ * or another rank's): journaled (synced), then reported.  Thread-safe. */
 void tbl_member_journal(tbl_build_state *b, const tbl_member_rec *r, int j, int k);
 /* n members taken by a point from an earlier run, cpu their CPU s: into the
  * build's counts, out of this run's CPU time.  Thread-safe. */

@@ -31,7 +31,8 @@ typedef struct {
     size_t off;
     int is_int;
     const char *doc; /* the dataset's "description" attribute */
-    int since;       /* the format version that added it (older files: 0) */
+    int since;       /* the format version that added it (older files: an integer
+                        0, a number NaN: not known) */
 } field;
 
 #define D(n, m, doc) {n, offsetof(tbl_point, m), 0, doc, 1}
@@ -177,7 +178,7 @@ typedef struct {
     size_t off;  /* in tbl_members (per point) or tbl_member (per member) */
     int is_int, per_member;
     const char *doc;
-    int since;   /* the format version that added it */
+    int since;   /* the format version that added it (older files: as in fields) */
 } mfield;
 
 #define MP(n, m, i, doc) {n, offsetof(tbl_members, m), i, 0, doc, 6}
@@ -545,7 +546,11 @@ static stc_status read_points(hid_t f, const char *path, int version, tbl_table 
     STC_CHECK_GOTO(dv && iv && rs, st, done, STC_ENOMEM, "tbl_read: out of memory");
     for (int k = 0; k < NFIELD; k++) {
         int isi = fields[k].is_int;
-        if (fields[k].since > version) continue; /* not in the file: 0 (tbl_create) */
+        if (fields[k].since > version) { /* not in the file: integers 0 (tbl_create) */
+            for (int i = 0; !isi && i < np; i++)
+                *(double *)((char *)&t->pt[i] + fields[k].off) = NAN;
+            continue;
+        }
         STC_CALL_GOTO(read_array(g, path, fields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
                                  dims, 3, isi ? (void *)iv : (void *)dv), st, done);
         for (int i = 0; i < np; i++) {
@@ -600,13 +605,10 @@ static stc_status read_members(hid_t f, const char *path, int version, tbl_table
     STC_CHECK_GOTO(dv && iv, st, done, STC_ENOMEM, "tbl_read: out of memory");
     for (int k = 0; k < NMFIELD; k++) {
         int isi = mfields[k].is_int, per = mfields[k].per_member ? nm : 1;
-        if (mfields[k].since > version) { /* not in the file: not known */
-            for (int i = 0; i < np; i++)
-                for (int j = 0; j < t->pt[i].ens.k; j++) {
-                    void *v = mfield_at(&t->pt[i], k, j);
-                    if (isi) *(int *)v = -1;
-                    else *(double *)v = NAN;
-                }
+        if (mfields[k].since > version) { /* not in the file: integers 0, numbers NaN */
+            for (int i = 0; !isi && i < np; i++)
+                for (int j = 0; j < t->pt[i].ens.k; j++)
+                    *(double *)mfield_at(&t->pt[i], k, j) = NAN;
             continue;
         }
         STC_CALL_GOTO(read_array(g, path, mfields[k].name, isi ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE,
@@ -761,7 +763,6 @@ stc_status tbl_read(const char *path, tbl_table **out)
     STC_CALL_GOTO(tbl_create(&fam, &num, ax[0], n[0], ax[1], n[1], ax[2], n[2], out), st, done);
     H5E_BEGIN_TRY { st = read_points(f, path, ver, *out); } H5E_END_TRY;
     if (st) goto done;
-    for (int i = 0; ver < 7 && i < tbl_points(*out); i++) (*out)->pt[i].mu_s_ux_slope = NAN;
     if (ver >= 6) { /* before: no members kept (every ens.k 0, tbl_create) */
         H5E_BEGIN_TRY { st = read_members(f, path, ver, *out); } H5E_END_TRY;
         if (st) goto done;
